@@ -1,0 +1,90 @@
+"""Exceptions and warnings of supercoil.
+
+Every failure of a method (a singularity, no solution, a formula used outside
+its validity) raises or warns with one of these classes, and the message names
+the quantity and the limit. The package never returns a silent NaN.
+
+Hierarchy
+---------
+``SupercoilError`` (base of all errors, a ``ValueError``)
+    ``NoSolutionError``: the equations have no solution for these inputs
+        ``NoHelixError``: no double helix forms (rod scenes)
+        ``NoEquilibriumError``: no plectoneme equilibrium at this force (DNA)
+    ``SingularityError``: the inputs reach a singular point of the model
+        (alpha -> pi/4 where the tension diverges, alpha -> 0 at s_max)
+    ``ValidityError``: a formula is evaluated where it is not defined
+        (e.g. the Moroz-Nelson bracket is not positive)
+    ``ParameterError``: a parameter set is malformed (missing key, bad unit)
+    ``DataError``: user data cannot be read (names the row and column)
+    ``FitError``: a fit could not be set up or did not converge
+
+``SupercoilWarning`` (base of all warnings, a ``UserWarning``)
+    ``ValidityWarning``: a result is computed but lies outside the range where
+        the model is trustworthy (short tail, curvature error, denaturation)
+    ``BoundWarning``: a fitted estimate sits on a bound
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "BoundWarning",
+    "DataError",
+    "FitError",
+    "NoEquilibriumError",
+    "NoHelixError",
+    "NoSolutionError",
+    "ParameterError",
+    "SingularityError",
+    "SupercoilError",
+    "SupercoilWarning",
+    "ValidityError",
+    "ValidityWarning",
+]
+
+
+class SupercoilError(ValueError):
+    """Base class of all errors raised by supercoil."""
+
+
+class NoSolutionError(SupercoilError):
+    """The model's equations have no solution for the given inputs."""
+
+
+class NoHelixError(NoSolutionError):
+    """No double helix exists for the given rod, turns and slack."""
+
+
+class NoEquilibriumError(NoSolutionError):
+    """No plectoneme equilibrium exists at the given force."""
+
+
+class SingularityError(SupercoilError):
+    """The inputs reach a singular point of the model (named in the message)."""
+
+
+class ValidityError(SupercoilError):
+    """A formula is evaluated outside the domain where it is defined."""
+
+
+class ParameterError(SupercoilError):
+    """A parameter set is malformed: missing key, unknown unit, wrong dimension."""
+
+
+class DataError(SupercoilError):
+    """User data cannot be read; the message names the row and the column."""
+
+
+class FitError(SupercoilError):
+    """A fit cannot be set up or did not converge."""
+
+
+class SupercoilWarning(UserWarning):
+    """Base class of all warnings issued by supercoil."""
+
+
+class ValidityWarning(SupercoilWarning):
+    """A result lies outside the range where the model is trustworthy."""
+
+
+class BoundWarning(SupercoilWarning):
+    """A fitted parameter estimate sits on one of its bounds."""

@@ -1,0 +1,200 @@
+"""The package's single unit registry and the unit boundary.
+
+Every public function of supercoil takes and returns :class:`pint.Quantity`
+objects of the one registry :data:`ureg`. Inside, all numerics run on plain
+float arrays in **SI base units** (m, N, J, N m, N m^2, rad, K). The helpers in
+this module strip units once at the boundary (:func:`magnitude`) and attach
+them once on the way out (:func:`quantity`).
+
+Cost on hot paths
+-----------------
+Parsing a unit string costs 10-100 us per call in pint, and even
+``Quantity.m_as(unit)`` costs ~8 us. Therefore
+
+* all unit objects are built once, at import, in :class:`U`;
+* :func:`magnitude` compares the argument's unit container with the target
+  (~0.2 us), and otherwise multiplies by a conversion factor that is computed
+  once per (source unit, target unit) pair and cached. Offset units (degC)
+  fall back to pint's own conversion.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+import pint
+
+__all__ = [
+    "BOLTZMANN",
+    "U",
+    "as_turns",
+    "magnitude",
+    "quantity",
+    "ureg",
+]
+
+#: The package's single unit registry. Build all quantities with it:
+#: ``length = 750 * supercoil.ureg.nm``.
+ureg = pint.UnitRegistry()
+ureg.formatter.default_format = "~P"
+Q_ = ureg.Quantity
+
+#: Boltzmann constant in J/K (exact, SI 2019).
+BOLTZMANN = 1.380649e-23
+
+DimensionalityError = pint.DimensionalityError
+
+
+class U:
+    """Unit objects built once at import. Internal system: SI base units."""
+
+    # internal (SI) units
+    m = ureg.meter
+    N = ureg.newton
+    J = ureg.joule
+    N_m = ureg.newton * ureg.meter  # torque / twist moment
+    N_m2 = ureg.newton * ureg.meter**2  # bending and torsional rigidity
+    N_per_m = ureg.newton / ureg.meter  # force per length
+    per_m = 1 / ureg.meter  # curvature, torsion, twist density
+    Pa = ureg.pascal
+    K = ureg.kelvin
+    rad = ureg.radian
+    s = ureg.second
+    dimensionless = ureg.dimensionless
+    turn = ureg.turn
+    # display units of the scenes (tables and returned quantities)
+    nm = ureg.nanometer
+    um = ureg.micrometer
+    mm = ureg.millimeter
+    cm = ureg.centimeter
+    pN = ureg.piconewton
+    pN_nm = ureg.piconewton * ureg.nanometer
+    pN_per_nm = ureg.piconewton / ureg.nanometer
+    per_nm = 1 / ureg.nanometer
+    per_mm = 1 / ureg.millimeter
+    N_mm = ureg.newton * ureg.millimeter
+    N_per_mm = ureg.newton / ureg.millimeter
+    deg = ureg.degree
+    MPa = ureg.megapascal
+
+
+# (source UnitsContainer, target UnitsContainer) -> multiplicative factor
+_FACTORS: dict[tuple, float] = {}
+
+
+def _dimension_error(value_units, unit, name, detail=""):
+    src = ureg.Unit(value_units) if value_units is not None else U.dimensionless
+    return DimensionalityError(
+        src,
+        unit,
+        src.dimensionality,
+        unit.dimensionality,
+        extra_msg=f" for argument '{name}' (expected a quantity in {unit:~P}){detail}",
+    )
+
+
+def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
+    """Strip the unit of ``value`` after converting it to ``unit``.
+
+    Parameters
+    ----------
+    value : pint.Quantity
+        A quantity of :data:`ureg`. A plain number is accepted only where
+        ``unit`` is dimensionless.
+    unit : pint.Unit
+        Target unit, one of the prebuilt :class:`U` members.
+    name : str
+        The argument's name, used in error messages.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The magnitude in ``unit`` as float (array for array input).
+
+    Raises
+    ------
+    pint.DimensionalityError
+        If ``value`` has the wrong dimension; the message names ``name``.
+    TypeError
+        If ``value`` belongs to another unit registry.
+    """
+    units = getattr(value, "_units", None)
+    if units is None:
+        if isinstance(value, pint.Unit):
+            raise TypeError(f"argument '{name}' is a unit, not a quantity: multiply it by a number")
+        if unit.dimensionless and (
+            isinstance(value, numbers.Number | np.ndarray | list | tuple)
+        ):
+            return _as_float(value)
+        raise _dimension_error(
+            None,
+            unit,
+            name,
+            "; a plain number has no unit: build it with supercoil.ureg, "
+            f"e.g. 2.0 * supercoil.ureg.{unit:~}",
+        )
+    if getattr(value, "_REGISTRY", ureg) is not ureg:
+        raise TypeError(
+            f"argument '{name}' was built with another pint UnitRegistry; "
+            "use supercoil.ureg (the package's single registry)"
+        )
+    mag = value._magnitude
+    target = unit._units
+    if units == target:
+        return _as_float(mag)
+    key = (units, target)
+    factor = _FACTORS.get(key)
+    if factor is None:
+        if not value._is_multiplicative:
+            try:
+                return _as_float(value.m_as(unit))
+            except DimensionalityError:
+                raise _dimension_error(units, unit, name) from None
+        try:
+            factor = float(Q_(1.0, units).m_as(unit))
+        except DimensionalityError:
+            raise _dimension_error(units, unit, name) from None
+        _FACTORS[key] = factor
+    return _as_float(mag) * factor
+
+
+def _as_float(mag):
+    if isinstance(mag, float):
+        return mag
+    arr = np.asarray(mag, dtype=float)
+    return float(arr) if arr.ndim == 0 else arr
+
+
+def as_turns(value, name: str = "turns") -> np.ndarray | float:
+    """Number of turns from a plain number, a dimensionless quantity or an angle.
+
+    A plain number or a dimensionless quantity counts turns (``40`` is 40
+    turns). A quantity in an angle unit is converted: ``40 * ureg.turn`` and
+    ``80 * pi * ureg.rad`` are both 40 turns. (pint treats angles as
+    dimensionless, so a plain ``.m_as("dimensionless")`` would turn 40 turns
+    into 251; this function avoids that trap.)
+    """
+    units = getattr(value, "_units", None)
+    if units is None:
+        return magnitude(value, U.dimensionless, name)
+    if units == U.dimensionless._units:
+        return _as_float(value._magnitude)
+    return magnitude(value, U.turn, name)
+
+
+def quantity(mag, unit: pint.Unit) -> pint.Quantity:
+    """Attach ``unit`` (a prebuilt :class:`U` member) to a float or array."""
+    return Q_(mag, unit)
+
+
+def require_finite(name: str, arr, positive: bool = False, nonnegative: bool = False):
+    """Raise ValueError naming ``name`` if ``arr`` has non-finite (or non-positive) entries."""
+    a = np.asarray(arr, dtype=float)
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite, got {arr!r}")
+    if positive and not np.all(a > 0):
+        raise ValueError(f"{name} must be positive, got {arr!r}")
+    if nonnegative and not np.all(a >= 0):
+        raise ValueError(f"{name} must be non-negative, got {arr!r}")
+    return arr
