@@ -1,0 +1,1 @@
+"""Subcommands of the ``supercoil`` command line, one module each (see :mod:`supercoil.cli`)."""

@@ -1,0 +1,5 @@
+"""Placeholder: being implemented (see the issue tracker)."""
+
+
+def rough_helix(*args, **kwargs):
+    raise NotImplementedError("rough_helix is not implemented yet")
