@@ -131,7 +131,7 @@ def read_parameter_set(name_or_path) -> ParameterSet:
         if not isinstance(text, str | int | float):
             raise ParameterError(f"{path}: {key} must be a string like '4.2 MPa', got {text!r}")
         try:
-            values[key] = ureg.Quantity(text) if isinstance(text, str) else ureg.Quantity(text)
+            values[key] = ureg.Quantity(text)
         except (pint.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
             raise ParameterError(f"{path}: {key} = {text!r}: unknown unit ({exc})") from None
         except Exception as exc:  # pint raises several parser errors

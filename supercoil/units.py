@@ -120,9 +120,9 @@ def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
         If ``value`` belongs to another unit registry.
     """
     units = getattr(value, "_units", None)
+    if units is not None and not hasattr(value, "_magnitude"):
+        raise TypeError(f"argument '{name}' is a unit, not a quantity: multiply it by a number")
     if units is None:
-        if isinstance(value, pint.Unit):
-            raise TypeError(f"argument '{name}' is a unit, not a quantity: multiply it by a number")
         if unit.dimensionless and (
             isinstance(value, numbers.Number | np.ndarray | list | tuple)
         ):

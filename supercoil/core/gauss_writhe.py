@@ -77,14 +77,9 @@ def double_helix_polygon(alpha, radius, turns, handedness=-1, points_per_turn=12
     scale = s1[-1, 2] + radius
     z_far, x_far = 1e3 * scale, 1e4 * scale
     top1, top2 = s1[-1], s2[-1]
-    closure = [
-        top1 + [0, 0, z_far],
-        top1 + [x_far, 0, z_far],
-        top1 + [x_far, 0, z_far + x_far],
-        top2 + [-x_far, 0, z_far + x_far],
-        top2 + [-x_far, 0, z_far],
-        top2 + [0, 0, z_far],
-    ]
+    offsets1 = np.array([[0, 0, z_far], [x_far, 0, z_far], [x_far, 0, z_far + x_far]])
+    offsets2 = np.array([[-x_far, 0, z_far + x_far], [-x_far, 0, z_far], [0, 0, z_far]])
+    closure = np.vstack((top1 + offsets1, top2 + offsets2))
     # head: from strand 2's start (-R cos 0, ...) = (-R, 0, 0) to (R, 0, 0)
     phi = np.linspace(np.pi, 2.0 * np.pi, 33)[1:-1]
     head = np.column_stack((radius * np.cos(phi), np.zeros_like(phi), radius * np.sin(phi)))

@@ -1,0 +1,135 @@
+"""Parameter sets: loading, errors, and loading from an installed wheel."""
+
+import os
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+import supercoil as sc
+
+ROOT = Path(__file__).resolve().parent.parent
+
+ROD_TOML = """
+kind = "ElasticRod"
+title = "test rod"
+[parameters]
+radius = "{radius}"
+length = "50 cm"
+young_modulus = "4 MPa"
+shear_modulus = "1.5 MPa"
+[sources]
+radius = "a"
+length = "b"
+young_modulus = "c"
+shear_modulus = "d"
+"""
+
+
+def test_bundled_sets_are_listed():
+    assert {"dna", "silicone_rubber_rod"} <= set(sc.available_parameter_sets())
+
+
+def test_dna_seed_set_matches_model_section_6(ureg):
+    dna = sc.load_parameters("dna")
+    assert dna.length == 750 * ureg.nm
+    assert dna.si.bending_persistence == pytest.approx(48e-9)
+    assert dna.si.twist_persistence == pytest.approx(86e-9)
+    assert dna.si.radius == pytest.approx(1.75e-9)
+    assert dna.si.temperature == 300.0
+    assert dna.si.wlc_persistence == pytest.approx(52e-9)
+
+
+def test_rubber_rod_set_matches_model_section_4():
+    rod = sc.load_parameters("silicone_rubber_rod")
+    assert rod.si.radius == pytest.approx(1e-3)
+    assert rod.si.length == pytest.approx(0.567)
+    assert rod.si.young_modulus == pytest.approx(4.2e6)
+    assert rod.si.shear_modulus == pytest.approx(1.51e6)
+    assert rod.friction_coefficient == 0.5
+
+
+def test_every_bundled_value_has_a_source():
+    from supercoil.parameters import read_parameter_set
+
+    for name in sc.available_parameter_sets():
+        ps = read_parameter_set(name)
+        assert set(ps.values) <= set(ps.sources)
+        assert all(ps.sources[k].strip() for k in ps.values)
+
+
+def test_load_from_path(tmp_path):
+    p = tmp_path / "rod.toml"
+    p.write_text(ROD_TOML.format(radius="2 mm"))
+    assert sc.load_parameters(p).si.radius == pytest.approx(2e-3)
+    assert sc.load_parameters(str(p)).si.radius == pytest.approx(2e-3)
+
+
+@pytest.mark.parametrize(
+    ("radius", "match"),
+    [("2 furlongz", "unknown unit"), ("2 s", "wrong dimension"), ("-2 mm", "positive")],
+)
+def test_bad_values_give_parameter_errors(tmp_path, radius, match):
+    p = tmp_path / "rod.toml"
+    p.write_text(ROD_TOML.format(radius=radius))
+    with pytest.raises(sc.ParameterError, match=match):
+        sc.load_parameters(p)
+
+
+def test_missing_key_and_missing_source(tmp_path):
+    p = tmp_path / "rod.toml"
+    p.write_text(ROD_TOML.format(radius="1 mm").replace('length = "50 cm"\n', "", 1))
+    with pytest.raises(sc.ParameterError, match="missing key 'length'"):
+        sc.load_parameters(p)
+    p.write_text(ROD_TOML.format(radius="1 mm").replace('radius = "a"\n', ""))
+    with pytest.raises(sc.ParameterError, match="no source line for 'radius'"):
+        sc.load_parameters(p)
+
+
+def test_unknown_name_and_unknown_key(tmp_path):
+    with pytest.raises(sc.ParameterError, match=r"unknown parameter set 'nope'.*dna"):
+        sc.load_parameters("nope")
+    p = tmp_path / "rod.toml"
+    p.write_text(ROD_TOML.format(radius="1 mm").replace("[sources]", 'colour = "red"\n[sources]'))
+    with pytest.raises(sc.ParameterError, match="unknown key 'colour'"):
+        sc.load_parameters(p)
+
+
+def test_parameter_sets_load_from_a_built_wheel(tmp_path):
+    """Build the wheel, unpack it away from the checkout and load both sets from it."""
+    proc = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
+         "-w", str(tmp_path / "dist"), str(ROOT)],
+        capture_output=True, text=True, timeout=180,
+    )
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
+    (wheel,) = (tmp_path / "dist").glob("supercoil-*.whl")
+    site = tmp_path / "site"
+    with zipfile.ZipFile(wheel) as zf:
+        names = zf.namelist()
+        assert "supercoil/parameters/dna.toml" in names
+        assert "supercoil/parameters/silicone_rubber_rod.toml" in names
+        zf.extractall(site)
+    code = (
+        "import supercoil, pathlib; "
+        "p = pathlib.Path(supercoil.__file__).parent; "
+        f"assert str(p).startswith({str(site)!r}), p; "
+        "print(supercoil.load_parameters('dna').si.length, "
+        "supercoil.load_parameters('silicone_rubber_rod').si.radius)"
+    )
+    env = dict(os.environ, PYTHONPATH=str(site))
+    proc = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["7.5e-07", "0.001"]
+
+
+def test_params_cli_prints_units_and_sources(capsys):
+    from supercoil.cli import main
+
+    assert main(["params", "silicone_rubber_rod"]) == 0
+    out = capsys.readouterr().out
+    assert "young_modulus" in out and "4.2 MPa" in out and "tensile test" in out
+    assert main(["params", "nope"]) == 2

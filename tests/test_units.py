@@ -1,0 +1,68 @@
+"""The unit boundary: one registry, dimension checks naming the argument, cheap conversions."""
+
+import numpy as np
+import pint
+import pytest
+
+import supercoil as sc
+from supercoil.units import U, as_turns, magnitude, quantity
+
+
+def test_single_registry_is_exported():
+    assert sc.ureg is sc.units.ureg
+    assert isinstance(sc.ureg, pint.UnitRegistry)
+
+
+def test_magnitude_converts_to_target_unit(ureg):
+    assert magnitude(3.0 * ureg.nm, U.m, "x") == pytest.approx(3e-9, rel=1e-15)
+    assert magnitude(2.0 * ureg.pN * ureg.nm, U.J, "x") == pytest.approx(2e-21, rel=1e-15)
+    arr = magnitude(np.array([1.0, 2.0]) * ureg.mm, U.m, "x")
+    np.testing.assert_allclose(arr, [1e-3, 2e-3], rtol=1e-15)
+
+
+def test_magnitude_handles_offset_units(ureg):
+    assert magnitude(ureg.Quantity(26.85, "degC"), U.K, "t") == pytest.approx(300.0)
+
+
+def test_wrong_dimension_names_the_argument(ureg):
+    with pytest.raises(pint.DimensionalityError, match="'pitch'"):
+        magnitude(1.0 * ureg.s, U.m, "pitch")
+
+
+def test_plain_number_rejected_for_dimensional_argument():
+    with pytest.raises(pint.DimensionalityError, match=r"'radius'.*plain number"):
+        magnitude(1.0, U.m, "radius")
+
+
+def test_other_registry_rejected():
+    other = pint.UnitRegistry()
+    with pytest.raises(TypeError, match="another pint UnitRegistry"):
+        magnitude(1.0 * other.m, U.m, "length")
+
+
+def test_unit_object_instead_of_quantity_rejected(ureg):
+    with pytest.raises(TypeError, match="unit, not a quantity"):
+        magnitude(ureg.m, U.m, "length")
+
+
+def test_turns_from_numbers_and_angles(ureg):
+    assert as_turns(40) == 40.0
+    assert as_turns(40 * ureg.dimensionless) == 40.0
+    assert as_turns(40 * ureg.turn) == pytest.approx(40.0)
+    assert as_turns(80 * np.pi * ureg.rad) == pytest.approx(40.0)
+    assert as_turns(720 * ureg.degree) == pytest.approx(2.0)
+    with pytest.raises(pint.DimensionalityError, match="'turns'"):
+        as_turns(3 * ureg.m)
+
+
+def test_quantity_attaches_prebuilt_unit():
+    q = quantity(np.array([1.0, 2.0]), U.nm)
+    assert q.units == sc.ureg.nm
+    assert q._REGISTRY is sc.ureg
+
+
+def test_conversion_factor_cache_is_consistent(ureg):
+    # the same conversion done twice (second time from the cache) agrees with pint
+    for _ in range(2):
+        v = magnitude(5.0 * ureg.um, U.m, "x")
+        assert v == pytest.approx((5.0 * ureg.um).m_as(ureg.m), rel=1e-15)
