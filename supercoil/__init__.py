@@ -11,10 +11,9 @@ the package's single unit registry :data:`supercoil.ureg`::
 
 __version__ = "0.1.0"
 
-from .units import ureg  # noqa: E402  (the one registry, created first)
-
-from . import geometry  # noqa: E402
-from .exceptions import (  # noqa: E402
+from . import geometry
+from .design import design_twist_schedule
+from .exceptions import (
     BoundWarning,
     DataError,
     FitError,
@@ -28,21 +27,21 @@ from .exceptions import (  # noqa: E402
     ValidityError,
     ValidityWarning,
 )
-from .materials import DNA, ElasticRod  # noqa: E402
-from .parameters import available_parameter_sets, load_parameters  # noqa: E402
-from .tables import read_csv, write_csv  # noqa: E402
-from .smooth import smooth_helix  # noqa: E402
-from .rough import rough_helix  # noqa: E402
-from .design import design_twist_schedule  # noqa: E402
-from .spinning import twist_spinning  # noqa: E402
-from .plectoneme import (  # noqa: E402
+from .fitting import FitResult, fit_hat_curves, fit_many
+from .hat import hat_curve
+from .materials import DNA, ElasticRod
+from .parameters import available_parameter_sets, load_parameters
+from .plectoneme import (
     effective_twist_rigidity,
     extension_factor,
     plectoneme_equilibrium,
 )
-from .hat import hat_curve  # noqa: E402
-from .tweezers_data import read_tweezers_csv  # noqa: E402
-from .fitting import FitResult, fit_hat_curves, fit_many  # noqa: E402
+from .rough import rough_helix
+from .smooth import smooth_helix
+from .spinning import twist_spinning
+from .tables import read_csv, write_csv
+from .tweezers_data import read_tweezers_csv
+from .units import ureg
 
 __all__ = [
     "DNA",
@@ -67,15 +66,15 @@ __all__ = [
     "extension_factor",
     "fit_hat_curves",
     "fit_many",
+    "geometry",
     "hat_curve",
+    "load_parameters",
     "plectoneme_equilibrium",
+    "read_csv",
     "read_tweezers_csv",
     "rough_helix",
     "smooth_helix",
     "twist_spinning",
-    "geometry",
-    "load_parameters",
-    "read_csv",
     "ureg",
     "write_csv",
 ]

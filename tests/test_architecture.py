@@ -23,9 +23,9 @@ def test_core_does_not_import_pint_or_the_unit_layer():
         for name in _imports(path):
             if name.split(".")[0] in {"pint", "pandas", "matplotlib"}:
                 offenders.append((path.name, name))
-            if name.startswith("..") or name.startswith("supercoil.") and not name.startswith(
+            if name.startswith("..") or (name.startswith("supercoil.") and not name.startswith(
                 "supercoil.core"
-            ):
+            )):
                 if name not in ("..exceptions", "supercoil.exceptions"):
                     offenders.append((path.name, name))
     assert not offenders, f"core must stay float-only: {offenders}"
