@@ -1,0 +1,98 @@
+"""Cost of the unit boundary: a public call against the float kernel it wraps.
+
+For each wrapped function and each input size (1, 1e2, 1e4, 1e6 elements) the
+public call (quantities in, quantity out) and the float kernel (SI floats in,
+floats out) are timed with :func:`~supercoil.benchmark.timing.best_time`; the
+overhead is the difference. Inputs are given once in display units (nm, pN), where
+the O(n) conversion multiply is part of what is measured, and once in SI
+units, where the boundary only compares unit containers and wraps arrays
+without copying.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .timing import best_time
+
+SIZES = (1, 100, 10_000, 1_000_000)
+
+
+def _cases():
+    """(name, public(n) -> callable, kernel(n) -> callable) for each wrapped function."""
+    import supercoil as sc
+    from supercoil.core import helix_geometry as g
+
+    u = sc.ureg
+
+    def geom_public(n, si=False):
+        a = np.linspace(0.1, 0.7, n) * u.rad
+        R = np.full(n, 2e-9) * u.m if si else np.full(n, 2.0) * u.nm
+        return lambda: sc.geometry.torsion(a, R)
+
+    def geom_kernel(n):
+        a = np.linspace(0.1, 0.7, n)
+        R = np.full(n, 2e-9)
+        return lambda: g.torsion(a, R)
+
+    cases = [("geometry.torsion", geom_public, geom_kernel)]
+    try:  # DNA plectoneme equilibrium (issue 4)
+        from supercoil.core import plectoneme as pk
+
+        dna = sc.load_parameters("dna")
+        d = dna.si
+
+        def eq_public(n, si=False):
+            f = np.linspace(0.3e-12, 5e-12, n) * u.N if si else np.linspace(0.3, 5.0, n) * u.pN
+            return lambda: sc.plectoneme_equilibrium(dna, f)
+
+        def eq_kernel(n):
+            f = np.linspace(0.3, 5.0, n) * 1e-12
+            return lambda: pk.plectoneme_equilibrium_si(
+                f, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
+            )
+
+        cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
+    except (ImportError, AttributeError):  # pragma: no cover - before issue 4 lands
+        pass
+    return cases
+
+
+def run(sizes=SIZES, max_equilibrium_size=10_000):
+    """Measure the boundary overhead; returns a convention table."""
+    from supercoil.tables import make_table, provenance
+
+    keys = ("function", "input_units", "elements", "public_time", "kernel_time", "overhead")
+    rows = {k: [] for k in keys}
+    for name, public, kernel in _cases():
+        for n in sizes:
+            if name == "plectoneme_equilibrium" and n > max_equilibrium_size:
+                continue
+            tk = best_time(kernel(n), repeat=5)
+            for si in (False, True):
+                tp = best_time(public(n, si), repeat=5)
+                rows["function"].append(name)
+                rows["input_units"].append("SI" if si else "display")
+                rows["elements"].append(n)
+                rows["public_time"].append(tp * 1e6)
+                rows["kernel_time"].append(tk * 1e6)
+                rows["overhead"].append((tp - tk) * 1e6)
+    units = {"function": "", "input_units": "", "elements": "", "public_time": "us",
+             "kernel_time": "us", "overhead": "us"}
+    return make_table(rows, units, provenance(None, benchmark="unit boundary"))
+
+
+def plot(table, ax):
+    """Public and kernel time per call against the number of elements."""
+    for name, sub in table.groupby("function", sort=False):
+        disp = sub[sub["input_units"] == "display"]
+        si = sub[sub["input_units"] == "SI"]
+        (line,) = ax.loglog(disp["elements"], disp["public_time"], "o-",
+                            label=f"{name} (public, nm/pN inputs)")
+        ax.loglog(si["elements"], si["public_time"], "^:", color=line.get_color(),
+                  label=f"{name} (public, SI inputs)")
+        ax.loglog(disp["elements"], disp["kernel_time"], "s--", color=line.get_color(),
+                  label=f"{name} (float kernel)")
+    ax.set(xlabel="elements per call", ylabel="time per call (us)",
+           title="unit boundary: public call vs float kernel")
+    ax.legend(fontsize=7)
