@@ -1,5 +1,146 @@
-"""Placeholder: being implemented (see the issue tracker)."""
+"""Case I, smooth surface: the uniform double helix (MODEL.md section 3).
+
+Public unit wrapper over :mod:`supercoil.core.smooth_helix`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .core import self_contact as _sc
+from .core import smooth_helix as _sm
+from .tables import make_table, provenance
+from .units import U, as_turns, magnitude, quantity
+
+__all__ = ["SmoothHelix", "smooth_helix"]
 
 
-def smooth_helix(*args, **kwargs):
-    raise NotImplementedError("smooth_helix is not implemented yet")
+@dataclasses.dataclass(frozen=True)
+class SmoothHelix:
+    """The uniform hard-contact helix of a smooth rod at turns N and slack S.
+
+    All fields are quantities broadcast to the common shape of (turns, slack).
+
+    Attributes
+    ----------
+    turns, slack : Quantity [dimensionless], [mm]
+        The inputs N (signed) and S.
+    alpha : Quantity [rad]
+        Tilt angle (uniform).
+    pitch : Quantity [mm]
+        ``P = 2 pi r / tan(alpha)``.
+    omega : Quantity [1/mm]
+        Twist density, uniform over helix and tail, signed like N.
+    tension : Quantity [N]
+        ``T = C omega tau - B kappa^2 / 2 = -dE_p/dS`` at fixed N.
+    torque : Quantity [N mm]
+        Twist moment ``M_3 = C omega`` (signed like N).
+    normal_force : Quantity [N/m]
+        Contact force per length [eq normal reaction].
+    twist, writhe, linking_number : Quantity [dimensionless]
+        ``Tw = omega L / 2 pi``, ``Wr = tau S / 2 pi``, ``Lk = Tw + Wr = N``
+        [Eq Lk=Tw+Wr], signed like N (a negative N mirrors the helix).
+    superhelical_turns : Quantity [dimensionless]
+        ``S sin(alpha) / (4 pi r)``.
+    """
+
+    turns: object
+    slack: object
+    alpha: object
+    pitch: object
+    omega: object
+    curvature: object
+    torsion: object
+    tension: object
+    torque: object
+    normal_force: object
+    twist: object
+    writhe: object
+    linking_number: object
+    superhelical_turns: object
+    provenance: dict = dataclasses.field(repr=False, compare=False, default_factory=dict)
+
+    def to_table(self):
+        """The solution as a flat table (one row per (N, S) pair) in the package convention."""
+        units = {"turns": "", "slack": "mm", "alpha": "rad", "pitch": "mm", "omega": "1/mm",
+                 "curvature": "1/mm", "torsion": "1/mm", "tension": "N", "torque": "N*mm",
+                 "normal_force": "N/m", "twist": "", "writhe": "", "linking_number": "",
+                 "superhelical_turns": ""}
+        cols = {k: np.ravel(getattr(self, k).magnitude) for k in units}
+        return make_table(cols, units, self.provenance)
+
+
+def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
+    """Uniform double helix of a smooth (frictionless) rod at turns N and slack S.
+
+    Solves the linking balance [smooth surface] ``omega = (2 pi N - tau S) / L``
+    together with hard contact (HC) ``omega = (B/C)(1 - cos 2a) tan 2a / (2 r)``
+    (R = r) for the tilt alpha. Without friction the state depends only on
+    (N, S): it is independent of the twisting and slacking history.
+
+    Parameters
+    ----------
+    rod : ElasticRod
+    turns : number, array or dimensionless/angle Quantity
+        Linking number N (plain numbers count turns). Sign gives the handedness:
+        the package works with |N| and attaches sign(N) to omega, torque, twist
+        and writhe (negative N mirrors the helix).
+    slack : Quantity [length], scalar or array
+        Slack S (rod length in the helix, both strands). Broadcasts with turns.
+    cos2a_min : float
+        Singularity guard: ``cos 2 alpha < cos2a_min`` counts as alpha -> pi/4.
+
+    Returns
+    -------
+    SmoothHelix
+
+    Raises
+    ------
+    NoHelixError
+        When no helix exists, naming the condition: ``S < 0`` (the ends are
+        pulled apart), ``S >= L`` (no tail left), or ``N = 0`` ("too few turns
+        for contact"). In the hard-contact model the contact force
+        ``F = B (1 - cos 2a)^2 / (8 r^3 cos 2a)`` is positive for every
+        ``0 < alpha < pi/4``, and the helix equation ``F(alpha) = (B L/(2 C r))
+        (1 - cos 2a) tan 2a + S sin(a) cos(a)/r - 2 pi |N|`` increases from
+        ``-2 pi |N|`` to infinity, so every ``|N| > 0`` gives exactly one helix
+        in contact; only ``N = 0`` gives none (alpha = 0: a flat hairpin of
+        parallel strands, infinite pitch). The model ignores the loop at the head
+        and the buckling threshold (MODEL.md s.7), so a small |N| gives a real,
+        very loose helix here.
+    SingularityError
+        When alpha comes within ``cos 2 alpha < cos2a_min`` of pi/4 (large
+        |N| r / L): the tension ~ B / (4 r^2 cos 2 alpha) diverges.
+    """
+    si = rod.si
+    r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
+    n = as_turns(turns, "turns")
+    S = magnitude(slack, U.m, "slack")
+    st = _sm.smooth_state(n, S, r, L, B, C, cos2a_min)
+    shape = st["alpha"].shape
+    n_b = np.broadcast_to(np.asarray(n, float), shape)
+    S_b = np.broadcast_to(np.asarray(S, float), shape)
+
+    def q(x, unit, scale=1.0):
+        x = np.asarray(x, float) * scale
+        return quantity(float(x) if x.ndim == 0 else x, unit)
+
+    return SmoothHelix(
+        turns=q(n_b, U.dimensionless),
+        slack=q(S_b, U.mm, 1e3),
+        alpha=q(st["alpha"], U.rad),
+        pitch=q(st["pitch"], U.mm, 1e3),
+        omega=q(st["omega"], U.per_mm, 1e-3),
+        curvature=q(st["curvature"], U.per_mm, 1e-3),
+        torsion=q(st["torsion"], U.per_mm, 1e-3),
+        tension=q(st["tension"], U.N),
+        torque=q(st["torque"], U.N_mm, 1e3),
+        normal_force=q(st["normal_force"], U.N_per_m),
+        twist=q(st["twist"], U.dimensionless),
+        writhe=q(st["writhe"], U.dimensionless),
+        linking_number=q(st["linking_number"], U.dimensionless),
+        superhelical_turns=q(st["superhelical_turns"], U.dimensionless),
+        provenance=provenance(rod, scene="smooth_helix"),
+    )

@@ -1,0 +1,319 @@
+"""Case II, rough surface: the frozen non-uniform hard-contact helix. Float-only kernel.
+
+MODEL.md section 4, paper [eq da/ds, eq ini, eq tension, eq example k=0] and
+Appendix C. SI floats (m, N, N m^2, rad); nothing here imports pint.
+
+The ODE in a regular variable
+-----------------------------
+[eq da/ds] reads, with ``c = cos 2a`` and R = r,
+
+    d alpha/ds = C / (B (L - 2s)) * [sin 2a - 2 r k(2s)] c^2 / (c^3 - 1).
+
+At alpha -> 0 (the helix end s_max for k = 0) ``c^3 - 1 ~ -6 a^2`` and
+d alpha/ds ~ -C / (3 B (L - 2s) alpha) diverges (alpha ~ sqrt(s_max - s)), which
+an explicit solver cannot step onto. With ``y = 1 - cos 2a = 2 sin^2 a``,
+``dy/ds = 2 sin 2a d alpha/ds`` and ``c^3 - 1 = -y (c^2 + c + 1)`` give
+
+    dy/ds = -2C / (B (L - 2s)) * c^2 / (c^2 + c + 1) * [(2 - y) - 2 r k sqrt((2 - y)/y)]
+
+which for k = 0 is smooth and non-zero at y = 0, so y crosses 0 linearly at
+s_max and the terminal event ``y = 0`` is located to solver accuracy. (For
+k != 0 the k-term is an integrable ``y^(-1/2)``.) The second terminal event is
+``cos 2a = cos2a_min`` (alpha -> pi/4, where the tension diverges).
+
+Closed form, k = 0 [eq example k=0]
+-----------------------------------
+With ``Phi(c) = ln(1 + c) - 1/c`` (increasing in c) the solution is
+``ln(1 - 2s/L) = -(B/C) [Phi(c) - Phi(c0)]``, so s is explicit in alpha,
+
+    s(alpha) = -(L/2) expm1(-(B/C) [Phi(cos 2a) - Phi(cos 2a0)]),
+
+and alpha(s) is the root of ``Phi(c) = Phi(c0) - (C/B) ln(1 - 2s/L)`` (solved by
+vectorised bisection in y, accurate to about one float spacing in y). The end
+(alpha = 0, c = 1) is [s_max]:
+``s_max = (L/2) [1 - (2 exp(sec 2a0 - 1) / (cos 2a0 + 1))^(-B/C)]``.
+
+Conditioning near s_max
+-----------------------
+alpha(s) has a square-root singularity at s_max, so an absolute error ds in the
+position of the end (>= one float spacing of s, ~1e-17 m) gives an error
+~ sqrt(|dy/ds| ds / 2) in alpha at the last points. Agreement between methods
+is therefore measured in y (uniformly) and in alpha away from the last
+micro-metres; see the tests.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from ..exceptions import NoHelixError, SingularityError
+from . import self_contact as sc
+from .helix_geometry import cumulative_strand_integral, curvature, curvature_error, torsion
+
+TWO_PI = 2.0 * np.pi
+
+#: Default ODE tolerances of :func:`integrate` (relative, absolute on y).
+RTOL = 1e-10
+ATOL = 1e-12
+#: Default end of the integration when no terminal event fires: the tail keeps
+#: this fraction of L (the ODE has a 1/(L - 2s) factor at S = L).
+TAIL_FRACTION_MIN = 1e-6
+
+
+# --- closed form, k = 0 ------------------------------------------------------
+
+
+def phi(y):
+    """``Phi = ln(1 + c) - 1/c`` with ``c = 1 - y``; decreasing in y on [0, 1)."""
+    y = np.asarray(y, float)
+    return np.log(2.0 - y) - 1.0 / (1.0 - y)
+
+
+def k0_s_of_alpha(alpha, alpha0, L, B, C):
+    """Closed form [eq example k=0]: arclength s (m) at which the tilt equals alpha."""
+    x = phi(sc.y_of_alpha(alpha)) - phi(sc.y_of_alpha(alpha0))
+    return -0.5 * L * np.expm1(-(B / C) * x)
+
+
+def k0_s_max(alpha0, L, B, C):
+    """[s_max] End of the k = 0 helix, where alpha -> 0 (m)."""
+    return k0_s_of_alpha(0.0, alpha0, L, B, C)
+
+
+def k0_y_of_s(s, alpha0, L, B, C):
+    """``y = 1 - cos 2 alpha`` at arclength s for k = 0 (vectorised bisection in y).
+
+    Raises
+    ------
+    NoHelixError
+        If some s lies outside ``[0, s_max]``.
+    """
+    s = np.asarray(s, float)
+    smax = k0_s_max(alpha0, L, B, C)
+    if np.any(s < 0) or np.any(s > smax):
+        raise NoHelixError(
+            f"s outside the k = 0 helix [0, s_max = {smax:.9g} m]: beyond s_max alpha "
+            "would be negative (the pitch has diverged)"
+        )
+    y0 = sc.y_of_alpha(alpha0)
+    target = phi(y0) - (C / B) * np.log1p(-2.0 * s / L)
+    y = sc.bisect_increasing(lambda yy: target - phi(yy), np.zeros_like(target),
+                             np.full_like(target, y0))
+    return np.where(s == 0, y0, np.where(s == smax, 0.0, y))
+
+
+def k0_dy_ds(s, y, L, B, C):
+    """dy/ds for k = 0 (1/m): ``-2C/(B (L-2s)) c^2 (1 + c) / (c^2 + c + 1)``."""
+    c = 1.0 - np.asarray(y, float)
+    return -2.0 * C / (B * (L - 2.0 * np.asarray(s, float))) * c * c * (1.0 + c) / (c * c + c + 1.0)
+
+
+# --- general twist rate: the ODE ---------------------------------------------
+
+
+def dy_ds(s, y, k, r, L, B, C):
+    """Right side of [eq da/ds] in ``y = 1 - cos 2a`` (1/m); ``k = k(2s)`` in rad/m."""
+    y = np.asarray(y, float)
+    k = np.asarray(k, float)
+    c = 1.0 - y
+    yy = np.maximum(y, 1e-300)
+    bracket = (2.0 - y) - np.where(k == 0.0, 0.0, 2.0 * r * k * np.sqrt((2.0 - y) / yy))
+    return -2.0 * C / (B * (L - 2.0 * np.asarray(s, float))) * c * c / (c * c + c + 1.0) * bracket
+
+
+class Integration:
+    """Result of :func:`integrate`: dense solution, end point and why it ended."""
+
+    def __init__(self, sol, s_end, reason, nfev, ode_method, rtol, atol, kfun, r, L, B, C):
+        self.sol = sol
+        self.s_end = s_end
+        self.reason = reason  # "alpha->0", "s_stop"
+        self.nfev = nfev
+        self.ode_method = ode_method
+        self.rtol = rtol
+        self.atol = atol
+        self._k = kfun
+        self._p = (r, L, B, C)
+
+    def y(self, s):
+        """y(s) from the dense output, clipped to [0, 1)."""
+        return np.clip(self.sol(np.asarray(s, float))[0], 0.0, None)
+
+    def dy(self, s, y):
+        s = np.asarray(s, float)
+        return dy_ds(s, y, self._k(2.0 * s), *self._p)
+
+
+def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
+              rtol=RTOL, atol=ATOL, cos2a_min=sc.COS2A_MIN):
+    """Integrate [eq da/ds] (in y) from s = 0 with ``solve_ivp``.
+
+    Parameters
+    ----------
+    alpha0 : float
+        Initial tilt from [eq ini] (rad).
+    kfun : callable
+        ``kfun(S) -> k`` twisting rate in rad/m as a function of slack S (m),
+        vectorised; already oriented with the sign of N_0.
+    r, L, B, C : float
+        Rod radius, length (m), rigidities (N m^2).
+    s_stop : float, optional
+        Last s to integrate to if no event fires; default
+        ``(L/2)(1 - TAIL_FRACTION_MIN)``.
+    ode_method : str
+        Any ``solve_ivp`` method ("RK45", "DOP853", "Radau", "LSODA", ...).
+    rtol, atol : float
+        Tolerances on y (defaults 1e-10, 1e-12).
+    cos2a_min : float
+        alpha -> pi/4 guard: terminal event at ``cos 2a = cos2a_min``.
+
+    Returns
+    -------
+    Integration
+
+    Raises
+    ------
+    SingularityError
+        If the tilt reaches pi/4 (cos 2 alpha = cos2a_min) at some s.
+    """
+    if s_stop is None:
+        s_stop = 0.5 * L * (1.0 - TAIL_FRACTION_MIN)
+    y0 = float(sc.y_of_alpha(alpha0))
+
+    def fun(s, yv):
+        return dy_ds(s, yv[0], kfun(2.0 * s), r, L, B, C).reshape(1)
+
+    def ev_zero(s, yv):
+        return yv[0]
+
+    ev_zero.terminal = True
+    ev_zero.direction = -1
+
+    def ev_sing(s, yv):
+        return (1.0 - yv[0]) - cos2a_min
+
+    ev_sing.terminal = True
+    ev_sing.direction = -1
+
+    sol = solve_ivp(fun, (0.0, s_stop), [y0], method=ode_method, rtol=rtol, atol=atol,
+                    events=(ev_zero, ev_sing), dense_output=True)
+    if sol.status == -1:
+        raise SingularityError(f"rough-helix ODE ({ode_method}) failed: {sol.message}")
+    if sol.t_events[1].size:
+        s_sing = float(sol.t_events[1][0])
+        raise SingularityError(
+            f"tilt alpha -> pi/4 (cos 2 alpha < {cos2a_min:g}) at s = {s_sing:.6g} m "
+            f"(slack S = {2 * s_sing:.6g} m): the tension diverges; the twisting rate "
+            "k(S) is too large for a hard-contact helix"
+        )
+    if sol.t_events[0].size:
+        s_end, reason = float(sol.t_events[0][0]), "alpha->0"
+    else:
+        s_end, reason = float(sol.t[-1]), "s_stop"
+    return Integration(sol.sol, s_end, reason, sol.nfev, ode_method, rtol, atol, kfun,
+                       r, L, B, C)
+
+
+# --- grids and profile columns -------------------------------------------------
+
+
+def profile_grid(s_end, n_points=801, n_end=60, include_end=False):
+    """Arclength grid on [0, s_end): uniform, plus points clustered toward s_end.
+
+    The clustered points ``s_end (1 - q)``, q geometric from 1e-2 to 1e-8,
+    resolve the square-root ending of alpha at s_max. ``include_end`` adds
+    s_end itself (use it when the end is not alpha = 0).
+    """
+    base = np.linspace(0.0, s_end, int(n_points))[:-1]
+    tail = s_end * (1.0 - np.geomspace(1e-2, 1e-8, int(n_end))) if n_end else np.empty(0)
+    grid = np.unique(np.concatenate([base, tail, [s_end] if include_end else []]))
+    return grid[grid <= s_end]
+
+
+def profile_columns(s, y, dyds, turns_abs_of_s, r, L, B, C, mu=None):
+    """All profile columns (SI floats) from y(s) and dy/ds on a grid s (one strand).
+
+    Returns a dict with ``s, alpha, pitch, omega, curvature, torsion, tension,
+    normal_force, friction_torque_required, friction_torque_available,
+    curvature_error, slack, turns, twist, writhe`` (unsigned; the caller
+    attaches sign(N) to omega, twist, writhe, turns and torque).
+    ``friction_torque_available`` is NaN-free: zeros if ``mu`` is None is *not*
+    done here; the caller omits the column instead.
+    """
+    s = np.asarray(s, float)
+    y = np.asarray(y, float)
+    alpha = sc.alpha_of_y(y)
+    s2 = np.sqrt(np.clip(y * (2.0 - y), 0.0, None))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        pitch = np.where(y > 0, TWO_PI * r / np.tan(alpha), np.inf)
+        dpds = np.where(y > 0, -TWO_PI * r * dyds / (s2 * y), np.inf)
+    omega = sc.twist_density(alpha, r, B, C)
+    tau = torsion(alpha, r)
+    wr = cumulative_strand_integral(s, tau)
+    tw = cumulative_strand_integral(s, omega) + omega * (L - 2.0 * s) / TWO_PI
+    out = {
+        "s": s,
+        "slack": 2.0 * s,
+        "alpha": alpha,
+        "pitch": pitch,
+        "omega": omega,
+        "curvature": curvature(alpha, r),
+        "torsion": tau,
+        "tension": sc.tension(alpha, r, B),
+        "normal_force": sc.normal_force(alpha, r, B),
+        "friction_torque_required": sc.friction_torque_required_y(y, dyds, r, B),
+        "curvature_error": curvature_error(dpds),
+        "turns": np.asarray(turns_abs_of_s, float) * np.ones_like(s),
+        "twist": tw,
+        "writhe": wr,
+    }
+    if mu is not None:
+        out["friction_torque_available"] = sc.friction_torque_available(alpha, r, B, mu)
+    return out
+
+
+def first_crossing(s, g, g_at):
+    """First s where ``g`` (tabulated on grid ``s``) turns positive, refined by brentq.
+
+    ``g_at(s_scalar)`` evaluates the same function anywhere. Returns None if
+    ``g <= 0`` on the whole grid, ``s[0]`` if already positive there.
+    """
+    g = np.asarray(g, float)
+    idx = np.flatnonzero(g > 0)
+    if idx.size == 0:
+        return None
+    i = int(idx[0])
+    if i == 0:
+        return float(s[0])
+    a, b = float(s[i - 1]), float(s[i])
+    try:
+        return float(brentq(g_at, a, b, xtol=1e-15, rtol=1e-13))
+    except ValueError:  # sign change not reproduced by g_at (grid rounding)
+        return b
+
+
+def slip_function(y_at, dy_at, r, B, mu):
+    """``s -> C |d omega/ds| - dM_fmax/ds`` (N), positive where the strands slip."""
+
+    def g(s):
+        y = y_at(s)
+        return float(sc.friction_torque_required_y(y, dy_at(s, y), r, B)
+                     - sc.friction_torque_available(sc.alpha_of_y(y), r, B, mu))
+
+    return g
+
+
+def curvature_error_function(y_at, dy_at, r, tol):
+    """``s -> |e - 1| - tol`` along the profile (Appendix A)."""
+
+    def g(s):
+        y = y_at(s)
+        if y <= 0:
+            return np.inf
+        s2 = np.sqrt(y * (2.0 - y))
+        dpds = -TWO_PI * r * dy_at(s, y) / (s2 * y)
+        return float(curvature_error(dpds) - 1.0 - tol)
+
+    return g

@@ -1,0 +1,213 @@
+"""Hard-contact double helix (R = r): formulas shared by the smooth and rough rods.
+
+Float-only kernel (SI units: m, N, N m^2, rad); everything broadcasts; no pint.
+MODEL.md sections 2 to 4, paper [eq dom/ds1 self contact, eq ini, eq tension,
+eq normal reaction, eq friction].
+
+Notation: ``c = cos 2 alpha``, ``y = 1 - cos 2 alpha = 2 sin^2 alpha`` (the
+variable the rough-helix ODE is integrated in: it is regular where alpha -> 0,
+see :mod:`supercoil.core.rough_helix`), ``B`` bending and ``C`` torsional
+rigidity, ``r`` the rod radius (= helix radius R in hard contact).
+
+Hard contact (w = 0 for R > r, infinite for R < r) gives, from (GE1),
+
+    (HC)  omega = (B/C) (1 - cos 2a) tan 2a / (2 r)          [eq dom/ds1 self contact]
+
+which needs ``0 <= alpha < pi/4``: at alpha -> pi/4 omega, the tension and the
+normal force diverge like ``1 / cos 2 alpha`` (:func:`check_tilt` turns that
+into a :class:`~supercoil.exceptions.SingularityError`).
+
+Dimensional fix of [eq friction]
+--------------------------------
+The paper (and MODEL.md s.4) writes the available friction torque per length as
+``dM_fmax/ds = B mu cos(a) (1 - cos 2a)^2 / (8 R^3 cos 2a)``. That has the unit
+N/m, while the left side of the no-slip condition [eq friction con],
+``C |d omega/ds|``, is a torque per length, N m / m = N. From [eq dM_f],
+``dM_f = cos(a) R f ds`` with ``f_max = mu F`` and F of [eq normal reaction]
+(N/m), the consistent expression is
+
+    dM_fmax/ds = mu R cos(a) F = B mu cos(a) (1 - cos 2a)^2 / (8 R^2 cos 2a)   [N]
+
+which is what :func:`friction_torque_available` returns (one power of R less).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..exceptions import NoHelixError, SingularityError
+
+TWO_PI = 2.0 * np.pi
+QUARTER_PI = 0.25 * np.pi
+
+#: Default singularity guard: ``cos 2 alpha`` below this counts as alpha -> pi/4
+#: (tension, normal force and twist density ~ 1/cos 2 alpha diverge).
+COS2A_MIN = 1e-9
+
+
+def bisect_increasing(fun, lo, hi, n_iter=200, xtol=0.0):
+    """Vectorised bisection for the sign change of an increasing function.
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(x) -> array`` broadcasting like ``lo``; ``fun(lo) <= 0 <= fun(hi)``
+        elementwise, with exactly one sign change in between (only the sign is
+        used, so ``fun`` may be any positive multiple of a monotone function).
+    lo, hi : array_like
+        Brackets (broadcast together).
+    n_iter : int
+        Maximum halvings; stops early once every bracket has collapsed to
+        adjacent floats (or is narrower than ``xtol``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Midpoints of the final brackets (accurate to about one float spacing).
+    """
+    lo, hi = np.broadcast_arrays(np.asarray(lo, float), np.asarray(hi, float))
+    lo, hi = lo.copy(), hi.copy()
+    for _ in range(n_iter):
+        mid = 0.5 * (lo + hi)
+        f = np.asarray(fun(mid), float)
+        up = f > 0
+        hi = np.where(up, mid, hi)
+        lo = np.where(up, lo, mid)
+        mid2 = 0.5 * (lo + hi)
+        if np.all((mid2 == lo) | (mid2 == hi) | (hi - lo <= xtol)):
+            break
+    return 0.5 * (lo + hi)
+
+
+# --- variables -------------------------------------------------------------
+
+
+def y_of_alpha(alpha):
+    """``y = 1 - cos 2 alpha = 2 sin^2 alpha`` (accurate for small alpha)."""
+    return 2.0 * np.sin(alpha) ** 2
+
+
+def alpha_of_y(y):
+    """Inverse of :func:`y_of_alpha`: ``alpha = arcsin(sqrt(y / 2))``."""
+    return np.arcsin(np.sqrt(np.clip(np.asarray(y, float), 0.0, 1.0) / 2.0))
+
+
+def g_contact(alpha):
+    """``g(alpha) = (1 - cos 2a) tan 2a``, the left side of [eq ini] (dimensionless).
+
+    Increases monotonically from 0 at alpha = 0 to infinity at pi/4.
+    """
+    return y_of_alpha(alpha) * np.tan(2.0 * alpha)
+
+
+# --- hard-contact relations -------------------------------------------------
+
+
+def twist_density(alpha, r, B, C):
+    """(HC) ``omega = (B/C) (1 - cos 2a) tan 2a / (2 r)`` in rad/m [eq dom/ds1 self contact]."""
+    return (B / C) * g_contact(alpha) / (2.0 * r)
+
+
+def dtwist_dalpha(alpha, r, B, C):
+    """``d omega / d alpha = (B / (C r)) [sin^2 2a / cos 2a + (1 - cos 2a) / cos^2 2a]`` (1/m)."""
+    c = np.cos(2.0 * alpha)
+    return (B / (C * r)) * (np.sin(2.0 * alpha) ** 2 / c + y_of_alpha(alpha) / c**2)
+
+
+def initial_tilt(turns_abs, r, L, B, C):
+    """alpha_0 of [eq ini]: ``(1 - cos 2a0) tan 2a0 = (C/B) 4 pi r |N_0| / L``.
+
+    This is (HC) with the uniform twist ``omega = 2 pi N_0 / L`` of the straight
+    rod at S = 0. Solved by vectorised bisection in ``(0, pi/4)`` on the regular
+    form ``(1 - c) sin 2a - rhs c = 0`` (increasing in alpha).
+
+    Raises
+    ------
+    NoHelixError
+        If some ``|N_0| <= 0`` (alpha_0 = 0: no twist, no helix).
+    """
+    n = np.asarray(turns_abs, float)
+    if np.any(~(n > 0)):
+        raise NoHelixError(
+            "turns N_0 = 0 before slacking: alpha_0 = 0 by [eq ini], the pitch is "
+            "infinite and no double helix forms (need |N_0| > 0)"
+        )
+    rhs = (C / B) * 4.0 * np.pi * r * n / L
+
+    def h(a):
+        return y_of_alpha(a) * np.sin(2.0 * a) - rhs * np.cos(2.0 * a)
+
+    return bisect_increasing(h, np.zeros_like(rhs), np.full_like(rhs, QUARTER_PI))
+
+
+def tension(alpha, r, B):
+    """[eq tension] ``T = B/(8 r^2) (1 - c)^2 (2 + c) / c`` (N), c = cos 2 alpha.
+
+    The same expression is the smooth-surface tension ``C omega tau - B kappa^2/2``
+    with (HC) inserted (:func:`smooth_tension`), i.e. the tension depends only
+    on the tilt at the helix end.
+    """
+    c = np.cos(2.0 * alpha)
+    y = y_of_alpha(alpha)
+    return B / (8.0 * r**2) * y**2 * (2.0 + c) / c
+
+
+def smooth_tension(alpha, omega, r, B, C):
+    """``T = -dE_p/dS|_N = C omega tau - B kappa^2 / 2`` (N), MODEL.md s.3 with w = 0."""
+    sa, ca = np.sin(alpha), np.cos(alpha)
+    return C * omega * sa * ca / r - 0.5 * B * sa**4 / r**2
+
+
+def normal_force(alpha, r, B):
+    """[eq normal reaction] ``F = B/(8 r^3) (1 - c)^2 / c`` (N/m), c = cos 2 alpha."""
+    c = np.cos(2.0 * alpha)
+    return B / (8.0 * r**3) * y_of_alpha(alpha) ** 2 / c
+
+
+def friction_torque_available(alpha, r, B, mu):
+    """Available friction torque per length ``dM_fmax/ds = mu r cos(a) F`` (N).
+
+    [eq friction] with the dimensional fix described in the module docstring:
+    ``B mu cos(a) (1 - cos 2a)^2 / (8 r^2 cos 2a)``.
+    """
+    return mu * r * np.cos(alpha) * normal_force(alpha, r, B)
+
+
+def friction_torque_required_y(y, dy_ds, r, B):
+    """Required friction torque per length ``C |d omega/ds|`` (N), from ``y`` and ``dy/ds``.
+
+    ``C d omega/ds = C (d omega/d alpha) (d alpha/ds)`` with ``d alpha/ds =
+    (dy/ds) / (2 sin 2a)``; written as
+    ``(B / (2 r)) [sin 2a / c + sqrt(y / (2 - y)) / c^2] dy/ds``, which stays
+    finite (-> 0) at alpha -> 0 where d alpha/ds diverges.
+    """
+    y = np.asarray(y, float)
+    c = 1.0 - y
+    s2 = np.sqrt(np.clip(y * (2.0 - y), 0.0, None))
+    bracket = s2 / c + np.sqrt(np.clip(y, 0.0, None) / (2.0 - y)) / c**2
+    return np.abs(B / (2.0 * r) * bracket * np.asarray(dy_ds, float))
+
+
+def check_tilt(alpha, where, cos2a_min=COS2A_MIN):
+    """Raise if some tilt reaches the pi/4 singularity or leaves ``[0, pi/4)``.
+
+    Raises
+    ------
+    SingularityError
+        If ``cos 2 alpha < cos2a_min`` (alpha -> pi/4: tension, normal force and
+        twist density diverge like ``1 / cos 2 alpha``); the message names
+        ``where`` (the inputs that led there).
+    """
+    a = np.asarray(alpha, float)
+    if not np.all(np.isfinite(a)):
+        raise SingularityError(f"tilt alpha is not finite ({where})")
+    c = np.cos(2.0 * a)
+    bad = c < cos2a_min
+    if np.any(bad):
+        worst = float(np.max(a[bad])) if a.ndim else float(a)
+        raise SingularityError(
+            f"tilt alpha = {worst:.12g} rad reaches the limit alpha -> pi/4 "
+            f"(cos 2 alpha = {np.cos(2 * worst):.3g} < {cos2a_min:g}): tension "
+            f"~ B / (4 r^2 cos 2 alpha) diverges ({where})"
+        )
+    return a
