@@ -148,8 +148,9 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
         Turns N_0 applied before the helix starts to form (scalar; sign gives the
         handedness, the helix is mirrored for N_0 < 0).
     twist_rate : None, Quantity [1/length], callable, DataFrame or (slack, k) pair
-        ``k(S)`` in rad per length of slack (``turn/m`` is converted, 1 turn =
-        2 pi rad), in the sense of N_0. A callable takes a slack Quantity and
+        ``k(S) = 2 pi dN/dS`` in rad per length of slack (``turn/m`` is
+        converted, 1 turn = 2 pi rad), with the sign of N: for N_0 < 0 a
+        negative k adds twist. A callable takes a slack Quantity and
         returns a Quantity (called with arrays and scalars). A table is a
         DataFrame with columns ``slack`` and ``twist_rate`` and units in
         ``attrs["units"]`` (e.g. from :func:`supercoil.design_twist_schedule`),
@@ -298,7 +299,7 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     order = ["s", "slack", "alpha", "pitch", "omega", "curvature", "torsion", "tension",
              "torque", "normal_force", "friction_torque_required", "friction_torque_available",
              "curvature_error", "curvature_error_flag", "turns", "twist", "writhe"]
-    table = {c: cols[c] * _SCALE.get(c, 1.0) for c in order}
+    table = {c: cols[c] * _SCALE[c] if c in _SCALE else cols[c] for c in order}
     prov = provenance(rod, turns=n0, method=method, twist_rate=_describe(twist_rate),
                       curvature_tolerance=curvature_tolerance, end=end, **solver)
     profile = make_table(table, PROFILE_UNITS, prov)

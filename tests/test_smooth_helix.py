@@ -1,0 +1,166 @@
+"""Case I, smooth surface (MODEL.md s.3): physics checks of supercoil.smooth_helix."""
+
+import numpy as np
+import pint
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import quad
+
+import supercoil as sc
+from supercoil.core import self_contact as sco
+from supercoil.core import smooth_helix as sm
+
+u = sc.ureg
+
+
+@pytest.fixture
+def fig2_rod():
+    """Paper figure 2: r = 1.0 mm, L = 57.0 cm, E = 4.20 MPa, G = 1.51 MPa."""
+    return sc.ElasticRod(1.0 * u.mm, 57.0 * u.cm, 4.20 * u.MPa, 1.51 * u.MPa, 0.5)
+
+
+def _si(rod):
+    s = rod.si
+    return s.radius, s.length, s.bending_rigidity, s.torsional_rigidity
+
+
+def test_solution_satisfies_hard_contact_and_linking_balance(fig2_rod):
+    r, L, B, C = _si(fig2_rod)
+    N = np.array([5.0, 20.0, 40.0, 80.0])[:, None]
+    S = np.array([0.0, 0.05, 0.2, 0.4, 0.55])[None, :]
+    h = sc.smooth_helix(fig2_rod, N, S * u.m)
+    a = h.alpha.m_as(u.rad)
+    omega = h.omega.m_as(1 / u.m)
+    # (HC) [eq dom/ds1 self contact]
+    np.testing.assert_allclose(omega, sco.twist_density(a, r, B, C), rtol=1e-12)
+    # [smooth surface]
+    tau = np.sin(a) * np.cos(a) / r
+    np.testing.assert_allclose(omega, (2 * np.pi * N - tau * S) / L, rtol=1e-12)
+    assert h.alpha.shape == (4, 5)
+    assert np.all((a > 0) & (a < np.pi / 4))
+
+
+@settings(max_examples=60)
+@given(N=st.floats(0.5, 300.0), frac=st.floats(0.0, 0.999))
+def test_linking_number_equals_turns(N, frac):
+    rod = sc.load_parameters("silicone_rubber_rod")
+    L = rod.si.length
+    for sign in (1.0, -1.0):
+        h = sc.smooth_helix(rod, sign * N, frac * L * u.m)
+        lk = (h.twist + h.writhe).m_as(u.dimensionless)
+        assert lk == pytest.approx(sign * N, rel=1e-12, abs=1e-12)
+        assert h.linking_number.m_as(u.dimensionless) == pytest.approx(sign * N, rel=1e-12)
+        assert np.sign(h.writhe.magnitude) in (0.0, sign)
+
+
+def test_slack_zero_is_the_initial_helix_of_eq_ini(fig2_rod):
+    r, L, B, C = _si(fig2_rod)
+    N = np.array([3.0, 40.0, 150.0])
+    h = sc.smooth_helix(fig2_rod, N, 0 * u.m)
+    np.testing.assert_allclose(h.alpha.m_as(u.rad), sco.initial_tilt(N, r, L, B, C), rtol=1e-12)
+
+
+def test_tension_is_minus_energy_derivative_at_fixed_turns(fig2_rod):
+    r, L, B, C = _si(fig2_rod)
+    for N, S in [(40.0, 0.1), (80.0, 0.3), (10.0, 0.5)]:
+        dS = 1e-6
+        dE = sm.energy(N, S + dS, r, L, B, C) - sm.energy(N, S - dS, r, L, B, C)
+        T = sc.smooth_helix(fig2_rod, N, S * u.m).tension.m_as(u.N)
+        assert T == pytest.approx(-dE / (2 * dS), rel=1e-6)
+        assert T > 0
+        # the tension depends on alpha only and equals [eq tension]
+        a = sc.smooth_helix(fig2_rod, N, S * u.m).alpha.m_as(u.rad)
+        assert T == pytest.approx(sco.tension(a, r, B), rel=1e-10)
+
+
+def test_independent_of_twisting_history(fig2_rod):
+    """Work along two different (N, S) paths equals the energy change of the end state.
+
+    The energy balance dE_p = -T dS + 2 pi M_3 dN [force0, eq dW] holds along any
+    path, i.e. the state at (N, S) does not remember the path (no friction).
+    """
+    r, L, B, C = _si(fig2_rod)
+    N0, N1, S1 = 20.0, 60.0, 0.35
+
+    def work_slack(N, Sa, Sb):
+        return quad(lambda S: -sm.smooth_state(N, S, r, L, B, C)["tension"], Sa, Sb,
+                    epsabs=1e-14, epsrel=1e-11)[0]
+
+    def work_twist(S, Na, Nb):
+        return quad(lambda N: 2 * np.pi * sm.smooth_state(N, S, r, L, B, C)["torque"], Na, Nb,
+                    epsabs=1e-14, epsrel=1e-11)[0]
+
+    w_twist_first = work_twist(0.0, N0, N1) + work_slack(N1, 0.0, S1)
+    w_slack_first = work_slack(N0, 0.0, S1) + work_twist(S1, N0, N1)
+    # a zig-zag path
+    w_zigzag = (work_slack(N0, 0.0, 0.1) + work_twist(0.1, N0, 45.0)
+                + work_slack(45.0, 0.1, S1) + work_twist(S1, 45.0, N1))
+    dE = sm.energy(N1, S1, r, L, B, C) - sm.energy(N0, 0.0, r, L, B, C)
+    assert w_twist_first == pytest.approx(dE, rel=1e-8)
+    assert w_slack_first == pytest.approx(dE, rel=1e-8)
+    assert w_zigzag == pytest.approx(dE, rel=1e-8)
+    # and the state itself is a function of (N, S) only
+    a1 = sc.smooth_helix(fig2_rod, N1, S1 * u.m)
+    a2 = sc.smooth_helix(fig2_rod, [N0, N1], [S1, S1] * u.m)
+    assert a2.alpha[1] == a1.alpha
+
+
+def test_negative_turns_mirror_the_helix(fig2_rod):
+    p = sc.smooth_helix(fig2_rod, 40, 20 * u.cm)
+    m = sc.smooth_helix(fig2_rod, -40, 20 * u.cm)
+    assert m.alpha == p.alpha and m.pitch == p.pitch and m.tension == p.tension
+    for name in ("omega", "torque", "twist", "writhe", "linking_number"):
+        assert getattr(m, name).magnitude == pytest.approx(-getattr(p, name).magnitude)
+
+
+def test_unit_invariance():
+    rod_si = sc.ElasticRod(1e-3 * u.m, 0.57 * u.m, 4.2e6 * u.Pa, 1.51e6 * u.Pa)
+    rod_mm = sc.ElasticRod(1.0 * u.mm, 570 * u.mm, 4.2 * u.MPa, 1510 * u.kPa)
+    a = sc.smooth_helix(rod_si, 40 * u.turn, 0.2 * u.m)
+    b = sc.smooth_helix(rod_mm, 80 * np.pi * u.rad, 200 * u.mm)
+    for name in ("alpha", "pitch", "tension", "torque", "twist", "writhe"):
+        qa, qb = getattr(a, name), getattr(b, name)
+        assert qa.to(qb.units).magnitude == pytest.approx(qb.magnitude, rel=1e-12)
+
+
+def test_units_of_results(fig2_rod):
+    h = sc.smooth_helix(fig2_rod, 40, 10 * u.cm)
+    assert h.pitch.check("[length]") and h.tension.check("[force]")
+    assert h.torque.check("[force] * [length]")
+    with pytest.raises(pint.DimensionalityError, match="slack"):
+        sc.smooth_helix(fig2_rod, 40, 0.1)
+
+
+@pytest.mark.parametrize(
+    ("N", "S", "match"),
+    [
+        (0.0, 0.1, "N = 0"),
+        (40.0, -0.01, "S = .* < 0"),
+        (40.0, "L", ">= rod length"),
+        (40.0, 0.9, ">= rod length"),
+    ],
+)
+def test_no_helix_conditions_are_named(fig2_rod, N, S, match):
+    if S == "L":
+        S = fig2_rod.si.length
+    with pytest.raises(sc.NoHelixError, match=match):
+        sc.smooth_helix(fig2_rod, N, S * u.m)
+
+
+def test_alpha_to_pi_over_4_is_a_named_singularity(fig2_rod):
+    # tension grows without bound as N r / L grows ...
+    T = sc.smooth_helix(fig2_rod, [1e2, 1e4, 1e6], 0.1 * u.m).tension.m_as(u.N)
+    assert np.all(np.diff(T) > 0) and T[-1] > 1e3 * T[0]
+    # ... and the pi/4 limit is reported, not returned as inf/NaN
+    with pytest.raises(sc.SingularityError, match=r"pi/4"):
+        sc.smooth_helix(fig2_rod, 1e13, 0.1 * u.m)
+    with pytest.raises(sc.SingularityError, match="alpha"):
+        sc.smooth_helix(fig2_rod, 1e3, 0.1 * u.m, cos2a_min=0.1)
+
+
+def test_table_convention(fig2_rod):
+    h = sc.smooth_helix(fig2_rod, [10, 40], 0.1 * u.m)
+    t = h.to_table()
+    assert len(t) == 2 and t.attrs["units"]["pitch"] == "mm"
+    assert "parameters" in t.attrs["provenance"]
