@@ -1,13 +1,177 @@
-"""Placeholder: being implemented (see the issue tracker)."""
+"""DNA plectonemes at fixed force: Marko-Siggia equilibrium and Moroz-Nelson corrections.
+
+MODEL.md section 6 (paper Example III). Unit wrappers over the float kernels
+:mod:`supercoil.core.plectoneme` (equilibrium of (GE1), (GE2) and the tension
+equation with the Marko-Siggia interaction) and :mod:`supercoil.core.moroz_nelson`.
+Every function takes a :class:`~supercoil.materials.DNA` and pint quantities of
+:data:`supercoil.ureg`, and is vectorised over the force.
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import NamedTuple
+
+import numpy as np
+
+from .core import moroz_nelson as _mn
+from .core import plectoneme as _pl
+from .exceptions import ValidityWarning
+from .materials import DNA
+from .units import U, magnitude, quantity
+
+__all__ = [
+    "PlectonemeEquilibrium",
+    "effective_twist_rigidity",
+    "extension_factor",
+    "plectoneme_equilibrium",
+]
+
+_PN_NM2 = U.pN * U.nm**2
 
 
-def plectoneme_equilibrium(*args, **kwargs):
-    raise NotImplementedError("plectoneme_equilibrium is not implemented yet")
+class PlectonemeEquilibrium(NamedTuple):
+    """Plectoneme equilibrium at fixed force (quantities, shape of the force).
+
+    Energies are per unit strand length (``pN = pN nm / nm``).
+    """
+
+    force: object  # pN
+    alpha: object  # rad, tilt angle arctan(2 pi R / P)
+    radius: object  # nm, superhelix radius R
+    pitch: object  # nm
+    omega: object  # 1/nm, twist density in the helix
+    torque: object  # pN nm, M_3 = C omega
+    curvature: object  # 1/nm
+    torsion: object  # 1/nm
+    bending_energy: object  # pN, B kappa^2 / 2
+    twist_energy: object  # pN, C omega^2 / 2
+    interaction_energy: object  # pN, Marko-Siggia w
 
 
-def effective_twist_rigidity(*args, **kwargs):
-    raise NotImplementedError("effective_twist_rigidity is not implemented yet")
+def _check_dna(dna):
+    if not isinstance(dna, DNA):
+        raise TypeError(f"dna must be a supercoil.DNA, got {type(dna).__name__}")
+    return dna.si
 
 
-def extension_factor(*args, **kwargs):
-    raise NotImplementedError("extension_factor is not implemented yet")
+def _force(force):
+    f = magnitude(force, U.N, "force")
+    if not np.all(np.isfinite(f)):
+        raise ValueError(f"force must be finite, got {force}")
+    return f
+
+
+def plectoneme_equilibrium(dna, force):
+    """Plectoneme equilibrium of ``dna`` at fixed ``force`` (MODEL.md s.6, s.2).
+
+    Solves (GE1) ``C omega = (B kappa kappa_alpha + w_alpha)/tau_alpha``, (GE2)
+    and the tension equation ``T = -(1/2) B kappa^2 + C omega tau - w``
+    [Example III] with the Marko-Siggia ``w``. The physical (stable) branch
+    and the method are described in :mod:`supercoil.core.plectoneme`:
+    residuals are ~1e-15 relative, no starting guess is needed.
+
+    Parameters
+    ----------
+    dna : DNA
+        The molecule (B, C, r0, t).
+    force : Quantity [force]
+        Tension T, scalar or array.
+
+    Returns
+    -------
+    PlectonemeEquilibrium
+        alpha (rad), radius and pitch (nm), omega (1/nm), torque (pN nm),
+        curvature and torsion (1/nm), energy densities (pN).
+
+    Raises
+    ------
+    NoEquilibriumError
+        Naming the force, for a non-positive force or one so large that
+        R < r0/2.
+    pint.DimensionalityError
+        If ``force`` is not a force.
+    """
+    si = _check_dna(dna)
+    f = _force(force)
+    st = _pl.equilibrium(f, si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius)
+    return PlectonemeEquilibrium(
+        force=quantity(st.force * 1e12, U.pN),
+        alpha=quantity(st.alpha, U.rad),
+        radius=quantity(st.radius * 1e9, U.nm),
+        pitch=quantity(st.pitch * 1e9, U.nm),
+        omega=quantity(st.omega * 1e-9, U.per_nm),
+        torque=quantity(st.torque * 1e21, U.pN_nm),
+        curvature=quantity(st.curvature * 1e-9, U.per_nm),
+        torsion=quantity(st.torsion * 1e-9, U.per_nm),
+        bending_energy=quantity(st.bending_energy * 1e12, U.pN),
+        twist_energy=quantity(st.twist_energy * 1e12, U.pN),
+        interaction_energy=quantity(st.interaction_energy * 1e12, U.pN),
+    )
+
+
+def effective_twist_rigidity(dna, force):
+    """Moroz-Nelson effective torsional rigidity of the fluctuating tail.
+
+    ``1/C_eff = 1/C + kT / (4 B sqrt(B T))`` [MODEL.md s.6].
+
+    Returns
+    -------
+    Quantity [pN nm^2]
+
+    Raises
+    ------
+    ValueError
+        If a force is not positive.
+    """
+    si = _check_dna(dna)
+    f = _force(force)
+    if not np.all(f > 0):
+        raise ValueError(f"force must be positive for C_eff, got {force}")
+    c = _mn.effective_twist_rigidity(f, si.bending_rigidity, si.torsional_rigidity, si.kT)
+    return quantity(c * 1e30, _PN_NM2)
+
+
+def extension_factor(dna, force, torque, tail_length):
+    """Moroz-Nelson extension factor zeta of a tail of length l carrying torque M_3.
+
+    ``zeta = 1 - (1/2) Q^(-1/2) + B kT / (l (B T - M_3^2/4))`` with the bracket
+    ``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` [MODEL.md s.6]; the tail's
+    end-to-end distance is ``zeta l``. Arguments broadcast.
+
+    Raises
+    ------
+    ValidityError
+        Naming force and torque where ``Q <= 0`` (zeta undefined). With the
+        seed set, the plectoneme torque gives Q <= 0 below 0.0954 pN.
+    ValueError
+        For a non-positive force or tail length.
+
+    Warns
+    -----
+    ValidityWarning
+        Where zeta leaves (0, 1]: zeta <= 0 at low force (long-tail factor
+        ``1 - Q^(-1/2)/2 <= 0`` once Q <= 1/4, below 0.122 pN at the seed
+        set's plectoneme torque), zeta > 1 for tails of a few persistence
+        lengths or less.
+    """
+    si = _check_dna(dna)
+    f = _force(force)
+    m = magnitude(torque, U.N_m, "torque")
+    length = magnitude(tail_length, U.m, "tail_length")
+    if not np.all(f > 0):
+        raise ValueError(f"force must be positive, got {force}")
+    if not np.all(np.asarray(length) > 0):
+        raise ValueError(f"tail_length must be positive, got {tail_length}")
+    z = _mn.extension_factor(f, m, length, si.bending_rigidity, si.kT)
+    outside = ~((z > 0) & (z <= 1))
+    if np.any(outside):
+        i = np.flatnonzero(outside)[0]
+        fb = np.broadcast_to(f, np.shape(z)).flat[i]
+        warnings.warn(
+            f"Moroz-Nelson zeta = {np.ravel(z)[i]:.4g} lies outside (0, 1] at force "
+            f"{fb * 1e12:.6g} pN: the extension formula is not valid there",
+            ValidityWarning,
+            stacklevel=2,
+        )
+    return quantity(z, U.dimensionless)
