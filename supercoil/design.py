@@ -1,5 +1,141 @@
-"""Placeholder: being implemented (see the issue tracker)."""
+"""Example II: design the twisting schedule for a chosen pitch profile (MODEL.md s.4).
+
+Public unit wrapper over :mod:`supercoil.core.designed_helix`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .core import designed_helix as _dh
+from .core import self_contact as _sc
+from .tables import make_table, provenance
+from .units import U, magnitude, quantity
+
+__all__ = ["SCHEDULE_UNITS", "design_twist_schedule", "sinusoidal_pitch"]
+
+SCHEDULE_UNITS = {
+    "slack": "mm",
+    "turns": "",
+    "tension": "N",
+    "s": "mm",
+    "pitch": "mm",
+    "alpha": "rad",
+    "twist_rate": "rad/m",
+    "torque": "N*mm",
+    "friction_torque_required": "N",
+    "friction_torque_available": "N",
+}
 
 
-def design_twist_schedule(*args, **kwargs):
-    raise NotImplementedError("design_twist_schedule is not implemented yet")
+def sinusoidal_pitch(p0, p1, wavenumber):
+    """The paper's designed profile [eq sinp] ``P(s) = P0 + P1 sin(k s)`` as a callable.
+
+    Parameters
+    ----------
+    p0, p1 : Quantity [length]
+        Mean pitch and amplitude (paper: 16 mm and 4 mm; the figure caption's
+        "cm" is a typo, MODEL.md s.4).
+    wavenumber : Quantity [1/length]
+        k (paper: ``2 pi / (10 P0)``).
+    """
+    P0 = float(magnitude(p0, U.m, "p0"))
+    P1 = float(magnitude(p1, U.m, "p1"))
+    kw = float(magnitude(wavenumber, U.per_m, "wavenumber"))
+
+    def pitch(s):
+        x = magnitude(s, U.m, "s")
+        return quantity(P0 + P1 * np.sin(kw * np.asarray(x, float)), U.m)
+
+    return pitch
+
+
+def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_derivative=None,
+                          cos2a_min=_sc.COS2A_MIN):
+    """The twisting/slacking schedule (N and T versus S) that produces a pitch profile.
+
+    Inverts [eq da/ds] for the twisting rate (see :mod:`supercoil.core.designed_helix`):
+    with alpha(s) = arctan(2 pi r / P(s)),
+
+    ``k(2s) = [sin 2a - alpha'(s) B (L - 2s)(c^3 - 1) / (C c^2)] / (2 r)``,
+    ``N(S) = N_0 + (1/2 pi) int_0^S k dS'`` with N_0 from [eq ini] at alpha(0),
+    and ``T(S)`` from [eq tension] at alpha(S/2).
+
+    Feeding the returned table back as ``twist_rate`` of
+    :func:`supercoil.rough_helix` (with ``turns = table["turns"][0]``) reproduces
+    P(s); the tests check this round trip.
+
+    Parameters
+    ----------
+    rod : ElasticRod
+    pitch : callable
+        ``pitch(s) -> Quantity [length]`` for an arclength Quantity array s (one
+        strand, from the head), vectorised. Evaluated only on [0, slack_max / 2].
+    slack_max : Quantity [length], optional
+        Last slack of the schedule (default: ``L (1 - 1e-6)``, the whole rod).
+    n_points : int
+        Grid size (uniform in s). N(S) is a trapezoid integral on this grid.
+    pitch_derivative : callable, optional
+        ``dP/ds(s)`` (dimensionless Quantity); default: 4th-order finite
+        differences of ``pitch`` with step 1e-4 (slack_max / 2).
+    cos2a_min : float
+        alpha -> pi/4 guard.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``slack`` [mm], ``turns``, ``tension`` [N], ``s`` [mm], ``pitch``
+        [mm], ``alpha`` [rad], ``twist_rate`` [rad/m] (k at this slack),
+        ``torque`` [N mm] (``C omega`` at the helix end), and the friction check
+        of the designed helix ``friction_torque_required`` = ``C |d omega/ds|``
+        and ``friction_torque_available`` [N] (the latter only if the rod has a
+        friction coefficient). Units in ``attrs["units"]``. N > 0 (right-handed
+        sense of the package); negate ``turns`` and ``twist_rate`` for the mirror.
+
+    Raises
+    ------
+    SingularityError
+        If P(s) <= 2 pi r somewhere (alpha >= pi/4), or P is not positive/finite.
+    """
+    si = rod.si
+    r, L, B, C, mu = (si.radius, si.length, si.bending_rigidity, si.torsional_rigidity,
+                      si.friction_coefficient)
+    S_end = L * (1.0 - 1e-6) if slack_max is None else float(
+        magnitude(slack_max, U.m, "slack_max"))
+    if not 0 < S_end < L:
+        raise ValueError(f"slack_max must lie in (0, L = {L:.6g} m), got {S_end:.6g} m")
+    s_end = 0.5 * S_end
+    s = np.linspace(0.0, s_end, int(n_points))
+
+    def P_si(x):
+        x = np.asarray(x, float)
+        p = magnitude(pitch(quantity(x, U.m)), U.m, "pitch(s)")
+        return np.broadcast_to(np.asarray(p, float), x.shape).astype(float)
+
+    P = P_si(s)
+    if pitch_derivative is None:
+        dP = _dh.derivative(P_si, s, 1e-4 * s_end, 0.0, s_end)
+    else:
+        d = magnitude(pitch_derivative(quantity(s, U.m)), U.dimensionless, "pitch_derivative(s)")
+        dP = np.broadcast_to(np.asarray(d, float), s.shape)
+    out = _dh.schedule(s, P, dP, r, L, B, C, cos2a_min)
+    a = out["alpha"]
+    omega = _sc.twist_density(a, r, B, C)
+    cols = {
+        "slack": out["slack"] * 1e3,
+        "turns": out["turns"],
+        "tension": out["tension"],
+        "s": out["s"] * 1e3,
+        "pitch": out["pitch"] * 1e3,
+        "alpha": a,
+        "twist_rate": out["twist_rate"],
+        "torque": C * omega * 1e3,
+        "friction_torque_required": np.abs(C * _sc.dtwist_dalpha(a, r, B, C) * out["dalpha_ds"]),
+    }
+    units = dict(SCHEDULE_UNITS)
+    if mu is not None:
+        cols["friction_torque_available"] = _sc.friction_torque_available(a, r, B, mu)
+    else:
+        units.pop("friction_torque_available")
+    return make_table(cols, units, provenance(rod, scene="design_twist_schedule",
+                                              slack_max=f"{S_end:.12g} m", n_points=n_points))
