@@ -92,8 +92,12 @@ class HatParameters(NamedTuple):
     slope: np.ndarray  # dz/dN for N > N_b, m per turn
 
 
-def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=1e-12):
+def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=1e-12, check_zeta=True):
     """Buckling turns, plectoneme torque and post-buckling slope at each force.
+
+    With ``check_zeta=False`` (used by :func:`hat_curve_points`, which checks
+    zeta point by point) the slope is NaN where zeta's bracket is not positive
+    at the plectoneme torque instead of raising.
 
     Raises
     ------
@@ -116,7 +120,8 @@ def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=1e-12):
                 f"at force {force.flat[i] * 1e12:.6g} pN the fluctuating tail stores more "
                 "linking per length than the plectoneme (tau <= (C/C_eff - 1) omega)"
             )
-        zeta_inf = _mn.long_tail_factor(force, M, B, kT)
+        with np.errstate(invalid="ignore"):
+            zeta_inf = _mn.long_tail_factor(force, M, B, kT, check=check_zeta)
         slope = -_TWO_PI * zeta_inf / D
     else:
         ratio = np.ones_like(force)
@@ -128,7 +133,7 @@ def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=1e-12):
 
 def buckling_turns(force, length, B, C, kT, r0, thermal=True):
     """``N_b = C omega L / (2 pi C_eff)`` at each force."""
-    return hat_parameters(force, length, B, C, kT, r0, thermal).buckling_turns
+    return hat_parameters(force, length, B, C, kT, r0, thermal, check_zeta=False).buckling_turns
 
 
 def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
@@ -195,14 +200,14 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=1e-1
 
     fmin, fmax = force.min(), force.max()
     if fmin == fmax:
-        par = hat_parameters(np.array([fmin]), length, B, C, kT, r0, thermal, rtol)
+        par = hat_parameters(np.array([fmin]), length, B, C, kT, r0, thermal, rtol, False)
 
         def take(a):
             return a[0]
     else:
         uf, inv = np.unique(force, return_inverse=True)
         inv = inv.reshape(force.shape)
-        par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol)
+        par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False)
 
         def take(a):
             return a[inv]
