@@ -10,6 +10,7 @@ force.
 from __future__ import annotations
 
 import warnings
+from functools import lru_cache
 
 import numpy as np
 
@@ -167,13 +168,19 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None):
         },
         _UNITS,
         provenance(
-            dna,
+            _parameters(dna),
             scene="hat curve (MODEL.md section 6)",
             thermal=bool(thermal),
             short_tail_length=f"{short * 1e9:.6g} nm",
             helical_repeat=f"{HELICAL_REPEAT * 1e9:.6g} nm",
         ),
     )
+
+
+@lru_cache(maxsize=32)
+def _parameters(dna):
+    """``dna.as_dict()`` once per molecule (formatting pint units costs ~50 us)."""
+    return dna.as_dict()
 
 
 def _warn(F, N, hp, thermal, si):

@@ -192,3 +192,21 @@ def test_bad_inputs(dna, ureg):
         sc.plectoneme_equilibrium(dna, np.nan * ureg.pN)
     with pytest.raises(TypeError, match="DNA"):
         sc.plectoneme_equilibrium(sc.load_parameters("silicone_rubber_rod"), 1 * ureg.pN)
+
+
+@given(st.floats(0.2, 0.78), st.floats(0.6, 5.0), st.floats(10.0, 60.0))
+def test_scalar_fast_path_equals_vector_formulas(a, rho, b_):
+    beta = b_ ** (-1 / 3)
+    out = pl._scalar_ge2_tension(a, rho, b_, beta)
+    vec = pl.reduced_ge2(a, rho, b_, True) + pl.reduced_tension(a, rho, b_, True)
+    for x, y in zip(out, vec, strict=True):
+        assert x == pytest.approx(float(y), rel=1e-12, abs=1e-12 * (abs(out[0]) + abs(out[3])))
+
+
+def test_scalar_and_vector_solvers_agree():
+    T = np.geomspace(0.01, 50, 40)
+    a_v, r_v = pl.solve_reduced(T, b)
+    for i, t in enumerate(T):
+        a_s, r_s = pl._solve_scalar(float(t), b)
+        assert a_s[0] == pytest.approx(a_v[i], rel=1e-12)
+        assert r_s[0] == pytest.approx(r_v[i], rel=1e-12)

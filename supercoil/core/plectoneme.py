@@ -66,6 +66,7 @@ hard-core radius, T above ~1e5 pN for the seed set): beyond that force
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 from typing import NamedTuple
 
@@ -89,6 +90,7 @@ __all__ = [
 
 #: smallest reduced radius R/r0 of the tabulated branch (sets the largest force)
 RHO_MIN = 0.5
+_SCALAR_LOOP_MAX = 12
 _ALPHA_LO = 1e-12
 _ALPHA_HI = 0.25 * np.pi
 _TWO_THIRDS = 2.0 / 3.0
@@ -268,6 +270,118 @@ def _format_force(force):
     return f"{force * 1e12:.6g} pN"
 
 
+def _scalar_ge2_tension(a, rho, b, beta):
+    """Pure-float ``(h, h_a, h_r, T, T_a, T_r)``: the formulas of :func:`reduced_ge2`
+    and :func:`reduced_tension` for one point (the scalar fast path; tested equal)."""
+    s = math.sin(a)
+    c = math.cos(a)
+    tan = s / c
+    t = tan / math.pi
+    t_a = (1.0 + tan * tan) / math.pi
+    s2 = s * s
+    s4 = s2 * s2
+    c2 = c * c - s2
+    sin2a = 2.0 * s * c
+    t13 = math.cbrt(t)
+    t23 = t13 * t13
+    t11 = t**11
+    t12 = t11 * t
+    # (GE2)
+    g1 = 2.0 * s2 * t23 - c2
+    g2 = 2.0 * s2 * t12 - c2
+    r13 = math.cbrt(rho)
+    r43 = r13 * rho
+    rm10 = rho**-10
+    k1 = _TWO_THIRDS * beta
+    h = b * s4 + 12.0 * rm10 * g2 + k1 * r43 * g1
+    g1_a = 2.0 * sin2a * t23 + 2.0 * s2 * _TWO_THIRDS * t_a / t13 + 2.0 * sin2a
+    g2_a = 2.0 * sin2a * t12 + 24.0 * s2 * t11 * t_a + 2.0 * sin2a
+    h_a = 4.0 * b * s2 * s * c + 12.0 * rm10 * g2_a + k1 * r43 * g1_a
+    h_r = -120.0 * rm10 / rho * g2 + (4.0 / 3.0) * k1 * r13 * g1
+    # tension
+    q2 = 12.0 * t12 / c2 - 1.0 - t12
+    q1 = _TWO_THIRDS * t23 / c2 - 1.0 - t23
+    rm2 = 1.0 / (rho * rho)
+    rm12 = rm2**6
+    rm23 = 1.0 / (r13 * r13)
+    bend = b * s4 * (2.0 + c2) / (2.0 * c2) * rm2
+    T = bend + rm12 * q2 + beta * rm23 * q1
+    c2sq = c2 * c2
+    d_bend = 4.0 * s2 * s * c * (1.0 + 2.0 / c2) + 4.0 * s4 * sin2a / c2sq
+    q2_a = 144.0 * t11 * t_a / c2 + 24.0 * t12 * sin2a / c2sq - 12.0 * t11 * t_a
+    q1_a = ((4.0 / 9.0) * t_a / t13 / c2 + (4.0 / 3.0) * t23 * sin2a / c2sq
+            - _TWO_THIRDS * t_a / t13)
+    T_a = 0.5 * b * rm2 * d_bend + rm12 * q2_a + beta * rm23 * q1_a
+    T_r = (-2.0 * bend - 12.0 * rm12 * q2 - _TWO_THIRDS * beta * rm23 * q1) / rho
+    return h, h_a, h_r, T, T_a, T_r
+
+
+def _solve_scalar(T_target, b, rtol=1e-12):
+    """One reduced tension: the same safeguarded nested Newton as :func:`solve_reduced`,
+    on Python floats (about ten times faster for a single force)."""
+    rho_t, alpha_t, T_t = branch_table(b)
+    beta = b ** (-1.0 / 3.0)
+    k = int(np.searchsorted(-T_t, -T_target, side="left")) - 1
+    k = min(max(k, 0), rho_t.size - 2)
+    u_lo, u_hi = math.log(rho_t[k]), math.log(rho_t[k + 1])
+    frac = min(max((T_t[k] - T_target) / (T_t[k] - T_t[k + 1]), 0.0), 1.0)
+    u = u_lo + frac * (u_hi - u_lo)
+    a = float(alpha_t[k] + frac * (alpha_t[k + 1] - alpha_t[k]))
+    for _ in range(200):
+        rho = math.exp(u)
+        # (GE2) for alpha at this rho: safeguarded Newton in (0, pi/4)
+        a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
+        for _ in range(200):
+            h, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
+            if h < 0.0:
+                a_lo = a
+            elif h > 0.0:
+                a_hi = a
+            else:
+                break
+            an = a - h / h_a
+            if not a_lo <= an <= a_hi:
+                an = 0.5 * (a_lo + a_hi)
+            da = abs(an - a)
+            a = an
+            if da <= 1e-15 * (1.0 + a):
+                break
+        h, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
+        G = T_target - T
+        if G < 0.0:
+            u_lo = u
+        elif G > 0.0:
+            u_hi = u
+        else:
+            break
+        dG = -rho * (T_r - T_a * h_r / h_a)
+        un = u - G / dG
+        if not u_lo <= un <= u_hi:
+            un = 0.5 * (u_lo + u_hi)
+        du = abs(un - u)
+        u = un
+        if du <= rtol * (1.0 + abs(u)):
+            break
+    rho = math.exp(u)
+    a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
+    for _ in range(200):  # (GE2) at the final rho
+        h, h_a = _scalar_ge2_tension(a, rho, b, beta)[:2]
+        if h == 0.0:
+            break
+        if h < 0.0:
+            a_lo = a
+        else:
+            a_hi = a
+        an = a - h / h_a
+        if not a_lo <= an <= a_hi:
+            an = 0.5 * (a_lo + a_hi)
+        da = abs(an - a)
+        a = an
+        if da <= 1e-15 * (1.0 + a):
+            break
+    return np.array([a]), np.array([rho])
+
+
 def solve_reduced(T_target, b, rtol=1e-12):
     """Solve the reduced equations at reduced tensions ``T_target > 0``: ``(alpha, rho)``."""
     T_target = np.asarray(T_target, dtype=float)
@@ -345,7 +459,12 @@ def equilibrium(force, B, C, kT, r0, rtol=1e-12):
             f"{_format_force(T_t[0] * kT / r0)} the superhelix radius would fall below "
             f"r0/2 (alpha -> pi/4)"
         )
-    alpha, rho = solve_reduced(Tr, b, rtol=rtol)
+    if Tr.size <= _SCALAR_LOOP_MAX:  # a few forces: the pure-float path is faster
+        pairs = [_solve_scalar(t, float(b), rtol=rtol) for t in Tr.ravel().tolist()]
+        alpha = np.array([p[0][0] for p in pairs]).reshape(Tr.shape)
+        rho = np.array([p[1][0] for p in pairs]).reshape(Tr.shape)
+    else:
+        alpha, rho = solve_reduced(Tr, b, rtol=rtol)
     M = reduced_torque(alpha, rho, b) * kT
     R = rho * r0
     kappa = _g.curvature(alpha, R)
