@@ -28,7 +28,7 @@ from .exceptions import (
     ValidityWarning,
 )
 from .fitting import FitResult, fit_hat_curves, fit_many
-from .hat import hat_curve
+from .hat import buckling_turns, hat_curve, post_buckling_slope
 from .materials import DNA, ElasticRod
 from .parameters import available_parameter_sets, load_parameters
 from .plectoneme import (
@@ -61,6 +61,7 @@ __all__ = [
     "ValidityWarning",
     "__version__",
     "available_parameter_sets",
+    "buckling_turns",
     "design_twist_schedule",
     "effective_twist_rigidity",
     "extension_factor",
@@ -70,6 +71,7 @@ __all__ = [
     "hat_curve",
     "load_parameters",
     "plectoneme_equilibrium",
+    "post_buckling_slope",
     "read_csv",
     "read_tweezers_csv",
     "rough_helix",

@@ -48,7 +48,7 @@ def _cases():
 
         def eq_kernel(n):
             f = np.linspace(0.3, 5.0, n) * 1e-12
-            return lambda: pk.plectoneme_equilibrium_si(
+            return lambda: pk.equilibrium(
                 f, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
             )
 
