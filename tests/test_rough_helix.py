@@ -296,3 +296,16 @@ def test_s_max_event_matches_formula_property(N, r_mm, L_cm):
     assert it.reason == "alpha->0"
     assert it.s_end == pytest.approx(smax, rel=1e-8)
     assert 0 < smax < L / 2
+
+
+@settings(max_examples=60)
+@given(N=st.floats(0.5, 2000.0), frac=st.floats(0.0, 1.0))
+def test_closed_form_inversion_round_trip_property(N, frac):
+    """alpha(s) (Newton in y) and the explicit s(alpha) of [eq example k=0] invert each other."""
+    r, L, B, C = _si(rod_a())
+    a0 = sco.initial_tilt(N, r, L, B, C)
+    smax = rh.k0_s_max(a0, L, B, C)
+    s = frac * smax
+    y = rh.k0_y_of_s(s, a0, L, B, C)
+    assert 0.0 <= y <= sco.y_of_alpha(a0)
+    assert rh.k0_s_of_alpha(sco.alpha_of_y(y), a0, L, B, C) == pytest.approx(s, abs=1e-12 * L)
