@@ -426,7 +426,7 @@ class _Problem:
             raise FitError(f"the model fails at {self.describe(u)}: {self.last_failure}")
         n, m = len(f0), len(u)
         J = np.zeros((n, m))
-        lo, hi = self.s["lower"], self.s["upper"]
+        lo, hi = self.s["lower"] / self.scales, self.s["upper"] / self.scales
         mol = self.mol
         phys, n0, _ = self.unpack(u)
         for j, (kind, i) in enumerate(self.kinds):
