@@ -1,0 +1,246 @@
+"""``supercoil fit DATA.csv``: fit hat curves to magnetic-tweezers rotation curves.
+
+Example::
+
+    supercoil fit data.csv --vary twist_persistence radius --out DIR
+
+``DATA.csv`` is a long table read by :func:`supercoil.read_tweezers_csv`
+(``force [pN]``, ``turns``, ``extension [um]``, optional ``molecule`` and
+``sigma [nm]``). With one molecule (or ``--global``: all molecules share the
+physical parameters, each keeps its own offsets) the command writes
+
+* ``DIR/fit_report.txt``: the fit report (parameter table with units);
+* ``DIR/fit_parameters.csv``: the estimates and standard errors (one row);
+* ``DIR/fit_points.csv``: data, best fit and residual per point;
+* ``DIR/fit.png``: data, fit and residuals per force.
+
+With several molecules (and no ``--global``) each molecule is fitted alone
+(:func:`supercoil.fit_many`, ``--jobs N`` processes) and the command writes
+``fit_molecules.csv`` (one row per molecule; failed fits are reported there
+and on stderr, they do not stop the batch), ``fit_report.txt`` and
+``fit_molecules.png``; a progress line is printed on stderr.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+
+
+def _assignment(text):
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip() or not value.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return name.strip(), value.strip()
+
+
+def _parse_quantity(text, what):
+    from ..units import ureg
+
+    try:
+        return ureg.Quantity(text)
+    except Exception as exc:  # pint raises several parser errors
+        raise argparse.ArgumentTypeError(f"cannot read {what} {text!r}: {exc}") from None
+
+
+def register(sub):
+    p = sub.add_parser(
+        "fit",
+        help="fit hat curves to magnetic-tweezers rotation curves (CSV)",
+        description="Fit the DNA hat-curve model (MODEL.md section 6) to extension-versus-turns "
+        "data at several forces: shared physical parameters, per-molecule turns and extension "
+        "offsets, least squares with uncertainties.",
+    )
+    p.add_argument("data", help="CSV: force [pN], turns, extension [um], optional molecule, "
+                   "sigma [nm]")
+    p.add_argument("--params", default="dna", help="DNA parameter set (start values and fixed "
+                   "values; default: dna)")
+    p.add_argument("--vary", nargs="+", default=["twist_persistence", "radius"],
+                   metavar="NAME", help="DNA fields to fit: length, bending_persistence, "
+                   "twist_persistence, radius (default: twist_persistence radius)")
+    p.add_argument("--fix", action="append", type=_assignment, default=[], metavar="NAME=VALUE",
+                   help="hold a parameter fixed, e.g. --fix length=760nm or --fix turns_offset=0")
+    p.add_argument("--start", action="append", type=_assignment, default=[],
+                   metavar="NAME=VALUE", help="start value, e.g. --start twist_persistence=100nm")
+    p.add_argument("--bound", action="append", type=_assignment, default=[],
+                   metavar="NAME=LO:HI", help="bounds with units, e.g. --bound radius=1nm:3nm "
+                   "(leave a side empty for none: radius=:3nm)")
+    p.add_argument("--sigma", default=None, help="extension standard error, e.g. 5nm "
+                   "(default: the data's sigma column, else unit weights)")
+    p.add_argument("--no-turns-offset", action="store_true", help="do not fit the turns offset")
+    p.add_argument("--no-extension-offset", action="store_true",
+                   help="do not fit the extension offset")
+    p.add_argument("--athermal", action="store_true",
+                   help="athermal hat curve (C_eff = C, zeta = 1)")
+    p.add_argument("--drop-incomplete", action="store_true",
+                   help="drop rows with empty cells (listed in a warning) instead of failing")
+    p.add_argument("--global", dest="global_fit", action="store_true",
+                   help="one fit for all molecules (shared physical parameters)")
+    p.add_argument("--jobs", type=int, default=1,
+                   help="worker processes for per-molecule fits (default 1)")
+    p.add_argument("--out", default="fit_out", help="output folder (default: fit_out)")
+    p.add_argument("--no-plot", action="store_true", help="do not write the figure")
+    p.set_defaults(func=run)
+
+
+def _bounds(items):
+    out = {}
+    for name, value in items:
+        lo, sep, hi = value.partition(":")
+        if not sep:
+            raise argparse.ArgumentTypeError(f"--bound {name}={value}: expected LO:HI")
+        out[name] = (
+            _parse_quantity(lo, f"lower bound of {name}") if lo.strip() else None,
+            _parse_quantity(hi, f"upper bound of {name}") if hi.strip() else None,
+        )
+    return out
+
+
+def run(args) -> int:
+    from pathlib import Path
+
+    from ..exceptions import ParameterError
+    from ..fitting import fit_hat_curves
+    from ..materials import DNA
+    from ..parameters import load_parameters
+    from ..tables import write_csv
+    from ..tweezers_data import read_tweezers_csv
+
+    try:
+        fixed = {k: _parse_quantity(v, k) for k, v in args.fix}
+        start = {k: _parse_quantity(v, k) for k, v in args.start}
+        bounds = _bounds(args.bound)
+        sigma = _parse_quantity(args.sigma, "sigma") if args.sigma else None
+    except argparse.ArgumentTypeError as exc:
+        print(f"supercoil fit: error: {exc}", file=sys.stderr)
+        return 2
+    dna = load_parameters(args.params)
+    if not isinstance(dna, DNA):
+        raise ParameterError(f"parameter set {args.params!r} is not a DNA set")
+    out = Path(args.out)
+    options = {
+        "sigma": sigma,
+        "fit_turns_offset": not args.no_turns_offset,
+        "fit_extension_offset": not args.no_extension_offset,
+        "thermal": not args.athermal,
+    }
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
+        molecules = data["molecule"].astype(str).unique() if "molecule" in data.columns else []
+        many = len(molecules) > 1 and not args.global_fit
+        if many:
+            table = _run_many(args, data, dna, fixed, bounds, start, options)
+        else:
+            result = fit_hat_curves(data, dna, vary=args.vary, fixed=fixed, bounds=bounds,
+                                    start=start, **options)
+    for w in caught:
+        print(f"supercoil fit: warning: {w.message}", file=sys.stderr)
+    out.mkdir(parents=True, exist_ok=True)
+    if many:
+        csv = write_csv(table, out / "fit_molecules.csv")
+        report = _many_report(table, args)
+        (out / "fit_report.txt").write_text(report + "\n")
+        print(report)
+        print(f"wrote {csv}")
+        if not args.no_plot:
+            _plot_many(table, args.vary, out / "fit_molecules.png")
+            print(f"wrote {out / 'fit_molecules.png'}")
+        return 0 if table["success"].all() else 1
+    report = result.report()
+    (out / "fit_report.txt").write_text(report + "\n")
+    print(report)
+    write_csv(result.to_frame(), out / "fit_parameters.csv")
+    write_csv(result.points_frame(), out / "fit_points.csv")
+    print(f"wrote {out / 'fit_report.txt'}, {out / 'fit_parameters.csv'}, "
+          f"{out / 'fit_points.csv'}")
+    if not args.no_plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig = result.plot()
+        fig.savefig(out / "fit.png", dpi=120)
+        plt.close(fig)
+        print(f"wrote {out / 'fit.png'}")
+    return 0
+
+
+def _run_many(args, data, dna, fixed, bounds, start, options):
+    from ..fitting import fit_many
+
+    total_width = [0]
+
+    def progress(done, total, molecule):
+        line = f"supercoil fit: {done}/{total} molecules done (last: {molecule})"
+        total_width[0] = max(total_width[0], len(line))
+        end = "\n" if done == total else ""
+        print(f"\r{line:<{total_width[0]}}", end=end, file=sys.stderr, flush=True)
+
+    kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start, progress=progress,
+                  **options)
+    if args.jobs > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+            return fit_many(data, dna, executor=pool, **kwargs)
+    return fit_many(data, dna, **kwargs)
+
+
+def _many_report(table, args):
+    units = table.attrs["units"]
+    params = [c for c in table.columns
+              if f"{c}_stderr" in table.columns]
+    lines = [
+        f"[[Per-molecule fits]] {len(table)} molecules, {int(table['success'].sum())} fitted, "
+        f"{int((~table['success']).sum())} failed; varied: {', '.join(args.vary)}",
+    ]
+    head = f"    {'molecule':<12}{'red.chi2':>10}"
+    for p in params:
+        head += f"{p + ' [' + units[p] + ']':>30}"
+    lines.append(head)
+    for _, row in table.iterrows():
+        if not row["success"]:
+            lines.append(f"    {row['molecule']!s:<12}  FAILED: {row['error']}")
+            continue
+        text = f"    {row['molecule']!s:<12}{row['reduced_chi_square']:>10.4g}"
+        for p in params:
+            cell = f"{row[p]:.5g} ± {row[p + '_stderr']:.2g}"
+            text += f"{cell:>30}"
+        lines.append(text)
+    ok = table[table["success"]]
+    if len(ok) > 1:
+        lines.append("[[Across molecules]] mean ± standard deviation")
+        for p in params:
+            if p in args.vary:
+                lines.append(f"    {p:<24}{ok[p].mean():.5g} ± {ok[p].std(ddof=1):.2g} "
+                             f"{units[p]}")
+    return "\n".join(lines)
+
+
+def _plot_many(table, vary, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    units = table.attrs["units"]
+    names = [v for v in vary if v in table.columns] or ["reduced_chi_square"]
+    fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 3.6), squeeze=False,
+                             layout="constrained")
+    ok = table["success"].to_numpy()
+    x = np.arange(len(table))
+    for ax, name in zip(axes[0], names, strict=True):
+        err = table.get(f"{name}_stderr")
+        ax.errorbar(x[ok], table[name][ok], yerr=None if err is None else err[ok], fmt="o",
+                    ms=4, capsize=2)
+        for xi in x[~ok]:
+            ax.axvline(xi, color="r", alpha=0.3, lw=4)
+        ax.set_xticks(x, table["molecule"].astype(str), rotation=90, fontsize="small")
+        ax.set_xlabel("molecule (red: fit failed)")
+        ax.set_ylabel(f"{name} [{units.get(name, '')}]")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
