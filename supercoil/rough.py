@@ -132,7 +132,7 @@ def twist_rate_function(twist_rate, sign=1.0):
 
 
 def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=801,
-                curvature_tolerance=0.01, slack_max=None, ode_method="DOP853",
+                curvature_tolerance=0.01, slack_max=None, ode_method="auto",
                 rtol=_rh.RTOL, atol=_rh.ATOL, cos2a_min=_sc.COS2A_MIN):
     """The frozen non-uniform helix of a rough rod twisted by N_0 turns, then slacked.
 
@@ -173,7 +173,12 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
         Stop the ODE at this slack if no event fires first (default: the rod
         length less ``1e-6 L``; the ODE has a factor 1/(L - S)).
     ode_method : str
-        ``solve_ivp`` method (default "DOP853"; "RK45", "Radau", "LSODA", ...).
+        ``solve_ivp`` method ("DOP853", "RK45", "Radau", "BDF", "LSODA", ...).
+        Default "auto": "DOP853" for k = 0 (non-stiff; best accuracy per cost)
+        and "LSODA" for non-zero k, because a twisting rate k > 0 drives alpha
+        toward the fixed point ``sin 2a* = 2 r k`` of [eq da/ds], which is stiff
+        when alpha* is small (DOP853 needs ~1e6 steps at k = 1 rad/m, LSODA
+        ~700).
     rtol, atol : float
         ODE tolerances on ``y = 1 - cos 2 alpha`` (defaults 1e-10, 1e-12). With
         DOP853 at these defaults the ODE agrees with the closed form to better
@@ -248,6 +253,8 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
 
         solver = {}
     else:
+        if ode_method == "auto":
+            ode_method = "DOP853" if k_zero else "LSODA"
         s_stop = 0.5 * L * (1.0 - _rh.TAIL_FRACTION_MIN)
         if slack_max is not None:
             s_stop = min(s_stop, 0.5 * float(magnitude(slack_max, U.m, "slack_max")))

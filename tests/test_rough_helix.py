@@ -309,3 +309,26 @@ def test_closed_form_inversion_round_trip_property(N, frac):
     y = rh.k0_y_of_s(s, a0, L, B, C)
     assert 0.0 <= y <= sco.y_of_alpha(a0)
     assert rh.k0_s_of_alpha(sco.alpha_of_y(y), a0, L, B, C) == pytest.approx(s, abs=1e-12 * L)
+
+
+@pytest.mark.parametrize("k", [-100.0, -20.0, -5.0])
+def test_untwisting_while_slacking_ends_the_helix_earlier(k):
+    """k < 0: dy/ds ~ y^(-1/2) at the end; the s(y) phase reaches alpha = 0 regularly."""
+    ref = sc.rough_helix(rod_a(), 40)
+    res = sc.rough_helix(rod_a(), 40, twist_rate=k / u.m)
+    assert res.end == "alpha->0" and res.s_max < ref.s_max
+    p = res.profile
+    assert np.all(np.isfinite(p.select_dtypes("number").to_numpy()))
+    np.testing.assert_allclose(p["twist"] + p["writhe"], p["turns"], atol=2e-4)
+    # the end agrees between an explicit and an implicit solver
+    other = sc.rough_helix(rod_a(), 40, twist_rate=k / u.m, ode_method="Radau")
+    assert other.s_max.m_as(u.mm) == pytest.approx(res.s_max.m_as(u.mm), rel=1e-7)
+
+
+def test_slow_twisting_relaxes_to_the_fixed_point():
+    """k > 0 constant: alpha relaxes to sin 2a* = 2 r k (stiff; auto picks LSODA)."""
+    k = 5.0
+    res = sc.rough_helix(rod_a(), 40, twist_rate=k / u.m)
+    assert res.solver["ode_method"] == "LSODA" and res.end == "s_stop"
+    a_star = 0.5 * np.arcsin(2 * rod_a().si.radius * k)
+    assert res.profile["alpha"].iloc[-1] == pytest.approx(a_star, rel=1e-3)

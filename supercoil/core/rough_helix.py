@@ -131,19 +131,31 @@ def k0_dy_ds(s, y, L, B, C):
 
 def dy_ds(s, y, k, r, L, B, C):
     """Right side of [eq da/ds] in ``y = 1 - cos 2a`` (1/m); ``k = k(2s)`` in rad/m."""
-    y = np.asarray(y, float)
+    # trial stages of explicit solvers may step outside [0, 1]: keep the right
+    # side finite there (the error control rejects such steps)
+    y = np.clip(np.asarray(y, float), 0.0, 1.5)
     k = np.asarray(k, float)
     c = 1.0 - y
-    yy = np.maximum(y, 1e-300)
+    yy = np.maximum(y, 1e-30)
     bracket = (2.0 - y) - np.where(k == 0.0, 0.0, 2.0 * r * k * np.sqrt((2.0 - y) / yy))
     return -2.0 * C / (B * (L - 2.0 * np.asarray(s, float))) * c * c / (c * c + c + 1.0) * bracket
 
 
-class Integration:
-    """Result of :func:`integrate`: dense solution, end point and why it ended."""
+#: Phase switch of :func:`integrate`: below this y (alpha ~ 0.022 rad), while y
+#: decreases, the ODE is integrated as s(y) instead of y(s).
+Y_SWITCH = 1e-3
 
-    def __init__(self, sol, s_end, reason, nfev, ode_method, rtol, atol, kfun, r, L, B, C):
-        self.sol = sol
+
+class Integration:
+    """Result of :func:`integrate`: piecewise dense solution, end point, why it ended.
+
+    ``segments`` is a list of ``(kind, lo, hi, sol)``: kind ``"y(s)"`` covers
+    s in [lo, hi] with ``sol(s) -> y``; kind ``"s(y)"`` covers s in [lo, hi]
+    with ``sol(y) -> s`` for y decreasing from ``sol.y_start`` to ``sol.y_end``.
+    """
+
+    def __init__(self, segments, s_end, reason, nfev, ode_method, rtol, atol, kfun, r, L, B, C):
+        self.segments = segments
         self.s_end = s_end
         self.reason = reason  # "alpha->0", "s_stop"
         self.nfev = nfev
@@ -154,17 +166,56 @@ class Integration:
         self._p = (r, L, B, C)
 
     def y(self, s):
-        """y(s) from the dense output, clipped to [0, 1)."""
-        return np.clip(self.sol(np.asarray(s, float))[0], 0.0, None)
+        """y(s) from the dense outputs (s(y) segments inverted by bisection), >= 0."""
+        s = np.asarray(s, float)
+        out = np.full(s.shape, np.nan)
+        flat_s, flat_o = s.reshape(-1), out.reshape(-1)
+        for kind, lo, hi, sol in self.segments:
+            m = (flat_s >= lo) & (flat_s <= hi) & np.isnan(flat_o)
+            if not np.any(m):
+                continue
+            x = flat_s[m]
+            if kind == "y(s)":
+                flat_o[m] = sol(x)[0]
+            else:  # invert the increasing map y -> s on [y_end, y_start]
+                ylo = np.full(x.shape, sol.y_end)
+                yhi = np.full(x.shape, sol.y_start)
+
+                def f(yy, x=x, sol=sol):
+                    return x - sol(yy)[0]  # increasing in yy (s decreases as y grows)
+
+                flat_o[m] = sc.bisect_increasing(f, ylo, yhi)
+        if np.any(np.isnan(out)):
+            raise NoHelixError(f"s outside the integrated helix [0, {self.s_end:.9g} m]")
+        out = np.clip(out, 0.0, None)
+        return float(out) if out.ndim == 0 else out
 
     def dy(self, s, y):
         s = np.asarray(s, float)
         return dy_ds(s, y, self._k(2.0 * s), *self._p)
 
 
+def _singular(s_sing, cos2a_min):
+    return SingularityError(
+        f"tilt alpha -> pi/4 (cos 2 alpha < {cos2a_min:g}) at s = {s_sing:.6g} m "
+        f"(slack S = {2 * s_sing:.6g} m): the tension diverges; the twisting rate "
+        "k(S) is too large for a hard-contact helix"
+    )
+
+
 def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
-              rtol=RTOL, atol=ATOL, cos2a_min=sc.COS2A_MIN):
-    """Integrate [eq da/ds] (in y) from s = 0 with ``solve_ivp``.
+              rtol=RTOL, atol=ATOL, cos2a_min=sc.COS2A_MIN, y_switch=Y_SWITCH):
+    """Integrate [eq da/ds] from s = 0 with ``solve_ivp``, in two phases.
+
+    Phase "y(s)": y = 1 - cos 2 alpha as a function of s (regular for k = 0 and
+    wherever y is not small). Phase "s(y)": once y falls below ``y_switch``
+    while decreasing, s is integrated as a function of y down to y = 0,
+    ``ds/dy = 1 / (dy/ds)``. Near the end dy/ds is finite (k = 0) or diverges
+    like ``y^(-1/2)`` (k < 0, untwisting while slacking), so ds/dy is regular
+    in both cases and the end s_max = s(y = 0) is reached without an event
+    search on a singular right side. If dy/ds rises to half its value at the
+    switch in phase "s(y)" (a turning point ahead: k > 0 re-tilting the helix)
+    the integration goes back to phase "y(s)" with the switch level halved.
 
     Parameters
     ----------
@@ -172,18 +223,21 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
         Initial tilt from [eq ini] (rad).
     kfun : callable
         ``kfun(S) -> k`` twisting rate in rad/m as a function of slack S (m),
-        vectorised; already oriented with the sign of N_0.
+        vectorised, in the frame where N_0 > 0.
     r, L, B, C : float
         Rod radius, length (m), rigidities (N m^2).
     s_stop : float, optional
-        Last s to integrate to if no event fires; default
+        Last s to integrate to if the helix does not end first; default
         ``(L/2)(1 - TAIL_FRACTION_MIN)``.
     ode_method : str
         Any ``solve_ivp`` method ("RK45", "DOP853", "Radau", "LSODA", ...).
     rtol, atol : float
-        Tolerances on y (defaults 1e-10, 1e-12).
+        Tolerances (defaults 1e-10, 1e-12): on y in phase "y(s)"; on s in
+        phase "s(y)" with ``atol * L`` as absolute tolerance (metres).
     cos2a_min : float
         alpha -> pi/4 guard: terminal event at ``cos 2a = cos2a_min``.
+    y_switch : float
+        Phase switch threshold in y (default 1e-3).
 
     Returns
     -------
@@ -192,44 +246,103 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
     Raises
     ------
     SingularityError
-        If the tilt reaches pi/4 (cos 2 alpha = cos2a_min) at some s.
+        If the tilt reaches pi/4 (cos 2 alpha = cos2a_min) at some s, or a
+        solver fails (message from solve_ivp).
     """
     if s_stop is None:
         s_stop = 0.5 * L * (1.0 - TAIL_FRACTION_MIN)
-    y0 = float(sc.y_of_alpha(alpha0))
 
-    def fun(s, yv):
-        return dy_ds(s, yv[0], kfun(2.0 * s), r, L, B, C).reshape(1)
+    def ydot(s, y):
+        return dy_ds(s, y, kfun(2.0 * s), r, L, B, C)
+
+    def fun_y(s, yv):
+        return np.reshape(ydot(s, yv[0]), 1)
+
+    def fun_s(y, sv):
+        return np.reshape(1.0 / ydot(sv[0], y), 1)
 
     def ev_zero(s, yv):
         return yv[0]
 
-    ev_zero.terminal = True
-    ev_zero.direction = -1
+    ev_zero.terminal, ev_zero.direction = True, -1
 
     def ev_sing(s, yv):
         return (1.0 - yv[0]) - cos2a_min
 
-    ev_sing.terminal = True
-    ev_sing.direction = -1
+    ev_sing.terminal, ev_sing.direction = True, -1
 
-    sol = solve_ivp(fun, (0.0, s_stop), [y0], method=ode_method, rtol=rtol, atol=atol,
-                    events=(ev_zero, ev_sing), dense_output=True)
-    if sol.status == -1:
-        raise SingularityError(f"rough-helix ODE ({ode_method}) failed: {sol.message}")
-    if sol.t_events[1].size:
-        s_sing = float(sol.t_events[1][0])
-        raise SingularityError(
-            f"tilt alpha -> pi/4 (cos 2 alpha < {cos2a_min:g}) at s = {s_sing:.6g} m "
-            f"(slack S = {2 * s_sing:.6g} m): the tension diverges; the twisting rate "
-            "k(S) is too large for a hard-contact helix"
-        )
-    if sol.t_events[0].size:
-        s_end, reason = float(sol.t_events[0][0]), "alpha->0"
+    def ev_stop(y, sv):
+        return sv[0] - s_stop
+
+    ev_stop.terminal, ev_stop.direction = True, 1
+
+    def done(segments, s_end, reason):
+        return Integration(segments, s_end, reason, nfev, ode_method, rtol, atol, kfun,
+                           r, L, B, C)
+
+    segments, nfev = [], 0
+    s0, y0 = 0.0, float(sc.y_of_alpha(alpha0))
+    y_sw = float(y_switch)
+    if y0 <= y_sw and ydot(s0, y0) < 0:
+        mode, ydot_sw = "s(y)", float(ydot(s0, y0))
     else:
-        s_end, reason = float(sol.t[-1]), "s_stop"
-    return Integration(sol.sol, s_end, reason, sol.nfev, ode_method, rtol, atol, kfun,
-                       r, L, B, C)
+        mode = "y(s)"
+        y_sw = y_sw if y0 > y_sw else 0.5 * y0
+    for _ in range(50):
+        if mode == "s(y)":
+
+            def ev_turn(y, sv, ref=ydot_sw):  # dy/ds rising toward 0 (turning point ahead)
+                return ydot(sv[0], y) - 0.5 * ref
+
+            ev_turn.terminal, ev_turn.direction = True, 1
+            sol = solve_ivp(fun_s, (y0, 0.0), [s0], method=ode_method, rtol=rtol,
+                            atol=atol * L, events=(ev_turn, ev_stop), dense_output=True)
+            nfev += sol.nfev
+            if sol.status == -1:
+                raise SingularityError(f"rough-helix ODE ({ode_method}, s(y)) failed: "
+                                       f"{sol.message}")
+            dense = sol.sol
+            dense.y_start = y0
+            if sol.t_events[1].size:  # reached s_stop
+                dense.y_end = float(sol.t_events[1][0])
+                segments.append(("s(y)", s0, s_stop, dense))
+                return done(segments, s_stop, "s_stop")
+            if sol.t_events[0].size:  # slope flattening: back to y(s), lower switch level
+                dense.y_end = float(sol.t_events[0][0])
+                s_end = float(sol.y_events[0][0][0])
+                segments.append(("s(y)", s0, s_end, dense))
+                s0, y0, mode, y_sw = s_end, dense.y_end, "y(s)", 0.5 * dense.y_end
+                continue
+            dense.y_end = 0.0
+            s_end = float(sol.y[0, -1])
+            segments.append(("s(y)", s0, s_end, dense))
+            return done(segments, s_end, "alpha->0")
+
+        def ev_switch(s, yv, level=y_sw):
+            return yv[0] - level
+
+        ev_switch.terminal, ev_switch.direction = True, -1
+        sol = solve_ivp(fun_y, (s0, s_stop), [y0], method=ode_method, rtol=rtol, atol=atol,
+                        events=(ev_zero, ev_sing, ev_switch), dense_output=True)
+        nfev += sol.nfev
+        if sol.status == -1:
+            raise SingularityError(f"rough-helix ODE ({ode_method}) failed: {sol.message}")
+        if sol.t_events[1].size:
+            raise _singular(float(sol.t_events[1][0]), cos2a_min)
+        if sol.t_events[0].size:
+            s_end = float(sol.t_events[0][0])
+            segments.append(("y(s)", s0, s_end, sol.sol))
+            return done(segments, s_end, "alpha->0")
+        if sol.t_events[2].size:
+            s_sw = float(sol.t_events[2][0])
+            segments.append(("y(s)", s0, s_sw, sol.sol))
+            s0, y0, mode = s_sw, y_sw, "s(y)"
+            ydot_sw = float(ydot(s0, y0))
+            continue
+        segments.append(("y(s)", s0, float(sol.t[-1]), sol.sol))
+        return done(segments, float(sol.t[-1]), "s_stop")
+    raise SingularityError("rough-helix ODE: more than 50 phase switches (alpha oscillating "
+                           "around the switch threshold)")
 
 
 # --- grids and profile columns -------------------------------------------------
