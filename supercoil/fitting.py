@@ -48,7 +48,7 @@ import math
 import re
 import time
 import warnings
-from concurrent.futures import as_completed
+from concurrent.futures import Future, as_completed
 
 import numpy as np
 import pandas as pd
@@ -163,7 +163,10 @@ def _to_si(name, value):
 def _prepare(data, dna, vary, fixed, bounds, start, sigma, fit_turns_offset,
              fit_extension_offset, thermal, max_nfev, tol):
     """Validate and convert everything to SI floats; return the fit spec (a plain dict)."""
-    df = check_tweezers_frame(data, source="data")
+    lines = getattr(data, "attrs", {}).get("lines")  # file lines from read_tweezers_csv
+    if lines is not None and not data.index.equals(pd.RangeIndex(len(data))):
+        lines = None
+    df = check_tweezers_frame(data, lines=lines, source="data")
     force = _column_si(df, "force", U.N)
     turns = _column_si(df, "turns", U.turn, as_turns)
     extension = _column_si(df, "extension", U.m)
@@ -1116,7 +1119,8 @@ def fit_many(
         molecule suffix: ``"turns_offset"``).
     executor : concurrent.futures.Executor, optional
         Runs the fits in parallel (``ProcessPoolExecutor``, ``ThreadPoolExecutor``,
-        a ``dask.distributed`` client, ...): each molecule is one
+        ``dask.distributed.Client(...).get_executor()`` or the client itself, ...):
+        each molecule is one
         ``executor.submit`` of a module-level function with picklable
         arguments (SI floats, no pint objects). None: serial.
     progress : callable, optional
@@ -1196,7 +1200,11 @@ def fit_many(
             finished(lab, _fit_worker(spec))
         else:
             pending[executor.submit(_fit_worker, spec)] = lab
-    for fut in as_completed(pending):
+    if all(isinstance(f, Future) for f in pending):
+        order = as_completed(pending)
+    else:  # e.g. a dask.distributed Client used directly: its futures are not cf.Futures
+        order = list(pending)
+    for fut in order:
         lab = pending[fut]
         try:
             res = fut.result()

@@ -106,7 +106,10 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
     if not isinstance(df, pd.DataFrame):
         raise DataError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
     units = df.attrs.get("units")
-    header = f"{source}, header" if lines is None else f"{source}, line {_header_line(df)} (header)"
+    hline = df.attrs.get("header_line")
+    header = f"{source}, line {hline} (header)" if hline else f"{source}, header"
+    if lines is not None and len(lines) != len(df):
+        lines = None
     if units is None:
         raise DataError(f"{source}: the table has no attrs['units'] (the unit of every column)")
     for col in REQUIRED_COLUMNS:
@@ -163,10 +166,6 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
             raise DataError(f"{source}, {row_name(i)}, column 'molecule': missing label")
     out.attrs = dict(df.attrs)
     return out
-
-
-def _header_line(df):
-    return df.attrs.get("header_line", "?")
 
 
 def _is_missing(cell):

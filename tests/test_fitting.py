@@ -392,3 +392,34 @@ def test_fit_many_rejects_common_problems_up_front(many, base):
         sc.fit_many(many, base, vary=["pitch"])
     with pytest.raises(FitError, match="fits each molecule alone"):
         sc.fit_many(many, base, fixed={"turns_offset[m1]": 0})
+
+
+def test_fit_names_file_lines_of_a_read_table(data, base, tmp_path):
+    path = sc.write_csv(data, tmp_path / "d.csv")
+    df = sc.read_tweezers_csv(path)
+    df.loc[4, "turns"] = np.nan  # edited after reading
+    line = df.attrs["lines"][4]
+    with pytest.raises(DataError, match=rf"line {line}, column 'turns'"):
+        sc.fit_hat_curves(df, base)
+
+
+class _LazyFuture:
+    def __init__(self, fn, args):
+        self.fn, self.args = fn, args
+
+    def result(self):
+        return self.fn(*self.args)
+
+
+class _NonStandardExecutor:
+    """Like a dask Client: submit() returns futures that are not concurrent.futures.Future."""
+
+    def submit(self, fn, *args):
+        return _LazyFuture(fn, args)
+
+
+def test_fit_many_with_a_client_like_executor(many, base):
+    serial = sc.fit_many(many, base, vary=["twist_persistence", "radius"])
+    other = sc.fit_many(many, base, vary=["twist_persistence", "radius"],
+                        executor=_NonStandardExecutor())
+    _compare(serial, other)
