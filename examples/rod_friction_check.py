@@ -3,8 +3,10 @@
 (a) k = 0, N = 40, r = 1.0 mm, L = 56.7 cm; (b) the designed sinusoidal helix
 (P0 = 16 mm, P1 = 4 mm, k = 2 pi/(10 P0), r = 1.0 mm, L = 57 cm). Silicone
 rubber E = 4.20 MPa, G = 1.51 MPa, mu = 0.5. Required: ``C |d omega/ds|``;
-available: ``mu r cos(alpha) F`` (the dimensionally consistent [eq friction],
-see supercoil.core.self_contact).
+available: ``mu r cos(alpha) F`` with ``F = B (1 - cos 2a)^2 / (4 r^3 cos 2a)``
+([eq friction] and [eq normal reaction] corrected: dimension and a factor 2,
+see supercoil.core.self_contact). The dashed curve is the paper's printed
+[eq friction] evaluated in SI units, for comparison.
 
     python examples/rod_friction_check.py --out OUT [--quick]
 """
@@ -47,6 +49,9 @@ def main(argv=None):
     p = res.profile
     ax[0].semilogy(p["s"], p["friction_torque_required"], label="required C|d omega/ds|")
     ax[0].semilogy(p["s"], p["friction_torque_available"], label="available dM_fmax/ds")
+    r_m = rod_a.si.radius
+    ax[0].semilogy(p["s"], p["friction_torque_available"] / (2 * r_m), "--", lw=0.8,
+                   label="paper's printed [eq friction] in SI (x 1/(2r))")
     ax[0].axvline(res.slip_onset.m_as(u.mm), color="k", ls=":", lw=0.8,
                   label=f"slip onset s = {res.slip_onset.m_as(u.mm):.1f} mm")
     ax[0].axvline(res.s_max.m_as(u.mm), color="gray", ls="--", lw=0.8,

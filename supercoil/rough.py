@@ -210,8 +210,9 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     Units of the profile: s, slack, pitch in mm; omega, curvature, torsion in
     1/mm; tension in N; torque ``C omega(S/2)`` (the tail twist moment at the
     fixed end) in N mm; normal force in N/m; friction torques per length in N.
-    The available friction torque uses the dimensionally consistent
-    ``mu r cos(a) F`` (the paper's [eq friction] has one power of R too many; see
+    The normal force is ``F = B (1 - c)^2 / (4 r^3 c)`` and the available
+    friction torque ``mu r cos(a) F``: the paper's [eq normal reaction] is half
+    of F and its [eq friction] has one power of R too many (derivations in
     :mod:`supercoil.core.self_contact`). ``twist`` and ``writhe`` are the
     Calugareanu split at slack S = 2 s [Eq Lk=Tw+Wr] (trapezoid integrals along
     the grid); ``turns`` is N(S) = N_0 + (1/2 pi) int_0^S k dS'.

@@ -38,7 +38,9 @@ class SmoothHelix:
     torque : Quantity [N mm]
         Twist moment ``M_3 = C omega`` (signed like N).
     normal_force : Quantity [N/m]
-        Contact force per length [eq normal reaction].
+        Contact force per strand length, ``B (1 - cos 2a)^2 / (4 r^3 cos 2a)``
+        ([eq normal reaction] corrected by a factor 2, see
+        :mod:`supercoil.core.self_contact`).
     twist, writhe, linking_number : Quantity [dimensionless]
         ``Tw = omega L / 2 pi``, ``Wr = tau S / 2 pi``, ``Lk = Tw + Wr = N``
         [Eq Lk=Tw+Wr], signed like N (a negative N mirrors the helix).
@@ -102,7 +104,7 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         When no helix exists, naming the condition: ``S < 0`` (the ends are
         pulled apart), ``S >= L`` (no tail left), or ``N = 0`` ("too few turns
         for contact"). In the hard-contact model the contact force
-        ``F = B (1 - cos 2a)^2 / (8 r^3 cos 2a)`` is positive for every
+        ``F = B (1 - cos 2a)^2 / (4 r^3 cos 2a)`` is positive for every
         ``0 < alpha < pi/4``, and the helix equation ``F(alpha) = (B L/(2 C r))
         (1 - cos 2a) tan 2a + S sin(a) cos(a)/r - 2 pi |N|`` increases from
         ``-2 pi |N|`` to infinity, so every ``|N| > 0`` gives exactly one helix

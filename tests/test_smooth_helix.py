@@ -164,3 +164,28 @@ def test_table_convention(fig2_rod):
     t = h.to_table()
     assert len(t) == 2 and t.attrs["units"]["pitch"] == "mm"
     assert "parameters" in t.attrs["provenance"]
+
+
+def test_normal_force_is_the_contact_multiplier(fig2_rod):
+    """F = (1/S) dE_p/dR at fixed N, S, alpha (Lagrange multiplier of R >= r).
+
+    This is twice the paper's printed [eq normal reaction] (see core.self_contact).
+    """
+    r, L, B, C = _si(fig2_rod)
+    for N, S in [(40.0, 0.2), (10.0, 0.4), (150.0, 0.05)]:
+        h = sc.smooth_helix(fig2_rod, N, S * u.m)
+        a = h.alpha.m_as(u.rad)
+
+        def E(R, a=a, N=N, S=S):
+            kap = np.sin(a) ** 2 / R
+            tau = np.sin(a) * np.cos(a) / R
+            om = (2 * np.pi * N - tau * S) / L
+            return 0.5 * S * B * kap**2 + 0.5 * C * om**2 * L
+
+        dR = 1e-9
+        F_energy = (E(r + dR) - E(r - dR)) / (2 * dR) / S
+        F = h.normal_force.m_as(u.N / u.m)
+        assert F == pytest.approx(F_energy, rel=1e-6)
+        assert F == pytest.approx(2 * sco.normal_force_paper(a, r, B), rel=1e-12)
+        # Kirchhoff rod, free head: F = B sin^4(a) / (r^3 cos 2a)
+        assert F == pytest.approx(B * np.sin(a) ** 4 / (r**3 * np.cos(2 * a)), rel=1e-12)

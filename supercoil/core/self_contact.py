@@ -17,18 +17,47 @@ which needs ``0 <= alpha < pi/4``: at alpha -> pi/4 omega, the tension and the
 normal force diverge like ``1 / cos 2 alpha`` (:func:`check_tilt` turns that
 into a :class:`~supercoil.exceptions.SingularityError`).
 
+Normal force: a factor 2 in [eq normal reaction]
+-------------------------------------------------
+The contact force per unit length of strand is ``F = -de/dR`` with e the
+elastic energy per unit rod length at fixed linking number (each strand moves
+by dR, so the virtual work of the contact forces on a piece of total rod
+length l is ``F l dR``). Appendix D computes exactly this derivative,
+``d delta E = -[B (1 - c)^2 / (4 R^3 c)] delta S dR``, and then divides by 2 by
+differentiating with respect to the diameter D = 2R instead; that step
+mixes the relative displacement of the pair with the displacement of one
+strand. Two independent checks give the undivided value:
+
+* Kirchhoff rod, uniform helix, free head (zero axial force and torque through
+  a cut): the moment balance gives ``n_b = kappa (C omega - B tau)``, zero
+  axial force gives ``n_t = -n_b tan(a)``, the axial torque balance reproduces
+  (HC), and the force balance along the principal normal gives
+  ``F = n_t kappa - n_b tau = B sin^4(a) / (R^3 cos 2a)``;
+* Lagrange multiplier of the constraint R >= r in the smooth-helix energy:
+  ``F = (1/S) dE_p/dR`` at fixed N, S and alpha (stationary in alpha), tested
+  in ``tests/test_smooth_helix.py``.
+
+So :func:`normal_force` returns
+
+    F = B (1 - cos 2a)^2 / (4 r^3 cos 2a) = B sin^4(a) / (r^3 cos 2a)     [N/m]
+
+(twice MODEL.md's / the paper's printed value; :func:`normal_force_paper`
+keeps the printed formula for comparison).
+
 Dimensional fix of [eq friction]
 --------------------------------
 The paper (and MODEL.md s.4) writes the available friction torque per length as
 ``dM_fmax/ds = B mu cos(a) (1 - cos 2a)^2 / (8 R^3 cos 2a)``. That has the unit
 N/m, while the left side of the no-slip condition [eq friction con],
 ``C |d omega/ds|``, is a torque per length, N m / m = N. From [eq dM_f],
-``dM_f = cos(a) R f ds`` with ``f_max = mu F`` and F of [eq normal reaction]
-(N/m), the consistent expression is
+``dM_f = cos(a) R f ds`` with ``f_max = mu F``, the consistent expression is
 
-    dM_fmax/ds = mu R cos(a) F = B mu cos(a) (1 - cos 2a)^2 / (8 R^2 cos 2a)   [N]
+    dM_fmax/ds = mu R cos(a) F = B mu cos(a) (1 - cos 2a)^2 / (4 R^2 cos 2a)   [N]
 
-which is what :func:`friction_torque_available` returns (one power of R less).
+which is what :func:`friction_torque_available` returns (one power of R less
+than printed, and the factor 2 of F above). Evaluated in SI units the printed
+formula is 1/(2 r) = 500 /m times larger for r = 1 mm, which is why the paper
+finds slip only "extremely close to s_max".
 """
 
 from __future__ import annotations
@@ -159,16 +188,25 @@ def smooth_tension(alpha, omega, r, B, C):
 
 
 def normal_force(alpha, r, B):
-    """[eq normal reaction] ``F = B/(8 r^3) (1 - c)^2 / c`` (N/m), c = cos 2 alpha."""
+    """Contact force per strand length ``F = B/(4 r^3) (1 - c)^2 / c`` (N/m), c = cos 2a.
+
+    [eq normal reaction] corrected by the factor 2 derived in the module
+    docstring (the paper prints ``B/(8 R^3)``, see :func:`normal_force_paper`).
+    """
     c = np.cos(2.0 * alpha)
-    return B / (8.0 * r**3) * y_of_alpha(alpha) ** 2 / c
+    return B / (4.0 * r**3) * y_of_alpha(alpha) ** 2 / c
+
+
+def normal_force_paper(alpha, r, B):
+    """[eq normal reaction] as printed, ``B/(8 R^3) (1 - c)^2 / c`` (N/m); half of F."""
+    return 0.5 * normal_force(alpha, r, B)
 
 
 def friction_torque_available(alpha, r, B, mu):
     """Available friction torque per length ``dM_fmax/ds = mu r cos(a) F`` (N).
 
-    [eq friction] with the dimensional fix described in the module docstring:
-    ``B mu cos(a) (1 - cos 2a)^2 / (8 r^2 cos 2a)``.
+    [eq friction] with the two fixes described in the module docstring:
+    ``B mu cos(a) (1 - cos 2a)^2 / (4 r^2 cos 2a)``.
     """
     return mu * r * np.cos(alpha) * normal_force(alpha, r, B)
 
