@@ -1250,8 +1250,10 @@ def fit_many(
                 cols[name].append(np.nan)
                 cols[f"{name}_stderr"].append(np.nan)
             cols["warnings"].append("")
-    prov = provenance(dna, vary=list(names_check["vary"]), thermal=names_check["thermal"],
-                      weighting=names_check["weighting"], model="hat curve, MODEL.md s.6")
+    prov = provenance(dna, vary=list(names_check["vary"]), fixed=dict(fixed or {}),
+                      bounds={k: list(v) for k, v in (bounds or {}).items()},
+                      thermal=names_check["thermal"], weighting=names_check["weighting"],
+                      model="hat curve, MODEL.md s.6")
     return make_table(cols, units, prov)
 
 
