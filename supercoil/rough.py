@@ -241,6 +241,9 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     if method == "closed_form":
         s_end = float(_rh.k0_s_max(alpha0, L, B, C))
         end = "alpha->0"
+        s_stop = 0.5 * L * (1.0 - _rh.TAIL_FRACTION_MIN)
+        if s_end > s_stop:  # the helix would take (almost) the whole rod
+            s_end, end = s_stop, "s_stop"
         if slack_max is not None:
             smax_user = 0.5 * float(magnitude(slack_max, U.m, "slack_max"))
             if smax_user < s_end:
@@ -261,7 +264,8 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
             s_stop = min(s_stop, 0.5 * float(magnitude(slack_max, U.m, "slack_max")))
         if slack_limit is not None:
             s_stop = min(s_stop, 0.5 * slack_limit)
-        integ = _rh.integrate(alpha0, kfun, r, L, B, C, s_stop=s_stop, ode_method=ode_method,
+        integ = _rh.integrate(alpha0, None if k_zero else kfun, r, L, B, C, s_stop=s_stop,
+                              ode_method=ode_method,
                               rtol=rtol, atol=atol, cos2a_min=cos2a_min)
         s_end, end = integ.s_end, integ.reason
         y_at, dy_at = integ.y, integ.dy

@@ -46,6 +46,8 @@ difference is <= 1e-8 rad (at s_max (1 - 1e-8) it grows to ~2e-8 rad).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
@@ -106,7 +108,9 @@ def k0_y_of_s(s, alpha0, L, B, C):
             "would be negative (the pitch has diverged)"
         )
     y0 = float(sc.y_of_alpha(alpha0))
-    target = phi(y0) - (C / B) * np.log1p(-2.0 * s / L)
+    with np.errstate(divide="ignore"):  # s = L/2 only if s_max rounds to L/2
+        target = phi(y0) - (C / B) * np.log1p(-2.0 * s / L)
+    target = np.where(np.isfinite(target), target, phi(0.0))
     y = np.full_like(target, y0)
     for _ in range(100):
         q = target - phi(y)
@@ -146,6 +150,16 @@ def dy_ds(s, y, k, r, L, B, C):
 Y_SWITCH = 1e-3
 
 
+def _dy_ds_scalar(s, y, k, r, L, B, C):
+    """Scalar (math-module) twin of :func:`dy_ds` for the solver's right side."""
+    y = min(max(y, 0.0), 1.5)
+    c = 1.0 - y
+    bracket = 2.0 - y
+    if k != 0.0:
+        bracket -= 2.0 * r * k * math.sqrt((2.0 - y) / max(y, 1e-30))
+    return -2.0 * C / (B * (L - 2.0 * s)) * c * c / (c * c + c + 1.0) * bracket
+
+
 class Integration:
     """Result of :func:`integrate`: piecewise dense solution, end point, why it ended.
 
@@ -177,14 +191,8 @@ class Integration:
             x = flat_s[m]
             if kind == "y(s)":
                 flat_o[m] = sol(x)[0]
-            else:  # invert the increasing map y -> s on [y_end, y_start]
-                ylo = np.full(x.shape, sol.y_end)
-                yhi = np.full(x.shape, sol.y_start)
-
-                def f(yy, x=x, sol=sol):
-                    return x - sol(yy)[0]  # increasing in yy (s decreases as y grows)
-
-                flat_o[m] = sc.bisect_increasing(f, ylo, yhi)
+            else:  # invert the monotone map y -> s on [y_end, y_start]
+                flat_o[m] = self._invert(sol, x)
         if np.any(np.isnan(out)):
             raise NoHelixError(f"s outside the integrated helix [0, {self.s_end:.9g} m]")
         out = np.clip(out, 0.0, None)
@@ -193,6 +201,32 @@ class Integration:
     def dy(self, s, y):
         s = np.asarray(s, float)
         return dy_ds(s, y, self._k(2.0 * s), *self._p)
+
+    def _invert(self, sol, x):
+        """y with ``sol(y) = x`` on an s(y) segment: Newton (ds/dy = 1/(dy/ds)), safeguarded."""
+        lo = np.full(x.shape, sol.y_end)
+        hi = np.full(x.shape, sol.y_start)
+        # start from linear interpolation between the two ends of the segment
+        s_hi, s_lo = float(sol(sol.y_start)[0]), float(sol(sol.y_end)[0])
+        t = np.clip((x - s_hi) / (s_lo - s_hi), 0.0, 1.0) if s_lo != s_hi else np.zeros(x.shape)
+        y = sol.y_start + t * (sol.y_end - sol.y_start)
+        for _ in range(60):
+            f = x - sol(y)[0]  # increasing in y
+            hi = np.where(f > 0, y, hi)
+            lo = np.where(f > 0, lo, y)
+            slope = -1.0 / self.dy(x, y)  # d(x - s(y))/dy = -ds/dy > 0
+            with np.errstate(divide="ignore", invalid="ignore"):
+                y_new = y - f / slope
+            bad = ~np.isfinite(y_new) | (y_new <= lo) | (y_new >= hi)
+            y_new = np.where(bad, 0.5 * (lo + hi), y_new)
+            if np.all(np.abs(y_new - y) <= 1e-15 + 1e-13 * np.abs(y)):
+                return y_new
+            y = y_new
+        return sc.bisect_increasing(lambda yy: x - sol(yy)[0], lo, hi)
+
+
+def _zero_rate(S):
+    return np.zeros_like(np.asarray(S, float))
 
 
 def _singular(s_sing, cos2a_min):
@@ -221,9 +255,9 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
     ----------
     alpha0 : float
         Initial tilt from [eq ini] (rad).
-    kfun : callable
+    kfun : callable or None
         ``kfun(S) -> k`` twisting rate in rad/m as a function of slack S (m),
-        vectorised, in the frame where N_0 > 0.
+        vectorised, in the frame where N_0 > 0. None: k = 0.
     r, L, B, C : float
         Rod radius, length (m), rigidities (N m^2).
     s_stop : float, optional
@@ -252,14 +286,24 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
     if s_stop is None:
         s_stop = 0.5 * L * (1.0 - TAIL_FRACTION_MIN)
 
+    if kfun is None:
+        kfun = _zero_rate
+
+        def kscalar(S):
+            return 0.0
+    else:
+
+        def kscalar(S):
+            return float(np.asarray(kfun(S)).reshape(-1)[0])
+
     def ydot(s, y):
-        return dy_ds(s, y, kfun(2.0 * s), r, L, B, C)
+        return _dy_ds_scalar(float(s), float(y), kscalar(2.0 * s), r, L, B, C)
 
     def fun_y(s, yv):
-        return np.reshape(ydot(s, yv[0]), 1)
+        return np.array([ydot(s, yv[0])])
 
     def fun_s(y, sv):
-        return np.reshape(1.0 / ydot(sv[0], y), 1)
+        return np.array([1.0 / ydot(sv[0], y)])
 
     def ev_zero(s, yv):
         return yv[0]
