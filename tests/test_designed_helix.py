@@ -35,6 +35,11 @@ def test_round_trip_recovers_the_pitch(rod57, paper_pitch):
     # the forward run counts the same turns and predicts the same tension
     np.testing.assert_allclose(res.profile["turns"], sched["turns"], atol=1e-9)
     np.testing.assert_allclose(res.profile["tension"], sched["tension"], rtol=1e-4)
+    # the schedule conserves the linking number of the helix it builds [Eq Lk=Tw+Wr]
+    p = res.profile
+    np.testing.assert_allclose(p["twist"] + p["writhe"], sched["turns"], atol=2e-4)
+    # paper: the no-slip condition holds along the designed helix
+    assert res.slip_onset is None
 
 
 def test_constant_pitch_needs_k_equal_to_torsion_like_rate(rod57):
