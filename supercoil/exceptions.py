@@ -22,6 +22,8 @@ Hierarchy
     ``ValidityWarning``: a result is computed but lies outside the range where
         the model is trustworthy (short tail, curvature error, denaturation)
     ``BoundWarning``: a fitted estimate sits on a bound
+    ``FitWarning``: a fit diagnostic (e.g. a singular covariance matrix)
+    ``DataWarning``: user data was changed on request (incomplete rows dropped)
 """
 
 from __future__ import annotations
@@ -29,7 +31,9 @@ from __future__ import annotations
 __all__ = [
     "BoundWarning",
     "DataError",
+    "DataWarning",
     "FitError",
+    "FitWarning",
     "NoEquilibriumError",
     "NoHelixError",
     "NoSolutionError",
@@ -88,3 +92,11 @@ class ValidityWarning(SupercoilWarning):
 
 class BoundWarning(SupercoilWarning):
     """A fitted parameter estimate sits on one of its bounds."""
+
+
+class FitWarning(SupercoilWarning):
+    """A fit diagnostic: e.g. a singular covariance matrix (pseudo-inverse used)."""
+
+
+class DataWarning(SupercoilWarning):
+    """User data was changed on request, e.g. incomplete rows dropped (says which)."""

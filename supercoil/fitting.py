@@ -57,6 +57,7 @@ from scipy.optimize import least_squares
 from .exceptions import (
     BoundWarning,
     FitError,
+    FitWarning,
     NoEquilibriumError,
     SupercoilError,
     SupercoilWarning,
@@ -608,7 +609,7 @@ def _fit_core(spec):
     redchi = chi2 / nfree
     cov_u, note = _covariance(J)
     if note:
-        out_warnings.append(("ValidityWarning", note))
+        out_warnings.append(("FitWarning", note))
     if spec["weighting"] == "unit":
         cov_u = cov_u * redchi
     cov = cov_u * np.outer(spec["scales"], spec["scales"])
@@ -703,6 +704,7 @@ def _values_text(spec, u):
 
 _WARNING_CLASSES = {
     "BoundWarning": BoundWarning,
+    "FitWarning": FitWarning,
     "ValidityWarning": ValidityWarning,
 }
 

@@ -21,7 +21,7 @@ in the headers, ``# key: json`` provenance lines) and checks every cell. Every
 error is a :class:`~supercoil.exceptions.DataError` that names the problem, the
 file line and the column. No row is ever dropped silently: with
 ``drop_incomplete=True`` rows with a missing value are removed and a
-:class:`~supercoil.exceptions.ValidityWarning` lists them by file line.
+:class:`~supercoil.exceptions.DataWarning` lists them by file line.
 
 The result is a DataFrame in the package's table convention: plain float
 magnitudes in the units of the file, ``attrs["units"]`` and
@@ -40,7 +40,7 @@ import numpy as np
 import pandas as pd
 import pint
 
-from .exceptions import DataError, ValidityWarning
+from .exceptions import DataError, DataWarning
 from .tables import read_csv
 from .units import U, ureg
 
@@ -237,7 +237,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     drop_incomplete : bool
         If True, rows with a missing value (empty cell or NaN) in ``force``,
         ``turns``, ``extension``, ``sigma`` or ``molecule`` are removed, and a
-        :class:`~supercoil.exceptions.ValidityWarning` says how many and lists
+        :class:`~supercoil.exceptions.DataWarning` says how many and lists
         their file lines. If False (default) such a row is an error.
 
     Returns
@@ -289,7 +289,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
             warnings.warn(
                 f"{source}: dropped {idx.size} incomplete row(s) (empty or NaN cell in "
                 f"{', '.join(checked)}) at file line(s) {shown}",
-                ValidityWarning,
+                DataWarning,
                 stacklevel=2,
             )
             attrs = dict(df.attrs)

@@ -12,6 +12,7 @@ from supercoil.exceptions import (
     BoundWarning,
     DataError,
     FitError,
+    FitWarning,
     NoEquilibriumError,
     ValidityWarning,
 )
@@ -317,7 +318,7 @@ def test_singular_jacobian_warns_and_uses_pseudo_inverse(base):
     nb = sc.hat.buckling_turns(base, 0.5 * u.pN).m_as("")
     df = simulate_rotation_curves(base, [0.5] * u.pN, turns=np.linspace(-0.6, 0.6, 40) * nb,
                                   noise=2 * u.nm, seed=1)
-    with pytest.warns(ValidityWarning, match="singular"):
+    with pytest.warns(FitWarning, match="singular"):
         r = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"],
                               fit_turns_offset=False)
     assert np.isfinite(r.stderr["twist_persistence"].m)

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 import supercoil as sc
-from supercoil.exceptions import DataError, ValidityWarning
+from supercoil.exceptions import DataError, DataWarning
 from supercoil.tweezers_data import check_tweezers_frame
 
 GOOD = """\
@@ -106,7 +106,7 @@ def test_drop_incomplete_warns_with_count_and_lines(tmp_path):
             "0.5, 5, 0.6\n")
     with pytest.raises(DataError, match="line 3"):
         sc.read_tweezers_csv(write(tmp_path, text))
-    with pytest.warns(ValidityWarning, match=r"dropped 2 incomplete row\(s\).*line\(s\) 3, 5"):
+    with pytest.warns(DataWarning, match=r"dropped 2 incomplete row\(s\).*line\(s\) 3, 5"):
         df = sc.read_tweezers_csv(write(tmp_path, text), drop_incomplete=True)
     assert list(df["turns"]) == [1.0, 3.0, 5.0]
     assert df.attrs["lines"] == [2, 4, 6]
@@ -114,7 +114,7 @@ def test_drop_incomplete_warns_with_count_and_lines(tmp_path):
 
 def test_drop_incomplete_does_not_hide_bad_cells(tmp_path):
     text = "force [pN], turns, extension [um]\n0.5, 1, 0.6\n0.5, x, 0.6\n0.5, 3, \n"
-    with pytest.warns(ValidityWarning, match="dropped 1"), \
+    with pytest.warns(DataWarning, match="dropped 1"), \
             pytest.raises(DataError, match=r"line 3, column 'turns': non-numeric value 'x'"):
         sc.read_tweezers_csv(write(tmp_path, text), drop_incomplete=True)
 
