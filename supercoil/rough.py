@@ -159,7 +159,12 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     method : {"auto", "closed_form", "ode"}
         ``"auto"``: closed form when k is None or zero, else the ODE.
         ``"closed_form"`` needs k = 0 ([eq example k=0]); ``"ode"`` integrates
-        [eq da/ds] with ``solve_ivp`` for any k, including 0.
+        [eq da/ds] with ``solve_ivp`` for any k, including 0: in the variable
+        ``y = 1 - cos 2 alpha`` (regular where alpha -> 0), with terminal events
+        at ``y = 0`` (alpha -> 0, the end s_max) and ``cos 2 alpha = cos2a_min``
+        (alpha -> pi/4); once y < 1e-3 and falling it integrates s(y) down to
+        y = 0 instead, which stays regular when untwisting (k < 0) makes
+        d alpha/ds diverge faster (see :func:`supercoil.core.rough_helix.integrate`).
     s : Quantity [length] array, optional
         Arclength grid of the profile (one strand, from the head); default: about
         ``n_points`` uniform points on [0, s_max) plus 60 points clustered toward
