@@ -23,7 +23,9 @@ __all__ = ["TwistSpinningHelix", "twist_spinning"]
 class TwistSpinningHelix:
     """Short smooth helix under a head tension (result of :func:`twist_spinning`).
 
-    Attributes (quantities, broadcast over turns and head_tension)
+    All attributes are quantities broadcast over turns and head_tension.
+
+    Attributes
     ----------
     turns : dimensionless
         N (signed).
