@@ -217,7 +217,7 @@ class Integration:
             slope = -1.0 / self.dy(x, y)  # d(x - s(y))/dy = -ds/dy > 0
             with np.errstate(divide="ignore", invalid="ignore"):
                 y_new = y - f / slope
-            bad = ~np.isfinite(y_new) | (y_new <= lo) | (y_new >= hi)
+            bad = ~np.isfinite(y_new) | (y_new < lo) | (y_new > hi)
             y_new = np.where(bad, 0.5 * (lo + hi), y_new)
             if np.all(np.abs(y_new - y) <= 1e-15 + 1e-13 * np.abs(y)):
                 return y_new
