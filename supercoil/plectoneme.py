@@ -10,7 +10,7 @@ Every function takes a :class:`~supercoil.materials.DNA` and pint quantities of
 from __future__ import annotations
 
 import warnings
-from typing import NamedTuple
+from typing import ClassVar
 
 import numpy as np
 
@@ -18,7 +18,7 @@ from .core import moroz_nelson as _mn
 from .core import plectoneme as _pl
 from .exceptions import ValidityWarning
 from .materials import DNA
-from .units import U, magnitude, quantity
+from .units import QuantityRecord, U, magnitude, quantity
 
 __all__ = [
     "PlectonemeEquilibrium",
@@ -30,23 +30,32 @@ __all__ = [
 _PN_NM2 = U.pN * U.nm**2
 
 
-class PlectonemeEquilibrium(NamedTuple):
-    """Plectoneme equilibrium at fixed force (quantities, shape of the force).
+class PlectonemeEquilibrium(QuantityRecord):
+    """Plectoneme equilibrium at fixed force (quantities of the force's shape).
 
-    Energies are per unit strand length (``pN = pN nm / nm``).
+    Fields (built on first access from the kernel's SI arrays): ``force`` (pN),
+    ``alpha`` (rad, tilt angle arctan(2 pi R / P)), ``radius`` (nm,
+    superhelix radius R), ``pitch`` (nm), ``omega`` (1/nm, twist density in
+    the helix), ``torque`` (pN nm, M_3 = C omega), ``curvature`` and
+    ``torsion`` (1/nm), and the energies per unit strand length (pN = pN nm/nm)
+    ``bending_energy`` (B kappa^2 / 2), ``twist_energy`` (C omega^2 / 2) and
+    ``interaction_energy`` (Marko-Siggia w). Iterates like a named tuple.
     """
 
-    force: object  # pN
-    alpha: object  # rad, tilt angle arctan(2 pi R / P)
-    radius: object  # nm, superhelix radius R
-    pitch: object  # nm
-    omega: object  # 1/nm, twist density in the helix
-    torque: object  # pN nm, M_3 = C omega
-    curvature: object  # 1/nm
-    torsion: object  # 1/nm
-    bending_energy: object  # pN, B kappa^2 / 2
-    twist_energy: object  # pN, C omega^2 / 2
-    interaction_energy: object  # pN, Marko-Siggia w
+    __slots__ = ()
+    FIELDS: ClassVar[dict] = {
+        "force": (U.pN, 1e12),
+        "alpha": (U.rad, 1.0),
+        "radius": (U.nm, 1e9),
+        "pitch": (U.nm, 1e9),
+        "omega": (U.per_nm, 1e-9),
+        "torque": (U.pN_nm, 1e21),
+        "curvature": (U.per_nm, 1e-9),
+        "torsion": (U.per_nm, 1e-9),
+        "bending_energy": (U.pN, 1e12),
+        "twist_energy": (U.pN, 1e12),
+        "interaction_energy": (U.pN, 1e12),
+    }
 
 
 def _check_dna(dna):
@@ -95,19 +104,7 @@ def plectoneme_equilibrium(dna, force):
     si = _check_dna(dna)
     f = _force(force)
     st = _pl.equilibrium(f, si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius)
-    return PlectonemeEquilibrium(
-        force=quantity(st.force * 1e12, U.pN),
-        alpha=quantity(st.alpha, U.rad),
-        radius=quantity(st.radius * 1e9, U.nm),
-        pitch=quantity(st.pitch * 1e9, U.nm),
-        omega=quantity(st.omega * 1e-9, U.per_nm),
-        torque=quantity(st.torque * 1e21, U.pN_nm),
-        curvature=quantity(st.curvature * 1e-9, U.per_nm),
-        torsion=quantity(st.torsion * 1e-9, U.per_nm),
-        bending_energy=quantity(st.bending_energy * 1e12, U.pN),
-        twist_energy=quantity(st.twist_energy * 1e12, U.pN),
-        interaction_energy=quantity(st.interaction_energy * 1e12, U.pN),
-    )
+    return PlectonemeEquilibrium(**st._asdict())
 
 
 def effective_twist_rigidity(dna, force):

@@ -53,6 +53,21 @@ def _cases():
             )
 
         cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
+
+        from supercoil.core.hat_curve import hat_curve_points
+
+        def hat_public(n, si=False):
+            f = 1.2e-12 * u.N if si else 1.2 * u.pN
+            turns = np.linspace(-20.0, 20.0, n)
+            return lambda: sc.hat_curve(dna, f, turns)
+
+        def hat_kernel(n):
+            turns = np.linspace(-20.0, 20.0, n)
+            force = np.full(n, 1.2e-12)
+            return lambda: hat_curve_points(turns, force, d.length, d.bending_rigidity,
+                                            d.torsional_rigidity, d.kT, d.radius)
+
+        cases.append(("hat_curve (table)", hat_public, hat_kernel))
     except (ImportError, AttributeError):  # pragma: no cover - before issue 4 lands
         pass
     return cases
@@ -66,7 +81,7 @@ def run(sizes=SIZES, max_equilibrium_size=10_000):
     rows = {k: [] for k in keys}
     for name, public, kernel in _cases():
         for n in sizes:
-            if name == "plectoneme_equilibrium" and n > max_equilibrium_size:
+            if name != "geometry.torsion" and n > max_equilibrium_size:
                 continue
             tk = best_time(kernel(n), repeat=5)
             for si in (False, True):

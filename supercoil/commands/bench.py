@@ -1,0 +1,24 @@
+"""``supercoil bench --out DIR``: work-precision charts, stability map, headline numbers."""
+
+from __future__ import annotations
+
+import sys
+
+
+def register(sub):
+    p = sub.add_parser(
+        "bench",
+        help="benchmarks: work-precision charts, stability map, unit-boundary cost",
+        description="Runs every benchmark (under 5 minutes on 2 cores) and writes the "
+        "charts (PNG), the measurements (CSV) and the headline numbers (headline.md).",
+    )
+    p.add_argument("--out", default="bench", help="output folder (default: bench)")
+    p.add_argument("--quick", action="store_true", help="fewer tolerances and sizes")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..benchmark import suite
+
+    suite.run(args.out, quick=args.quick, log=lambda msg: print(msg, file=sys.stderr))
+    return 0
