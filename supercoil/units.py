@@ -20,7 +20,6 @@ Parsing a unit string costs 10-100 us per call in pint, and even
 
 from __future__ import annotations
 
-import numbers
 from typing import ClassVar
 
 import numpy as np
@@ -124,10 +123,14 @@ def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
     if units is not None and not hasattr(value, "_magnitude"):
         raise TypeError(f"argument '{name}' is a unit, not a quantity: multiply it by a number")
     if units is None:
-        if unit.dimensionless and (
-            isinstance(value, numbers.Number | np.ndarray | list | tuple)
-        ):
-            return _as_float(value)
+        if unit.dimensionless:
+            try:
+                return _as_float(value)
+            except (TypeError, ValueError):
+                raise TypeError(
+                    f"argument '{name}' must be a number or an array of numbers, "
+                    f"got {type(value).__name__}"
+                ) from None
         raise _dimension_error(
             None,
             unit,

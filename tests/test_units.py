@@ -66,3 +66,12 @@ def test_conversion_factor_cache_is_consistent(ureg):
     for _ in range(2):
         v = magnitude(5.0 * ureg.um, U.m, "x")
         assert v == pytest.approx((5.0 * ureg.um).m_as(ureg.m), rel=1e-15)
+
+
+def test_dimensionless_accepts_any_array_like_and_rejects_text():
+    np.testing.assert_array_equal(as_turns(range(3)), [0.0, 1.0, 2.0])
+    import pandas as pd
+
+    np.testing.assert_array_equal(as_turns(pd.Series([1, 2])), [1.0, 2.0])
+    with pytest.raises(TypeError, match="'turns' must be a number"):
+        as_turns("forty")
