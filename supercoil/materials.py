@@ -84,8 +84,38 @@ def _as_dict(obj, kind):
     return out
 
 
-@dataclasses.dataclass(frozen=True, repr=False, eq=True)
-class ElasticRod:
+class _Material:
+    """Shared behaviour of the materials: rigidities, copies, equality by value."""
+
+    __slots__ = ()
+
+    @property
+    def bending_rigidity(self):
+        """Bending rigidity B (N m^2): ``E pi r^4 / 4`` (rod), ``A kT`` (DNA)."""
+        return quantity(self.si.bending_rigidity, U.N_m2)
+
+    @property
+    def torsional_rigidity(self):
+        """Torsional rigidity C (N m^2): ``G pi r^4 / 2`` (rod), ``C_t kT`` (DNA)."""
+        return quantity(self.si.torsional_rigidity, U.N_m2)
+
+    def replace(self, **changes):
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    def as_dict(self):
+        """The parameters as ``{field: "value unit"}`` strings (for provenance)."""
+        return _as_dict(self, type(self).__name__)
+
+    def __hash__(self):
+        return hash(self.si)
+
+    def __eq__(self, other):
+        return type(other) is type(self) and self.si == other.si
+
+
+@dataclasses.dataclass(frozen=True, repr=False, eq=False)
+class ElasticRod(_Material):
     """A straight, inextensible elastic rod of circular cross section.
 
     Parameters
@@ -135,20 +165,6 @@ class ElasticRod:
         C = G * np.pi * r**4 / 2.0
         object.__setattr__(self, "si", RodSI(r, L, E, G, mu, B, C))
 
-    @property
-    def bending_rigidity(self):
-        """Bending rigidity ``B = E pi r^4 / 4`` (N m^2)."""
-        return quantity(self.si.bending_rigidity, U.N_m2)
-
-    @property
-    def torsional_rigidity(self):
-        """Torsional rigidity ``C = G pi r^4 / 2`` (N m^2)."""
-        return quantity(self.si.torsional_rigidity, U.N_m2)
-
-    def replace(self, **changes):
-        """A copy with some fields changed (validated again)."""
-        return dataclasses.replace(self, **changes)
-
     def __repr__(self):
         mu = self.friction_coefficient
         return (
@@ -158,19 +174,11 @@ class ElasticRod:
             f"friction_coefficient={mu if mu is None else f'{mu:g}'})"
         )
 
-    def as_dict(self):
-        """The parameters as ``{field: "value unit"}`` strings (for provenance)."""
-        return _as_dict(self, "ElasticRod")
 
-    def __hash__(self):
-        return hash(self.si)
-
-    def __eq__(self, other):
-        return isinstance(other, ElasticRod) and self.si == other.si
 
 
 @dataclasses.dataclass(frozen=True, repr=False, eq=False)
-class DNA:
+class DNA(_Material):
     """A DNA molecule treated as a worm-like elastic rod at temperature t.
 
     Parameters
@@ -226,20 +234,6 @@ class DNA:
         """Thermal energy ``k_B t`` (J)."""
         return quantity(self.si.kT, U.J)
 
-    @property
-    def bending_rigidity(self):
-        """Bending rigidity ``B = A kT`` (N m^2)."""
-        return quantity(self.si.bending_rigidity, U.N_m2)
-
-    @property
-    def torsional_rigidity(self):
-        """Torsional rigidity ``C = C_t kT`` (N m^2)."""
-        return quantity(self.si.torsional_rigidity, U.N_m2)
-
-    def replace(self, **changes):
-        """A copy with some fields changed (validated again)."""
-        return dataclasses.replace(self, **changes)
-
     def __repr__(self):
         return (
             f"DNA(length={_fmt(self.length)}, "
@@ -249,12 +243,4 @@ class DNA:
             f"wlc_persistence={_fmt_opt(self.wlc_persistence)})"
         )
 
-    def as_dict(self):
-        """The parameters as ``{field: "value unit"}`` strings (for provenance)."""
-        return _as_dict(self, "DNA")
 
-    def __hash__(self):
-        return hash(self.si)
-
-    def __eq__(self, other):
-        return isinstance(other, DNA) and self.si == other.si
