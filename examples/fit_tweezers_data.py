@@ -20,10 +20,8 @@ fit_parameters.csv, fit_points.csv, fit_molecules.csv and fit.png.
 
 from __future__ import annotations
 
-import argparse
 import time
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
 
 import matplotlib
 
@@ -32,18 +30,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.fitting import simulate_rotation_curves
 
 FORCES = (0.3, 0.5, 0.7)  # pN
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default="fit_out", help="output folder")
-    parser.add_argument("--quick", action="store_true", help="fewer repetitions of the timing")
-    args = parser.parse_args(argv)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/fit_tweezers_data")
+    out = args.out
     u = sc.ureg
 
     seed_set = sc.load_parameters("dna")

@@ -14,9 +14,7 @@ Writes hat_curves_thermal.csv, hat_curves_athermal.csv and hat_curves.png.
 
 from __future__ import annotations
 
-import argparse
 import warnings
-from pathlib import Path
 
 import matplotlib
 
@@ -25,16 +23,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.hat import buckling_turns, post_buckling_slope
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default="hat_out", help="output folder")
-    parser.add_argument("--quick", action="store_true", help="coarser turns grid")
-    args = parser.parse_args(argv)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/hat_curves_fixed_forces")
+    out = args.out
 
     u = sc.ureg
     dna = sc.load_parameters("dna")

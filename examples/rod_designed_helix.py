@@ -9,8 +9,6 @@ rough_helix's ODE).
     python examples/rod_designed_helix.py --out OUT [--quick]
 """
 
-import argparse
-from pathlib import Path
 
 import matplotlib
 
@@ -19,17 +17,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.design import sinusoidal_pitch
 
 u = sc.ureg
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/rod_designed_helix")
 
     rod = sc.ElasticRod(1.0 * u.mm, 57 * u.cm, 4.20 * u.MPa, 1.51 * u.MPa, 0.5)
     P0 = 16 * u.mm

@@ -11,8 +11,6 @@ see supercoil.core.self_contact). The dashed curve is the paper's printed
     python examples/rod_friction_check.py --out OUT [--quick]
 """
 
-import argparse
-from pathlib import Path
 
 import matplotlib
 
@@ -21,6 +19,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.design import sinusoidal_pitch
 
 u = sc.ureg
@@ -28,11 +27,7 @@ E, G, MU = 4.20 * u.MPa, 1.51 * u.MPa, 0.5
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/rod_friction_check")
     n = 301 if args.quick else 1501
 
     rod_a = sc.ElasticRod(1.0 * u.mm, 56.7 * u.cm, E, G, MU)

@@ -13,9 +13,7 @@ k0_pitch_profiles.png.
     python examples/rod_k0_pitch_profiles.py --out OUT [--quick]
 """
 
-import argparse
 import time
-from pathlib import Path
 
 import matplotlib
 
@@ -25,6 +23,7 @@ import numpy as np
 import pandas as pd
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.tables import make_table, provenance
 
 u = sc.ureg
@@ -45,11 +44,7 @@ def best_time(fn, repeat):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
-    ap.add_argument("--quick", action="store_true", help="coarser grid, one timing run")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/rod_k0_pitch_profiles")
     n_points = 201 if args.quick else 801
     repeat = 1 if args.quick else 5
 

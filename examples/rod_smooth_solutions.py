@@ -7,8 +7,6 @@ Writes smooth_solutions.csv (one row per (N, S)) and smooth_solutions.png
     python examples/rod_smooth_solutions.py --out OUT [--quick]
 """
 
-import argparse
-from pathlib import Path
 
 import matplotlib
 
@@ -17,16 +15,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 
 u = sc.ureg
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
-    ap.add_argument("--quick", action="store_true", help="fewer points")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/rod_smooth_solutions")
 
     rod = sc.ElasticRod(1.0 * u.mm, 57.0 * u.cm, 4.20 * u.MPa, 1.51 * u.MPa)  # paper fig. 2
     turns = np.array([10.0, 20.0, 40.0, 60.0, 80.0])

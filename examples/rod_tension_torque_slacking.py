@@ -10,8 +10,6 @@ The model has no loop at the head, so the measured drop of T at S ~ 1 cm
     python examples/rod_tension_torque_slacking.py --out OUT [--quick]
 """
 
-import argparse
-from pathlib import Path
 
 import matplotlib
 
@@ -19,17 +17,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.tables import make_table
 
 u = sc.ureg
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/rod_tension_torque_slacking")
 
     rod = sc.ElasticRod(1.0 * u.mm, 1.01 * u.m, 4.20 * u.MPa, 1.51 * u.MPa, 0.5)
     N = 80

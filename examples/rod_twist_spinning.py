@@ -7,8 +7,6 @@ Stationarity equations derived in supercoil.core.twist_spinning.
     python examples/rod_twist_spinning.py --out OUT [--quick]
 """
 
-import argparse
-from pathlib import Path
 
 import matplotlib
 
@@ -17,16 +15,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 
 u = sc.ureg
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", type=Path, default=Path("out"))
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/rod_twist_spinning")
 
     rod = sc.load_parameters("silicone_rubber_rod")
     turns = np.array([20.0, 40.0, 60.0])

@@ -20,12 +20,10 @@ coverage_pulls.png. Exit status 1 if a coverage falls outside the band.
 
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
 
 import matplotlib
 
@@ -34,6 +32,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments, example_parser
 from supercoil.fitting import simulate_rotation_curves
 from supercoil.tables import make_table, provenance
 
@@ -42,18 +41,15 @@ P68 = 0.6826894921370859  # P(|Z| <= 1)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default="coverage_out", help="output folder")
+    parser = example_parser(__doc__, default_out="results/validate_fit_coverage")
     parser.add_argument("--replicates", type=int, default=400,
                         help="noise replicates (default 400; at least 200 for the validation)")
-    parser.add_argument("--quick", action="store_true", help="24 replicates (smoke test)")
     parser.add_argument("--jobs", type=int, default=min(4, os.cpu_count() or 1),
                         help="worker processes")
     parser.add_argument("--seed", type=int, default=6)
-    args = parser.parse_args(argv)
-    n_rep = 24 if args.quick else args.replicates
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, parser=parser)
+    n_rep = 24 if args.quick else args.replicates  # --quick: 24 replicates (smoke test)
+    out = args.out
     u = sc.ureg
 
     seed_set = sc.load_parameters("dna")

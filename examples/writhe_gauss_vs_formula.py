@@ -9,8 +9,6 @@ crossing approximation (2 per turn) for alpha from 5 to 40 degrees.
 Usage: python examples/writhe_gauss_vs_formula.py [--out DIR] [--quick]
 """
 
-import argparse
-from pathlib import Path
 
 import matplotlib
 
@@ -19,17 +17,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
+from supercoil.cli import example_arguments
 from supercoil.core import gauss_writhe as gw
 from supercoil.core import helix_geometry as g
 from supercoil.tables import make_table, provenance
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default="results/writhe", type=Path)
-    ap.add_argument("--quick", action="store_true", help="fewer angles and points")
-    args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
+    args = example_arguments(__doc__, argv, default_out="results/writhe")
 
     angles = np.arange(5, 41, 5) if args.quick else np.arange(5, 41, 2.5)
     ppt = 60 if args.quick else 150
