@@ -316,6 +316,27 @@ def _scalar_ge2_tension(a, rho, b, beta):
     return h, h_a, h_r, T, T_a, T_r
 
 
+def _scalar_tilt(a, rho, b, beta):
+    """(GE2) for alpha at reduced radius ``rho``: safeguarded Newton in (0, pi/4), floats."""
+    a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
+    for _ in range(200):
+        h, h_a = _scalar_ge2_tension(a, rho, b, beta)[:2]
+        if h == 0.0:
+            break
+        if h < 0.0:
+            a_lo = a
+        else:
+            a_hi = a
+        an = a - h / h_a
+        if not a_lo <= an <= a_hi:
+            an = 0.5 * (a_lo + a_hi)
+        da = abs(an - a)
+        a = an
+        if da <= 1e-15 * (1.0 + a):
+            break
+    return a
+
+
 def _solve_scalar(T_target, b, rtol=1e-12):
     """One reduced tension: the same safeguarded nested Newton as :func:`solve_reduced`,
     on Python floats (about ten times faster for a single force)."""
@@ -329,24 +350,8 @@ def _solve_scalar(T_target, b, rtol=1e-12):
     a = float(alpha_t[k] + frac * (alpha_t[k + 1] - alpha_t[k]))
     for _ in range(200):
         rho = math.exp(u)
-        # (GE2) for alpha at this rho: safeguarded Newton in (0, pi/4)
-        a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
-        for _ in range(200):
-            h, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
-            if h < 0.0:
-                a_lo = a
-            elif h > 0.0:
-                a_hi = a
-            else:
-                break
-            an = a - h / h_a
-            if not a_lo <= an <= a_hi:
-                an = 0.5 * (a_lo + a_hi)
-            da = abs(an - a)
-            a = an
-            if da <= 1e-15 * (1.0 + a):
-                break
-        h, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
+        a = _scalar_tilt(a, rho, b, beta)
+        _, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
         G = T_target - T
         if G < 0.0:
             u_lo = u
@@ -363,22 +368,7 @@ def _solve_scalar(T_target, b, rtol=1e-12):
         if du <= rtol * (1.0 + abs(u)):
             break
     rho = math.exp(u)
-    a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
-    for _ in range(200):  # (GE2) at the final rho
-        h, h_a = _scalar_ge2_tension(a, rho, b, beta)[:2]
-        if h == 0.0:
-            break
-        if h < 0.0:
-            a_lo = a
-        else:
-            a_hi = a
-        an = a - h / h_a
-        if not a_lo <= an <= a_hi:
-            an = 0.5 * (a_lo + a_hi)
-        da = abs(an - a)
-        a = an
-        if da <= 1e-15 * (1.0 + a):
-            break
+    a = _scalar_tilt(a, rho, b, beta)  # (GE2) at the final rho
     return np.array([a]), np.array([rho])
 
 
