@@ -32,8 +32,10 @@ def test_round_trip_recovers_the_pitch(rod57, paper_pitch):
     P_back = res.profile["pitch"].to_numpy()
     P_want = paper_pitch(grid).m_as(u.mm)
     np.testing.assert_allclose(P_back, P_want, rtol=2e-5)
-    # the forward run counts the same turns and predicts the same tension
-    np.testing.assert_allclose(res.profile["turns"], sched["turns"], atol=1e-9)
+    # the forward run counts the same turns (it integrates the tabulated k by the
+    # trapezoid rule, O(h^2) ~ 1e-4 turns on this grid; the schedule's N(S) comes
+    # from the linking identity by 4th-order quadrature) and predicts the same tension
+    np.testing.assert_allclose(res.profile["turns"], sched["turns"], atol=2e-4)
     np.testing.assert_allclose(res.profile["tension"], sched["tension"], rtol=1e-4)
     # the schedule conserves the linking number of the helix it builds [Eq Lk=Tw+Wr]
     p = res.profile

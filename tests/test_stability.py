@@ -23,13 +23,6 @@ from supercoil.core import self_contact as sco
 
 u = sc.ureg
 
-#: WRONG cells the map finds today (reported to the lead, not patched here):
-#: twist_spinning loses beta to cancellation at small tilt, and the designed
-#: schedule's N(S) trapezoid misses the linking number near alpha -> pi/4.
-KNOWN_DEFECTS = {
-    "twist_spinning": r"^beta = .* cancellation-free value",
-    "design_twist_schedule": r"^turns N = .* the designed helix has Lk",
-}
 
 
 @pytest.fixture(scope="module")
@@ -68,17 +61,9 @@ def test_coarse_map_spans_every_solver_into_its_failure_regions(coarse):
         assert np.isfinite(row[row["x_quantity"]]) and np.isfinite(row[row["y_quantity"]])
 
 
-def test_coarse_map_has_no_wrong_cell_beyond_the_known_defects(coarse):
-    wrong = coarse[coarse["category"] == "WRONG"]
-    unexpected = [(r.solver, r.detail) for r in wrong.itertuples()
-                  if not re.search(KNOWN_DEFECTS.get(r.solver, "(?!)"), r.detail)]
-    assert not unexpected, unexpected
-
-
-@pytest.mark.xfail(strict=True, reason="twist_spinning beta cancellation and the designed "
-                   "N(S) trapezoid error (see KNOWN_DEFECTS); remove once fixed")
 def test_coarse_map_has_no_wrong_cell(coarse):
-    assert not (coarse["category"] == "WRONG").any()
+    wrong = coarse[coarse["category"] == "WRONG"]
+    assert wrong.empty, [(r.solver, r.detail) for r in wrong.itertuples()]
 
 
 def test_classification_catches_silent_failures():
@@ -238,12 +223,11 @@ def test_design_without_friction_coefficient_omits_the_check(rod):
     assert np.isfinite(t.select_dtypes("number").to_numpy()).all()
 
 
-# ------------------------------------------------------------------ known defects
+# ------------------------------------------------- formerly WRONG regions (now fixed)
 
 
-@pytest.mark.xfail(strict=True, reason="defect: beta = arccos(1 / (cos a + 2 T_s / T')) "
-                   "cancels when alpha is small (large T' / N); reported to the lead")
 def test_twist_spinning_beta_at_small_tilt(rod):
+    """beta without cancellation at small tilt (was arccos(1/sec beta), 100 % off)."""
     sp = sc.twist_spinning(rod, 1e-4, 1e4 * u.N)
     si = rod.si
     problems = stability._spinning_checks(
@@ -274,13 +258,12 @@ def _design_error(rod, q, a):
 
 
 def test_designed_turns_match_the_linking_number(rod):
-    assert _design_error(rod, 20.0, 0.25) < 1e-8  # far from pi/4: the trapezoid converged
-    assert _design_error(rod, 16 / (2 * np.pi), 0.25) < 1e-6  # the paper's profile: 7e-7
+    assert _design_error(rod, 20.0, 0.25) < 1e-8  # far from pi/4
+    assert _design_error(rod, 16 / (2 * np.pi), 0.25) < 1e-8  # the paper's profile
 
 
-@pytest.mark.xfail(strict=True, reason="defect: N(S) integrates k ~ 1/cos^2(2 alpha) by the "
-                   "trapezoid rule on 2001 points; near alpha -> pi/4 it is off by ~4e-5")
 def test_designed_turns_near_pi_over_4(rod):
+    """N(S) from the linking identity stays accurate where k ~ 1/cos^2(2 alpha) grows."""
     assert _design_error(rod, 6.3, 0.85) < 1e-6
 
 

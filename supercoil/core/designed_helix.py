@@ -27,6 +27,7 @@ N(S) is integrated with the cumulative trapezoid rule on the (fine) grid.
 from __future__ import annotations
 
 import numpy as np
+from scipy.integrate import cumulative_simpson
 
 from ..exceptions import SingularityError
 from . import self_contact as sc
@@ -82,10 +83,19 @@ def schedule(s, pitch, dpitch_ds, r, L, B, C, cos2a_min=sc.COS2A_MIN):
         )
     da = tilt_slope(P, dpitch_ds, r)
     k = twist_rate_for(s, alpha, da, r, L, B, C)
-    n0 = (B / C) * sc.g_contact(alpha[0]) * L / (4.0 * np.pi * r)
-    # N(S) = N0 + (1/2pi) int_0^{2s} k dS = N0 + (1/pi) int_0^s k ds
-    inc = 0.5 * (k[1:] + k[:-1]) * np.diff(s)
-    turns = n0 + np.concatenate(([0.0], np.cumsum(inc))) / np.pi
+    # N(S) from the linking identity Lk = Tw + Wr at S = 2s (the integral of
+    # dN/dS = k/2pi, rearranged): N = (1/pi) int_0^s (omega + tau) ds'
+    # + omega(s) (L - 2s) / 2pi. Its integrand grows like 1/cos 2a near pi/4,
+    # where k itself grows like 1/cos^2 2a, so it integrates far more accurately
+    # (cumulative Simpson, 4th order); at s = 0 it is N_0 of [eq ini].
+    omega = sc.twist_density(alpha, r, B, C)
+    integrand = omega + np.sin(alpha) * np.cos(alpha) / r
+    if s.size >= 3:
+        helix = cumulative_simpson(integrand, x=s, initial=0.0)
+    else:
+        helix = np.concatenate(([0.0], np.cumsum(0.5 * (integrand[1:] + integrand[:-1])
+                                                 * np.diff(s))))
+    turns = helix / np.pi + omega * (L - 2.0 * s) / TWO_PI
     return {
         "s": s,
         "slack": 2.0 * s,

@@ -112,16 +112,21 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
     kappa = np.sin(alpha) ** 2 / r
     tau = np.sin(alpha) * np.cos(alpha) / r
     Ts = C * omega * tau - 0.5 * B * kappa**2
+    # x = sec(beta) - 1 = 2 T_s / T' - (1 - cos alpha), written without cancellation
+    # at small alpha; then 1 - cos(beta) = x / (1 + x) gives beta = 2 asin(sqrt(x/(2(1+x)))).
     with np.errstate(divide="ignore"):
-        sec_beta = np.where(Tp > 0, np.cos(alpha) + 2.0 * Ts / np.where(Tp > 0, Tp, 1.0), np.inf)
-    if np.any(sec_beta < 1.0):
-        i = np.unravel_index(int(np.argmin(sec_beta)), sec_beta.shape)
+        x = np.where(Tp > 0, 2.0 * Ts / np.where(Tp > 0, Tp, 1.0)
+                     - 2.0 * np.sin(0.5 * alpha) ** 2, np.inf)
+    if np.any(x < 0.0):
+        i = np.unravel_index(int(np.argmin(x)), x.shape)
         raise NoHelixError(
             f"head tension T' = {Tp[i]:.6g} N exceeds 2 T_s / (1 - cos alpha) = "
-            f"{2 * Ts[i] / (1 - np.cos(alpha[i])):.6g} N: sec(beta) < 1, the tension closes "
+            f"{Ts[i] / np.sin(0.5 * alpha[i]) ** 2:.6g} N: sec(beta) < 1, the tension closes "
             "the tails (beta -> 0) and no twist-spun helix exists"
         )
-    beta = np.where(np.isinf(sec_beta), 0.5 * np.pi, np.arccos(1.0 / sec_beta))
+    with np.errstate(invalid="ignore"):
+        beta = np.where(np.isinf(x), 0.5 * np.pi,
+                        2.0 * np.arcsin(np.sqrt(x / (2.0 * (1.0 + x)))))
     return {
         "alpha": alpha,
         "beta": beta,
