@@ -5,10 +5,13 @@ Public unit wrapper over :mod:`supercoil.core.designed_helix`.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .core import designed_helix as _dh
 from .core import self_contact as _sc
+from .exceptions import ValidityWarning
 from .tables import make_table, provenance
 from .units import U, magnitude, quantity
 
@@ -136,6 +139,10 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     if mu is not None:
         cols["friction_torque_available"] = _sc.friction_torque_available(a, r, B, mu)
     else:
+        warnings.warn(
+            "rod.friction_coefficient is None: the no-slip condition of the designed helix "
+            "is not checked; the schedule has no friction_torque_available column",
+            ValidityWarning, stacklevel=2)
         units.pop("friction_torque_available")
     return make_table(cols, units, provenance(rod, scene="design_twist_schedule",
                                               slack_max=f"{S_end:.12g} m", n_points=n_points))

@@ -54,6 +54,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
 
+from .core.hat_curve import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from .exceptions import (
     BoundWarning,
     FitError,
@@ -80,8 +81,6 @@ __all__ = [
 #: DNA fields that can be fitted (shared by all forces and molecules).
 PHYSICAL_PARAMETERS = ("length", "bending_persistence", "twist_persistence", "radius")
 
-#: force above which negative supercoiling denatures real DNA (MODEL.md s.6), N
-DENATURATION_FORCE = 0.8e-12  # same value as supercoil.core.hat_curve.DENATURATION_FORCE
 
 _NM = 1e-9
 _Z0_SCALE = 1e-8  # scaled extension-offset variable: units of 10 nm
@@ -652,6 +651,13 @@ def _fit_core(spec):
                 f"{int(zeta_bad.sum())} data points have a Moroz-Nelson zeta outside (0, 1] "
                 "at the best fit: the extension model is not valid there",
             ))
+    over = spec["force"] > OVERSTRETCHING_FORCE
+    if over.any():
+        out_warnings.append((
+            "ValidityWarning",
+            f"{int(over.sum())} data points are above {OVERSTRETCHING_FORCE * 1e12:g} pN, "
+            "where B-DNA overstretches; the model (inextensible DNA) ignores it",
+        ))
     denat = (spec["force"] > DENATURATION_FORCE) & (n_eff < 0)
     if denat.any():
         out_warnings.append((

@@ -17,7 +17,7 @@ import numpy as np
 from .core import hat_curve as _hc
 from .core import moroz_nelson as _mn
 from .exceptions import ValidityWarning
-from .plectoneme import _check_dna, _force
+from .plectoneme import _check_dna, _force, warn_force_range
 from .tables import make_table, provenance
 from .units import U, as_turns, magnitude, quantity
 
@@ -122,14 +122,18 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None):
     NoEquilibriumError
         Naming the force, where no plectoneme equilibrium exists.
     ValidityError
-        (thermal) naming force and torque where zeta's bracket is not positive
-        (in the plectoneme phase below 0.0954 pN for the seed set).
+        (thermal) naming force and torque where zeta's bracket is not positive:
+        for the seed set in the plectoneme phase below 0.0954 pN, and above
+        43.95 pN, where the plectoneme torque exceeds what the fluctuating tail
+        can carry (``M_p^2/4 > B T - (kT)^2/32``); the athermal curve stays
+        defined there.
 
     Warns
     -----
     ValidityWarning
-        For negative turns above 0.8 pN (real DNA denatures there; the model
-        ignores it); where zeta leaves (0, 1] at a point whose tail is not
+        For forces above 65 pN (B-DNA overstretches; the model is
+        inextensible); for negative turns above 0.8 pN (real DNA denatures
+        there; the model ignores it); where zeta leaves (0, 1] at a point whose tail is not
         flagged short; and where zeta's long-tail factor ``1 - Q^(-1/2)/2`` is
         not positive (the extension would grow with turns). With the seed set
         and the default short-tail length: the bracket is negative below
@@ -184,6 +188,7 @@ def _parameters(dna):
 
 
 def _warn(F, N, hp, thermal, si):
+    warn_force_range(F)
     den = (N < 0) & (F > _hc.DENATURATION_FORCE)
     if np.any(den):
         warnings.warn(

@@ -16,6 +16,7 @@ import numpy as np
 
 from .core import moroz_nelson as _mn
 from .core import plectoneme as _pl
+from .core.hat_curve import OVERSTRETCHING_FORCE
 from .exceptions import ValidityWarning
 from .materials import DNA
 from .units import QuantityRecord, U, magnitude, quantity
@@ -104,7 +105,25 @@ def plectoneme_equilibrium(dna, force):
     si = _check_dna(dna)
     f = _force(force)
     st = _pl.equilibrium(f, si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius)
+    warn_force_range(f)
+    tight = st.radius < si.radius
+    if np.any(tight):
+        warnings.warn(
+            f"at {np.max(np.atleast_1d(f)[np.atleast_1d(tight)]) * 1e12:.6g} pN the superhelix "
+            f"radius R < r0 = {si.radius * 1e9:.6g} nm: the strands are pressed inside the "
+            "Marko-Siggia hard-core radius (above ~30 pN for the seed set), where the "
+            "interaction is extrapolated", ValidityWarning, stacklevel=2)
     return PlectonemeEquilibrium(**st._asdict())
+
+
+def warn_force_range(force):
+    """ValidityWarning for forces above the B-DNA overstretching plateau (~65 pN)."""
+    over = np.asarray(force) > OVERSTRETCHING_FORCE
+    if np.any(over):
+        warnings.warn(
+            f"force {np.max(np.asarray(force)[over]) * 1e12:.6g} pN is above "
+            f"{OVERSTRETCHING_FORCE * 1e12:g} pN, where B-DNA overstretches; the model "
+            "(inextensible DNA) ignores it", ValidityWarning, stacklevel=3)
 
 
 def effective_twist_rigidity(dna, force):

@@ -1,5 +1,7 @@
 """Plectoneme equilibrium (MODEL.md s.2, s.6): residuals, branch, trends, units, failures."""
 
+import warnings
+
 import numpy as np
 import pint
 import pytest
@@ -210,3 +212,17 @@ def test_scalar_and_vector_solvers_agree():
         a_s, r_s = pl._solve_scalar(float(t), b)
         assert a_s[0] == pytest.approx(a_v[i], rel=1e-12)
         assert r_s[0] == pytest.approx(r_v[i], rel=1e-12)
+
+
+def test_overstretching_and_hard_core_warnings(dna, ureg):
+    with pytest.warns(sc.ValidityWarning, match="hard-core radius"):
+        e = sc.plectoneme_equilibrium(dna, 40 * ureg.pN)
+    assert e.radius.m_as("nm") < 1.75
+    with pytest.warns(sc.ValidityWarning) as record:
+        sc.plectoneme_equilibrium(dna, [1.0, 70.0] * ureg.pN)
+    messages = " ".join(str(w.message) for w in record)
+    assert "70 pN is above 65 pN, where B-DNA overstretches" in messages
+    assert "hard-core radius" in messages
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sc.plectoneme_equilibrium(dna, [0.1, 1.0, 20.0] * ureg.pN)

@@ -213,11 +213,13 @@ def test_rod_without_friction_coefficient_warns_for_the_ode_too(rod, kw):
     assert res.profile["friction_torque_available"].isna().all()
 
 
-def test_design_without_friction_coefficient_omits_the_check(rod):
+def test_design_without_friction_coefficient_says_so_and_omits_the_check(rod):
     from supercoil.design import sinusoidal_pitch
 
     pitch = sinusoidal_pitch(16 * u.mm, 4 * u.mm, 2 * np.pi / (160 * u.mm))
-    t = sc.design_twist_schedule(rod.replace(friction_coefficient=None), pitch, n_points=101)
+    with pytest.warns(sc.ValidityWarning, match="friction_coefficient is None"):
+        t = sc.design_twist_schedule(rod.replace(friction_coefficient=None), pitch,
+                                     n_points=101)
     assert "friction_torque_available" not in t and "friction_torque_available" not in \
         t.attrs["units"]
     assert np.isfinite(t.select_dtypes("number").to_numpy()).all()
@@ -276,7 +278,8 @@ def test_largest_plectoneme_force_is_named_with_its_limit(dna):
         sc.plectoneme_equilibrium(dna, 2e5 * u.pN)
     f_max = float(re.search(r"above ([\d.]+) pN", str(err.value)).group(1))
     assert 1e5 < f_max < 1.1e5
-    e = sc.plectoneme_equilibrium(dna, 0.999 * f_max * u.pN)
+    with pytest.warns(sc.ValidityWarning, match="overstretches|hard-core radius"):
+        e = sc.plectoneme_equilibrium(dna, 0.999 * f_max * u.pN)
     si = dna.si
     res = pl.equilibrium_residuals(0.999 * f_max * 1e-12, e.alpha.m_as(u.rad),
                                    e.radius.m_as(u.m), e.omega.m_as(1 / u.m),
@@ -322,7 +325,8 @@ def test_thermal_hat_fails_named_at_high_force(dna):
     assert Q(43.9) > 0 > Q(44.0)
     with pytest.raises(sc.ValidityError, match=r"force 100 pN, torque [\d.]+ pN nm.*bracket"):
         sc.hat_curve(dna, 100 * u.pN, np.linspace(0, 200, 5))
-    df = sc.hat_curve(dna, 100 * u.pN, np.linspace(0, 200, 5), thermal=False)
+    with pytest.warns(sc.ValidityWarning, match="above 65 pN, where B-DNA overstretches"):
+        df = sc.hat_curve(dna, 100 * u.pN, np.linspace(0, 200, 5), thermal=False)
     assert np.isfinite(df["extension"]).all() and (df["extension"] <= 750).all()
     with warnings.catch_warnings():
         warnings.simplefilter("error")

@@ -48,6 +48,7 @@ from .plectoneme import equilibrium
 __all__ = [
     "DENATURATION_FORCE",
     "FULLY_COILED",
+    "OVERSTRETCHING_FORCE",
     "PLECTONEME",
     "SHORT_TAIL_PERSISTENCE_LENGTHS",
     "STRETCHED",
@@ -64,6 +65,9 @@ STRETCHED, PLECTONEME, FULLY_COILED = 0, 1, 2
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: above this force (N) negative supercoiling denatures real DNA [Salerno 2012]
 DENATURATION_FORCE = 0.8e-12
+#: above this force (N) B-DNA overstretches (Smith, Cui & Bustamante, Science 271,
+#: 795 (1996); Cluzel et al., Science 271, 792 (1996)); the model is inextensible
+OVERSTRETCHING_FORCE = 65e-12
 _TWO_PI = 2.0 * np.pi
 
 
