@@ -58,11 +58,11 @@ def _cases():
 
         def hat_public(n, si=False):
             f = 1.2e-12 * u.N if si else 1.2 * u.pN
-            turns = np.linspace(-20.0, 20.0, n)
+            turns = np.linspace(0.0, 20.0, n)  # N >= 0: no denaturation warning at 1.2 pN
             return lambda: sc.hat_curve(dna, f, turns)
 
         def hat_kernel(n):
-            turns = np.linspace(-20.0, 20.0, n)
+            turns = np.linspace(0.0, 20.0, n)
             force = np.full(n, 1.2e-12)
             return lambda: hat_curve_points(turns, force, d.length, d.bending_rigidity,
                                             d.torsional_rigidity, d.kT, d.radius)

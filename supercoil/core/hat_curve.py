@@ -43,7 +43,7 @@ import numpy as np
 
 from ..exceptions import ValidityError
 from . import moroz_nelson as _mn
-from .plectoneme import equilibrium
+from .plectoneme import EQUILIBRIUM_RTOL, equilibrium
 
 __all__ = [
     "DENATURATION_FORCE",
@@ -96,7 +96,8 @@ class HatParameters(NamedTuple):
     slope: np.ndarray  # dz/dN for N > N_b, m per turn
 
 
-def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=1e-12, check_zeta=True):
+def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=EQUILIBRIUM_RTOL,
+                   check_zeta=True):
     """Buckling turns, plectoneme torque and post-buckling slope at each force.
 
     With ``check_zeta=False`` (used by :func:`hat_curve_points`, which checks
@@ -145,7 +146,7 @@ def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
     return hat_parameters(force, length, B, C, kT, r0, thermal).slope
 
 
-def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=1e-12,
+def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUILIBRIUM_RTOL,
                      short_tail_length=None):
     """Hat-curve points: one (turns, force) pair per point, equilibrium once per force.
 
