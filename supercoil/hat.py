@@ -13,6 +13,7 @@ import warnings
 from functools import lru_cache
 
 import numpy as np
+import pandas as pd
 
 from .core import hat_curve as _hc
 from .core import moroz_nelson as _mn
@@ -34,6 +35,7 @@ __all__ = [
 HELICAL_REPEAT = 3.57e-9
 #: phase labels of the ``phase`` column, indexed by the kernel's phase code
 PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
+_PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
 
 _UNITS = {
     "force": "pN",
@@ -163,7 +165,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None):
             "force": F * 1e12,
             "turns": N,
             "extension": hp.extension * 1e9,
-            "phase": PHASES[hp.phase],
+            "phase": pd.Categorical.from_codes(hp.phase, categories=_PHASE_CATEGORIES),
             "torque": hp.torque * 1e21,
             "plectoneme_length": hp.plectoneme_length * 1e9,
             "supercoiling_density": N * (HELICAL_REPEAT / L),
