@@ -19,7 +19,7 @@ __all__ = ["SCHEDULE_UNITS", "design_twist_schedule", "sinusoidal_pitch"]
 
 SCHEDULE_UNITS = {
     "slack": "mm",
-    "turns": "",
+    "turns": "turn",
     "tension": "N",
     "s": "mm",
     "pitch": "mm",

@@ -107,7 +107,7 @@ def curvature_error(dpitch_ds):
 def superhelical_turns(alpha, radius, slack):
     """Superhelical turns ``n = S sin(alpha) / (4 pi R)`` of a uniform double helix."""
     n = _g.superhelical_turns(_alpha(alpha), _radius(radius), magnitude(slack, U.m, "slack"))
-    return quantity(n, U.dimensionless)
+    return quantity(n, U.turn)
 
 
 def writhe(alpha, radius, slack, method="exact"):
@@ -132,7 +132,7 @@ def writhe(alpha, radius, slack, method="exact"):
         wr = _g.writhe_one_view(a, r, s)
     else:
         raise ValueError(f"method must be 'exact' or 'one_view', got {method!r}")
-    return quantity(wr, U.dimensionless)
+    return quantity(wr, U.turn)
 
 
 def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
@@ -143,7 +143,7 @@ def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
 
     Returns
     -------
-    (Lk, Tw, Wr) : tuple of dimensionless Quantity
+    (Lk, Tw, Wr) : tuple of Quantity [turn]
     """
     a, r = _alpha(alpha), _radius(radius)
     s = magnitude(slack, U.m, "slack")
@@ -152,5 +152,4 @@ def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
     wt = wh if omega_tail is None else magnitude(omega_tail, U.per_m, "omega_tail")
     tw = _g.twist_uniform(wh, wt, s, L)
     wr = _g.writhe_uniform(a, r, s)
-    return (quantity(tw + wr, U.dimensionless), quantity(tw, U.dimensionless),
-            quantity(wr, U.dimensionless))
+    return (quantity(tw + wr, U.turn), quantity(tw, U.turn), quantity(wr, U.turn))

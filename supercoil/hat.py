@@ -39,7 +39,7 @@ _PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for l
 
 _UNITS = {
     "force": "pN",
-    "turns": "",
+    "turns": "turn",
     "extension": "nm",
     "phase": "",
     "torque": "pN nm",
@@ -64,11 +64,11 @@ def buckling_turns(dna, force, thermal=True):
 
     Returns
     -------
-    Quantity [dimensionless], number of turns (1-D, one per force). The hat
+    Quantity [turn], number of turns (1-D, one per force). The hat
     curve buckles at ``+N_b`` and ``-N_b``.
     """
     _, f, a = _args(dna, force, thermal)
-    return quantity(_hc.buckling_turns(f, *a), U.dimensionless)
+    return quantity(_hc.buckling_turns(f, *a), U.turn)
 
 
 def post_buckling_slope(dna, force, thermal=True):
@@ -80,10 +80,22 @@ def post_buckling_slope(dna, force, thermal=True):
 
     Returns
     -------
-    Quantity [nm] per turn (negative), 1-D.
+    Quantity [nm/turn] (negative), 1-D.
+
+    Warns
+    -----
+    ValidityWarning
+        (thermal) where zeta's long-tail factor is <= 0 (the slope would be
+        positive: 0.0954-0.1218 pN for the seed set) or < 0.5 (the
+        Moroz-Nelson expansion has not converged).
     """
-    _, f, a = _args(dna, force, thermal)
-    return quantity(_hc.post_buckling_slope(f, *a) * 1e9, U.nm)
+    si, f, a = _args(dna, force, thermal)
+    slope = _hc.post_buckling_slope(f, *a)
+    if thermal:
+        par = _hc.hat_parameters(f, *a[:-1], thermal=True, check_zeta=False)
+        Q = _mn.zeta_bracket(f, par.torque, si.bending_rigidity, si.kT)
+        _warn_long_tail(f, Q, np.ones(f.shape, bool))
+    return quantity(slope * 1e9, U.nm_per_turn)
 
 
 def hat_curve(dna, force, turns, thermal=True, short_tail_length=None):
@@ -137,10 +149,13 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None):
         inextensible); for negative turns above 0.8 pN (real DNA denatures
         there; the model ignores it); where zeta leaves (0, 1] at a point whose tail is not
         flagged short; and where zeta's long-tail factor ``1 - Q^(-1/2)/2`` is
-        not positive (the extension would grow with turns). With the seed set
-        and the default short-tail length: the bracket is negative below
-        0.0954 pN (error), the long-tail factor below 0.1218 pN, and zeta > 1
-        at a 3 A tail below 0.1354 pN; above 0.1354 pN the curve is valid.
+        not positive (the extension would grow with turns), or below 0.5 (the
+        Moroz-Nelson expansion in 1/sqrt(Q) has not converged: bracket Q < 1).
+        With the seed set and the default short-tail length: the bracket is
+        negative below 0.0954 pN (error), the long-tail factor is <= 0 below
+        0.1218 pN, zeta > 1 at a 3 A tail below 0.1354 pN, and Q < 1 in the
+        plectoneme phase below 0.201 pN; above 0.201 pN (and below 43.95 pN)
+        the thermal curve is valid.
     """
     si, f, a = _args(dna, force, thermal)
     n = np.atleast_1d(as_turns(turns, "turns"))
@@ -210,18 +225,37 @@ def _warn(F, N, hp, thermal, si):
                 stacklevel=3,
             )
             return
-        # long-tail factor zeta_inf = 1 - Q^(-1/2)/2 <= 0 (Q <= 1/4): z grows with |N|
         Q = _mn.zeta_bracket(F, hp.torque, si.bending_rigidity, si.kT)
-        inf_bad = (hp.phase != _hc.FULLY_COILED) & (Q <= 0.25)
-        if np.any(inf_bad):
-            i = np.flatnonzero(inf_bad)[0]
-            warnings.warn(
-                f"Moroz-Nelson zeta is not valid at force {F[i] * 1e12:.6g} pN, turns "
-                f"{N[i]:.6g}: its long-tail factor 1 - Q^(-1/2)/2 = "
-                f"{1 - 0.5 / np.sqrt(Q[i]):.4g} <= 0 (the extension would grow with turns)",
-                ValidityWarning,
-                stacklevel=3,
-            )
+        _warn_long_tail(F, Q, hp.phase != _hc.FULLY_COILED, N)
+
+
+#: Below this Moroz-Nelson bracket Q the long-tail factor 1 - Q^(-1/2)/2 < 0.5: the
+#: expansion in 1/sqrt(Q) has not converged and the thermal extension is qualitative.
+CONVERGED_BRACKET = 1.0
+
+
+def _warn_long_tail(F, Q, where, N=None):
+    """ValidityWarning where zeta's long-tail factor ``1 - Q^(-1/2)/2`` is <= 0 or < 0.5."""
+    def at(i):
+        return f"force {F[i] * 1e12:.6g} pN" + (f", turns {N[i]:.6g}" if N is not None else "")
+
+    bad = where & (Q <= 0.25)
+    if np.any(bad):
+        i = np.flatnonzero(bad)[0]
+        warnings.warn(
+            f"Moroz-Nelson zeta is not valid at {at(i)}: its long-tail factor "
+            f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q[i]):.4g} <= 0 (the extension would grow "
+            "with turns)", ValidityWarning, stacklevel=4)
+        return
+    rough = where & (Q < CONVERGED_BRACKET)
+    if np.any(rough):
+        i = np.flatnonzero(rough)[0]
+        warnings.warn(
+            f"Moroz-Nelson expansion not converged at {at(i)}: the long-tail factor "
+            f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q[i]):.3g} < 0.5 (bracket Q < 1), so the "
+            "thermal extension and post-buckling slope are qualitative there "
+            "(below 0.201 pN in the plectoneme phase for the seed set)", ValidityWarning,
+            stacklevel=4)
 
 
 def plot_hat_curves(df, path=None, dna=None):

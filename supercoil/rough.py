@@ -35,9 +35,9 @@ PROFILE_UNITS = {
     "friction_torque_available": "N",
     "curvature_error": "",
     "curvature_error_flag": "",
-    "turns": "",
-    "twist": "",
-    "writhe": "",
+    "turns": "turn",
+    "twist": "turn",
+    "writhe": "turn",
 }
 
 _SCALE = {  # SI -> display unit factor

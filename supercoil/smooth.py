@@ -25,7 +25,7 @@ class SmoothHelix:
 
     Attributes
     ----------
-    turns, slack : Quantity [dimensionless], [mm]
+    turns, slack : Quantity [turn], [mm]
         The inputs N (signed) and S.
     alpha : Quantity [rad]
         Tilt angle (uniform).
@@ -41,10 +41,12 @@ class SmoothHelix:
         Contact force per strand length, ``B (1 - cos 2a)^2 / (4 r^3 cos 2a)``
         ([eq normal reaction] corrected by a factor 2, see
         :mod:`supercoil.core.self_contact`).
-    twist, writhe, linking_number : Quantity [dimensionless]
+    twist, writhe, linking_number : Quantity [turn]
+        Counts of turns (pint ``turn``: ``.m`` is the count; do not convert them
+        with ``.to("dimensionless")``, which multiplies by 2 pi).
         ``Tw = omega L / 2 pi``, ``Wr = tau S / 2 pi``, ``Lk = Tw + Wr = N``
         [Eq Lk=Tw+Wr], signed like N (a negative N mirrors the helix).
-    superhelical_turns : Quantity [dimensionless]
+    superhelical_turns : Quantity [turn]
         ``S sin(alpha) / (4 pi r)``.
     """
 
@@ -66,10 +68,10 @@ class SmoothHelix:
 
     def to_table(self):
         """The solution as a flat table (one row per (N, S) pair) in the package convention."""
-        units = {"turns": "", "slack": "mm", "alpha": "rad", "pitch": "mm", "omega": "1/mm",
+        units = {"turns": "turn", "slack": "mm", "alpha": "rad", "pitch": "mm", "omega": "1/mm",
                  "curvature": "1/mm", "torsion": "1/mm", "tension": "N", "torque": "N*mm",
-                 "normal_force": "N/m", "twist": "", "writhe": "", "linking_number": "",
-                 "superhelical_turns": ""}
+                 "normal_force": "N/m", "twist": "turn", "writhe": "turn", "linking_number": "turn",
+                 "superhelical_turns": "turn"}
         cols = {k: np.ravel(getattr(self, k).magnitude) for k in units}
         return make_table(cols, units, self.provenance)
 
@@ -130,7 +132,7 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         return quantity(float(x) if x.ndim == 0 else x, unit)
 
     return SmoothHelix(
-        turns=q(n_b, U.dimensionless),
+        turns=q(n_b, U.turn),
         slack=q(S_b, U.mm, 1e3),
         alpha=q(st["alpha"], U.rad),
         pitch=q(st["pitch"], U.mm, 1e3),
@@ -140,9 +142,9 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         tension=q(st["tension"], U.N),
         torque=q(st["torque"], U.N_mm, 1e3),
         normal_force=q(st["normal_force"], U.N_per_m),
-        twist=q(st["twist"], U.dimensionless),
-        writhe=q(st["writhe"], U.dimensionless),
-        linking_number=q(st["linking_number"], U.dimensionless),
-        superhelical_turns=q(st["superhelical_turns"], U.dimensionless),
+        twist=q(st["twist"], U.turn),
+        writhe=q(st["writhe"], U.turn),
+        linking_number=q(st["linking_number"], U.turn),
+        superhelical_turns=q(st["superhelical_turns"], U.turn),
         provenance=provenance(rod, scene="smooth_helix"),
     )

@@ -27,7 +27,7 @@ class TwistSpinningHelix:
 
     Attributes
     ----------
-    turns : dimensionless
+    turns : Quantity [turn]
         N (signed).
     head_tension : [N]
         T'.
@@ -60,7 +60,7 @@ class TwistSpinningHelix:
 
     def to_table(self):
         """Flat table (one row per (N, T') pair) in the package convention."""
-        units = {"turns": "", "head_tension": "N", "alpha": "rad", "beta": "rad",
+        units = {"turns": "turn", "head_tension": "N", "alpha": "rad", "beta": "rad",
                  "pitch": "mm", "omega": "1/mm", "alpha_slacking": "rad",
                  "pitch_slacking": "mm", "pitch_increase": ""}
         cols = {k: np.ravel(np.broadcast_to(getattr(self, k).magnitude, self.alpha.shape))
@@ -115,7 +115,7 @@ def twist_spinning(rod, turns, head_tension):
         return quantity(float(x) if x.ndim == 0 else x, unit)
 
     return TwistSpinningHelix(
-        turns=q(np.broadcast_to(n, shape), U.dimensionless),
+        turns=q(np.broadcast_to(n, shape), U.turn),
         head_tension=q(np.broadcast_to(Tp, shape), U.N),
         alpha=q(st["alpha"], U.rad),
         beta=q(st["beta"], U.rad),

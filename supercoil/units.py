@@ -71,6 +71,7 @@ class U:
     pN = ureg.piconewton
     pN_nm = ureg.piconewton * ureg.nanometer
     pN_per_nm = ureg.piconewton / ureg.nanometer
+    nm_per_turn = ureg.nanometer / ureg.turn
     per_nm = 1 / ureg.nanometer
     per_mm = 1 / ureg.millimeter
     N_mm = ureg.newton * ureg.millimeter

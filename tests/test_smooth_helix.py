@@ -48,9 +48,9 @@ def test_linking_number_equals_turns(N, frac):
     L = rod.si.length
     for sign in (1.0, -1.0):
         h = sc.smooth_helix(rod, sign * N, frac * L * u.m)
-        lk = (h.twist + h.writhe).m_as(u.dimensionless)
+        lk = (h.twist + h.writhe).m_as(u.turn)
         assert lk == pytest.approx(sign * N, rel=1e-12, abs=1e-12)
-        assert h.linking_number.m_as(u.dimensionless) == pytest.approx(sign * N, rel=1e-12)
+        assert h.linking_number.m_as(u.turn) == pytest.approx(sign * N, rel=1e-12)
         assert np.sign(h.writhe.magnitude) in (0.0, sign)
 
 
