@@ -51,6 +51,8 @@ _UNITS = {
 
 
 def _args(dna, force, thermal):
+    if not isinstance(thermal, bool | np.bool_):
+        raise TypeError(f"thermal must be True or False, got {thermal!r}")
     si = _check_dna(dna)
     f = np.atleast_1d(_force(force))
     if f.ndim != 1:

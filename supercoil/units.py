@@ -121,9 +121,20 @@ def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
         If ``value`` belongs to another unit registry.
     """
     units = getattr(value, "_units", None)
+    if units is None and isinstance(value, list | tuple) and value \
+            and any(hasattr(v, "_units") for v in value):
+        try:  # a list of quantities, e.g. [0.4 * u.pN, 1.2 * u.pN]
+            value = Q_.from_list(list(value))
+        except DimensionalityError:
+            raise _dimension_error(None, unit, name,
+                                   "; the list mixes incompatible units") from None
+        units = value._units
     if units is not None and not hasattr(value, "_magnitude"):
         raise TypeError(f"argument '{name}' is a unit, not a quantity: multiply it by a number")
     if units is None:
+        if isinstance(value, str | bytes):
+            raise TypeError(f"argument '{name}' is text ({value!r}); give a number or a "
+                            "quantity, e.g. supercoil.ureg.Quantity('1.2 pN')")
         if unit.dimensionless:
             try:
                 return _as_float(value)

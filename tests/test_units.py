@@ -74,4 +74,20 @@ def test_dimensionless_accepts_any_array_like_and_rejects_text():
 
     np.testing.assert_array_equal(as_turns(pd.Series([1, 2])), [1.0, 2.0])
     with pytest.raises(TypeError, match="'turns' must be a number"):
-        as_turns("forty")
+        as_turns({"forty": 40})
+
+
+def test_list_of_quantities_and_text_inputs(ureg):
+    np.testing.assert_allclose(magnitude([0.4 * ureg.pN, 1.2 * ureg.pN], U.N, "force"),
+                               [0.4e-12, 1.2e-12])
+    with pytest.raises(pint.DimensionalityError, match=r"'force'.*incompatible"):
+        magnitude([0.4 * ureg.pN, 1.2 * ureg.nm], U.N, "force")
+    with pytest.raises(TypeError, match="'turns' is text"):
+        as_turns("5")
+    with pytest.raises(TypeError, match="'force' is text"):
+        magnitude("1 pN", U.N, "force")
+
+
+def test_thermal_flag_must_be_boolean(dna, ureg):
+    with pytest.raises(TypeError, match="thermal must be True or False"):
+        sc.hat_curve(dna, 1 * ureg.pN, [0.0], thermal="no")
