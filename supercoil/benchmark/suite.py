@@ -119,8 +119,11 @@ def run(out, quick=False, log=print):
     write_csv(ub, out / "unit_boundary.csv")
 
     fig, axes = plt.subplots(2, 2, figsize=(12, 9))
-    for ax, (scene, sub) in zip(axes.flat[:3], wp.groupby("scene", sort=False), strict=False):
-        work_precision.plot(sub, ax, title=scene, error_label="max |error|")
+    labels = ("max |alpha error| (rad)", "max |alpha error| (rad)",
+              "max relative error of alpha and R")
+    for ax, (scene, sub), xlabel in zip(axes.flat[:3], wp.groupby("scene", sort=False), labels,
+                                        strict=False):
+        work_precision.plot(sub, ax, title=scene, error_label=xlabel)
         ax.title.set_fontsize(8)
     ax = axes.flat[3]
     for variant, sub in hat.groupby("variant", sort=False):

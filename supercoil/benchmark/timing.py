@@ -15,6 +15,25 @@ import time
 import numpy as np
 
 
+def _calls_per_sample(func, min_sample, max_number):
+    number = 1
+    while True:
+        t0 = time.perf_counter()
+        for _ in range(number):
+            func()
+        dt = time.perf_counter() - t0
+        if dt >= min_sample or number >= max_number:
+            return number, dt / number
+        number = min(max_number, max(number * 2, int(number * min_sample / max(dt, 1e-9))))
+
+
+def _sample(func, number):
+    t0 = time.perf_counter()
+    for _ in range(number):
+        func()
+    return (time.perf_counter() - t0) / number
+
+
 def best_time(func, repeat: int = 5, min_sample: float = 2e-3, max_number: int = 10**6):
     """Minimum wall time per call of ``func()`` in seconds (NaN if it raises).
 
@@ -31,22 +50,28 @@ def best_time(func, repeat: int = 5, min_sample: float = 2e-3, max_number: int =
         func()  # warm-up, discarded
     except Exception:
         return float("nan")
-    number = 1
-    while True:
-        t0 = time.perf_counter()
-        for _ in range(number):
-            func()
-        dt = time.perf_counter() - t0
-        if dt >= min_sample or number >= max_number:
-            break
-        number = min(max_number, max(number * 2, int(number * min_sample / max(dt, 1e-9))))
-    samples = [dt / number]
-    for _ in range(repeat - 1):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            func()
-        samples.append((time.perf_counter() - t0) / number)
+    number, first = _calls_per_sample(func, min_sample, max_number)
+    samples = [first] + [_sample(func, number) for _ in range(repeat - 1)]
     return float(np.min(samples))
+
+
+def paired_best_times(func_a, func_b, repeat: int = 7, min_sample: float = 2e-3,
+                      max_number: int = 10**6):
+    """Minimum times of two calls measured in interleaved samples (a, b, a, b, ...).
+
+    Interleaving exposes both to the same machine state, so the difference of
+    the two minima (e.g. a public call minus the float kernel it wraps) is not
+    dominated by drift between two separate runs.
+    """
+    func_a()  # warm-ups, discarded
+    func_b()
+    na, ta = _calls_per_sample(func_a, min_sample, max_number)
+    nb, tb = _calls_per_sample(func_b, min_sample, max_number)
+    a, b = [ta], [tb]
+    for _ in range(repeat - 1):
+        a.append(_sample(func_a, na))
+        b.append(_sample(func_b, nb))
+    return float(np.min(a)), float(np.min(b))
 
 
 def machine_description() -> str:

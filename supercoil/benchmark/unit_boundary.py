@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .timing import best_time
+from .timing import paired_best_times
 
 SIZES = (1, 100, 10_000, 1_000_000)
 
@@ -73,19 +73,23 @@ def _cases():
     return cases
 
 
-def run(sizes=SIZES, max_equilibrium_size=10_000):
-    """Measure the boundary overhead; returns a convention table."""
+def run(sizes=SIZES):
+    """Measure the boundary overhead; returns a convention table.
+
+    Public call and kernel are timed in interleaved samples
+    (:func:`~supercoil.benchmark.timing.paired_best_times`); at 1e6 elements
+    fewer samples are taken (a plectoneme solve of 1e6 forces takes ~2 s).
+    """
     from supercoil.tables import make_table, provenance
 
     keys = ("function", "input_units", "elements", "public_time", "kernel_time", "overhead")
     rows = {k: [] for k in keys}
     for name, public, kernel in _cases():
         for n in sizes:
-            if name != "geometry.torsion" and n > max_equilibrium_size:
-                continue
-            tk = best_time(kernel(n), repeat=5)
+            repeat = 3 if n >= 1_000_000 else 7
+            kern = kernel(n)
             for si in (False, True):
-                tp = best_time(public(n, si), repeat=5)
+                tp, tk = paired_best_times(public(n, si), kern, repeat=repeat)
                 rows["function"].append(name)
                 rows["input_units"].append("SI" if si else "display")
                 rows["elements"].append(n)

@@ -58,13 +58,29 @@ def measure(scene, methods, tolerances, reference, repeat=3):
     return rows
 
 
+#: error floor drawn for a solution that equals its reference to the last bit
+ERROR_FLOOR = 1e-17
+#: one colour per method, the same in every chart
+_COLOURS = {"closed form": "k", "RK45": "C0", "DOP853": "C1", "Radau": "C2", "LSODA": "C3",
+            "vectorised over forces": "C4", "scalar loop": "C5"}
+
+
 def plot(table, ax, title=None, error_label="max error"):
-    """Draw one work-precision diagram (one line per method) on ``ax``."""
+    """Draw one work-precision diagram (one line per method) on ``ax``.
+
+    Failed settings are missing points; an error of exactly 0 is drawn at
+    :data:`ERROR_FLOOR` (open marker).
+    """
     for name, sub in table.groupby("method", sort=False):
-        ok = sub[~sub["failed"].astype(bool) & (sub["error"] > 0)]
-        (line,) = ax.loglog(ok["error"], ok["time"], "o-", label=name)
-        for _, row in ok.iterrows():
-            ax.annotate(f"{row['tolerance']:.0e}", (row["error"], row["time"]), fontsize=5,
+        ok = sub[~sub["failed"].astype(bool)]
+        err = ok["error"].clip(lower=ERROR_FLOOR)
+        colour = _COLOURS.get(name)
+        (line,) = ax.loglog(err, ok["time"], "o-", label=name, color=colour)
+        exact = ok["error"] <= 0
+        if exact.any():
+            ax.loglog(err[exact], ok["time"][exact], "o", mfc="white", color=line.get_color())
+        for (_, row), e in zip(ok.iterrows(), err, strict=True):
+            ax.annotate(f"{row['tolerance']:.0e}", (e, row["time"]), fontsize=5,
                         color=line.get_color(), xytext=(2, 2), textcoords="offset points")
     ax.set(xlabel=error_label, ylabel="wall time (s)",
            title=title or str(table["scene"].iloc[0]))
