@@ -29,7 +29,7 @@ from .exceptions import (
     ValidityError,
     ValidityWarning,
 )
-from .fitting import FitResult, fit_hat_curves, fit_many
+from .fitting import FitResult, fit_hat_curves, fit_many, simulate_rotation_curves
 from .hat import buckling_turns, hat_curve, post_buckling_slope
 from .materials import DNA, ElasticRod
 from .parameters import available_parameter_sets, load_parameters
@@ -79,6 +79,7 @@ __all__ = [
     "read_csv",
     "read_tweezers_csv",
     "rough_helix",
+    "simulate_rotation_curves",
     "smooth_helix",
     "twist_spinning",
     "ureg",
