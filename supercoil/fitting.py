@@ -35,11 +35,16 @@ parameters, raised before any fitting.
 
 Uncertainties
 -------------
-``cov = (J^T J)^-1`` from the weighted Jacobian at the solution (pseudo-inverse
-with a warning when it is singular). With per-point ``sigma`` (a ``sigma``
-column or argument) the covariance is absolute; with unit weights it is scaled
-by the reduced chi-square (the noise level is estimated from the scatter). The
-report says which.
+``cov = (J^T J)^-1`` from the weighted Jacobian at the solution. When the
+Jacobian is numerically rank deficient (relative singular-value threshold from
+the finite-difference accuracy, see ``_covariance``), every parameter with a
+component in its null space is *not determined*: standard error ``inf``, NaN
+covariance rows and columns, a :class:`~supercoil.exceptions.FitWarning` naming
+it; the others get the pseudo-inverse. With per-point ``sigma`` (a ``sigma``
+column or argument) the covariance is absolute; with unit weights (sigma = 1 nm)
+it is scaled by the reduced chi-square, which is then the residual variance in
+nm^2, and the noise estimate is its square root (the residual RMS). The report
+says which.
 """
 
 from __future__ import annotations
@@ -148,6 +153,18 @@ def _param_kind(name, labels):
     return m.group("base"), labels.index(mol)
 
 
+def _plain(value):
+    """A value for a message: ``-1 nm`` or ``-1.0``, never ``np.float64(-1.0)`` / ``<Quantity>``."""
+    mag = getattr(value, "magnitude", value)
+    if isinstance(mag, np.generic):
+        mag = mag.item()
+    units = getattr(value, "units", None)
+    if units is None:
+        return str(mag)
+    unit_text = f"{units:~P}"
+    return f"{mag} {unit_text}" if unit_text else str(mag)
+
+
 def _to_si(name, value):
     base = _NAME.match(name).group("base") if _NAME.match(name) else name
     try:
@@ -230,7 +247,7 @@ def _prepare(data, dna, vary, fixed, bounds, start, sigma, fit_turns_offset,
             raise FitError(f"parameter {name!r} is both in vary and in fixed")
         if kind in phys:
             if not (np.isfinite(v) and v > 0):
-                raise FitError(f"fixed {name} must be finite and positive, got {value!r}")
+                raise FitError(f"fixed {name} must be finite and positive, got {_plain(value)}")
             phys[kind] = v
         elif kind == "turns_offset":
             for i in offsets_of(kind, idx):
@@ -288,7 +305,8 @@ def _prepare(data, dna, vary, fixed, bounds, start, sigma, fit_turns_offset,
         b_lo = -np.inf if b_lo is None else _to_si(name, b_lo)
         b_hi = np.inf if b_hi is None else _to_si(name, b_hi)
         if not b_lo < b_hi:
-            raise FitError(f"bounds[{name!r}]: lower bound {pair[0]!r} is not below {pair[1]!r}")
+            raise FitError(f"bounds[{name!r}]: lower bound {_plain(pair[0])} is not below "
+                          f"{_plain(pair[1])}")
         hits = [
             j for j, (k, i) in enumerate(kinds)
             if k == kind and (idx is None or i == idx)
@@ -493,20 +511,60 @@ class _Problem:
         return ", ".join(f"{k} = {phys[k] * 1e9:.6g} nm" for k in PHYSICAL_PARAMETERS)
 
 
-def _covariance(J):
-    """(J^T J)^-1 by SVD; pseudo-inverse (and a message) when J is rank deficient."""
-    _, s, vt = np.linalg.svd(J, full_matrices=False)
-    threshold = np.finfo(float).eps * max(J.shape) * (s[0] if s.size else 0.0)
-    keep = s > threshold
-    note = None
-    if not keep.all():
-        note = (
-            f"the Jacobian is singular (rank {int(keep.sum())} of {J.shape[1]}): some "
-            "parameters are not determined by the data; the covariance is a pseudo-inverse"
-        )
+#: Relative accuracy of the Jacobian's columns: the forward-difference step (the
+#: truncation error of a forward difference is O(h) relative; h = 1e-6 in the
+#: scaled variables, which are of order one).
+_JAC_RTOL = 1e-6
+
+
+def _covariance(J, names=None):
+    """``(J^T J)^-1`` by SVD, with the parameters the data do not determine.
+
+    Rank threshold: a singular value ``s_k < s_max * _JAC_RTOL * sqrt(n_par)``
+    counts as zero. Justification: each column of the finite-difference
+    Jacobian has a relative error of about ``_JAC_RTOL``, so the error matrix
+    ``E`` has ``||E||_2 <= ||E||_F <= _JAC_RTOL * ||J||_F <= _JAC_RTOL *
+    sqrt(n_par) * s_max``, and by Weyl's inequality a singular value below that
+    cannot be told from zero. (numpy's ``matrix_rank`` default, ``eps * max(shape)
+    * s_max``, assumes entries exact to rounding; ours are differences.)
+
+    A parameter is *undetermined* when its unit vector has a component larger
+    than the same tolerance in the numerical null space: moving along that
+    null direction leaves the residuals unchanged, so its variance is infinite.
+    Its standard error is ``inf`` and its covariance row and column are NaN.
+    The covariance of the other parameters is the pseudo-inverse restricted to
+    them, which equals their covariance with the undetermined ones profiled out
+    (the null directions have no component along them).
+
+    Returns ``(cov, undetermined, note)``: the covariance in the scaled
+    variables, a boolean mask, and a warning text naming the undetermined
+    parameters (None when the Jacobian has full rank).
+    """
+    n_par = J.shape[1]
+    names = list(names) if names is not None else [f"p{j}" for j in range(n_par)]
+    _, s, vt = np.linalg.svd(J, full_matrices=True)
+    s_full = np.zeros(n_par)
+    s_full[: s.size] = s
+    s_max = s_full[0] if s_full.size else 0.0
+    rtol = _JAC_RTOL * math.sqrt(n_par)
+    keep = s_full > s_max * rtol if s_max > 0 else np.zeros(n_par, dtype=bool)
+    null = vt[~keep]
+    undetermined = np.sqrt(np.sum(null**2, axis=0)) > rtol if null.size else np.zeros(
+        n_par, dtype=bool)
     vt_k = vt[keep]
-    cov = (vt_k.T / s[keep] ** 2) @ vt_k
-    return cov, note
+    cov = (vt_k.T / s_full[keep] ** 2) @ vt_k
+    note = None
+    if undetermined.any():
+        cov[undetermined, :] = np.nan
+        cov[:, undetermined] = np.nan
+        bad = [n for n, u in zip(names, undetermined, strict=True) if u]
+        note = (
+            f"the Jacobian is singular (rank {int(keep.sum())} of {n_par}, relative "
+            f"singular-value threshold {rtol:.2g}): the data do not determine "
+            f"{', '.join(bad)}; {'its' if len(bad) == 1 else 'their'} standard error"
+            f"{'' if len(bad) == 1 else 's'} {'is' if len(bad) == 1 else 'are'} inf"
+        )
+    return cov, undetermined, note
 
 
 def _fit_core(spec):
@@ -606,7 +664,7 @@ def _fit_core(spec):
     chi2 = float(r @ r)
     nfree = n - len(u)
     redchi = chi2 / nfree
-    cov_u, note = _covariance(J)
+    cov_u, undetermined, note = _covariance(J, spec["names"])
     if note:
         out_warnings.append(("FitWarning", note))
     if spec["weighting"] == "unit":
@@ -614,6 +672,7 @@ def _fit_core(spec):
     cov = cov_u * np.outer(spec["scales"], spec["scales"])
     values = u * spec["scales"]
     stderr = np.sqrt(np.clip(np.diag(cov), 0, None))
+    stderr[undetermined] = np.inf
 
     # ---- estimates on bounds -------------------------------------------------------------
     for j, name in enumerate(spec["names"]):
@@ -675,8 +734,9 @@ def _fit_core(spec):
         "start": u0 * spec["scales"],
         "lower": spec["lower"],
         "upper": spec["upper"],
-        "chi_square": chi2 * (_UNIT_WEIGHT**2 if spec["weighting"] == "unit" else 1.0),
+        "chi_square": chi2,
         "weighted_chi_square": chi2,
+        "undetermined": undetermined,
         "reduced_chi_square": redchi,
         "ndata": n,
         "nfree": nfree,
@@ -737,7 +797,14 @@ class FitResult:
         with a ``molecule`` column the offsets are named
         ``turns_offset[<molecule>]``, ``extension_offset[<molecule>]``.
     stderr : dict of str -> pint.Quantity
-        One-sigma standard errors, same keys and units.
+        One-sigma standard errors, same keys and units; ``inf`` for a
+        parameter the data do not determine (see ``undetermined``).
+    undetermined : list of str
+        Free parameters with a component in the numerical null space of the
+        Jacobian (the residuals do not change along it): their standard error
+        is ``inf``, their covariance rows and columns and their correlations
+        NaN, and a :class:`~supercoil.exceptions.FitWarning` names them.
+        Empty for a well-posed fit.
     fixed : dict of str -> pint.Quantity
         The parameters held fixed (DNA fields not varied, offsets switched off).
     covariance : pandas.DataFrame
@@ -747,7 +814,15 @@ class FitResult:
         Correlation matrix.
     chi_square, reduced_chi_square : float
         ``sum(((data - model) / sigma)^2)`` and the same divided by the
-        degrees of freedom (with unit weights sigma = 1 nm).
+        degrees of freedom ``nfree``, both dimensionless in the units of the
+        weighting: with per-point sigma they are the usual chi-square; with
+        unit weights sigma = 1 nm, so ``chi_square`` is the sum of squared
+        residuals in nm^2 and ``reduced_chi_square`` the residual variance in
+        nm^2 (not a goodness of fit). Always ``chi_square / nfree ==
+        reduced_chi_square``.
+    residual_rms : pint.Quantity
+        ``sqrt(sum((data - model)^2) / nfree)`` (nm): with unit weights the
+        estimate of the extension noise (``sqrt(reduced_chi_square)`` nm).
     ndata, nfree, nfev : int
         Data points, degrees of freedom, model evaluations.
     weighting : str
@@ -781,15 +856,23 @@ class FitResult:
         cov = core["covariance"] * np.outer(factors, factors)
         self.covariance = pd.DataFrame(cov, index=self.names, columns=self.names)
         self.covariance.attrs["units"] = dict(self.units)
+        undetermined = np.asarray(core["undetermined"], dtype=bool)
         d = np.sqrt(np.diag(cov))
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = cov / np.outer(d, d)
         corr[~np.isfinite(corr)] = 0.0
         np.fill_diagonal(corr, 1.0)
+        corr[undetermined, :] = np.nan
+        corr[:, undetermined] = np.nan
+        corr[undetermined, undetermined] = 1.0
         self.correlation = pd.DataFrame(corr, index=self.names, columns=self.names)
         self.correlation.attrs["units"] = {k: "" for k in self.names}
+        self.undetermined = [n for n, u in zip(self.names, undetermined, strict=True) if u]
         self.chi_square = float(core["chi_square"])
         self.reduced_chi_square = float(core["reduced_chi_square"])
+        resid = spec["extension"] - core["model"]
+        self.residual_rms = quantity(
+            math.sqrt(float(resid @ resid) / int(core["nfree"])) * 1e9, U.nm)
         self.ndata = int(core["ndata"])
         self.nfree = int(core["nfree"])
         self.nfev = int(core["nfev"])
@@ -822,19 +905,38 @@ class FitResult:
             f"{self.units[k]}"
             for k in self.names
         )
-        return f"<FitResult {vals}; reduced chi-square {self.reduced_chi_square:.4g}>"
+        if self.weighting == "unit":
+            stat = f"noise estimate {self.residual_rms.magnitude:.4g} nm"
+        else:
+            stat = f"reduced chi-square {self.reduced_chi_square:.4g}"
+        return f"<FitResult {vals}; {stat}>"
 
     def report(self, min_correlation=0.1) -> str:
         """A fit report: statistics, parameter table with units, fixed values, correlations."""
         s, c = self._spec, self._core
         forces = np.unique(s["force"])
         force_text = ", ".join(f"{f * 1e12:.4g}" for f in forces)
+        noise = self.residual_rms.magnitude
         if self.weighting == "unit":
-            wtext = ("unit weights; covariance scaled by the reduced chi-square (noise "
-                     f"estimated from the scatter: {math.sqrt(self.reduced_chi_square):.4g} nm)")
+            wtext = ("unit weights; covariance scaled by the reduced chi-square (the noise "
+                     "level is estimated from the scatter: the noise estimate above)")
+            stats = [
+                f"    noise estimate     = {noise:.4g} nm (residual RMS, "
+                "sqrt(sum of squared residuals / degrees of freedom))",
+                f"    chi-square         = {self.chi_square:.6g} nm^2 (sum of squared "
+                "residuals; unit weights, sigma = 1 nm)",
+                f"    reduced chi-square = {self.reduced_chi_square:.6g} nm^2 (the residual "
+                "variance with unit weights, not a goodness of fit)",
+            ]
         else:
             wtext = (f"per-point sigma ({self.weighting}); covariance not rescaled "
                      "(absolute uncertainties)")
+            stats = [
+                f"    chi-square         = {self.chi_square:.6g}",
+                f"    reduced chi-square = {self.reduced_chi_square:.6g} (1 when the model and "
+                "the sigmas describe the data)",
+                f"    residual RMS       = {noise:.4g} nm",
+            ]
         lines = [
             "[[Model]]",
             "    hat curve z = hat(N - turns_offset) + extension_offset (MODEL.md s.6), "
@@ -846,16 +948,14 @@ class FitResult:
             f"{len(s['labels'])} molecule{'s' if len(s['labels']) > 1 else ''})",
             f"    free parameters    = {len(self.names)}",
             f"    degrees of freedom = {self.nfree}",
-            f"    chi-square         = {c['weighted_chi_square']:.6g}"
-            + (" (residuals in nm, unit weights)" if self.weighting == "unit" else ""),
-            f"    reduced chi-square = {self.reduced_chi_square:.6g}",
+            *stats,
             f"    weighting          = {wtext}",
             f"    converged          = {self.success} ({self.message})",
             "[[Parameters]]",
         ]
         width = max(len(n) for n in [*self.names, *self.fixed, "name"]) + 2
         lines.append(
-            f"    {'name':<{width}}{'value':>12}{'stderr':>12}  {'unit':<6}{'rel.err':>9}"
+            f"    {'name':<{width}}{'value':>12}{'stderr':>16}  {'unit':<6}{'rel.err':>9}"
             f"{'start':>12}  bounds"
         )
         for j, name in enumerate(self.names):
@@ -863,10 +963,14 @@ class FitResult:
             e = self.stderr[name].magnitude
             kind = c["kinds"][j][0]
             f = _DISPLAY[kind][2]
-            rel = f"{100 * e / abs(v):.2f}%" if v != 0 else "-"
+            if name in self.undetermined:
+                etext, rel = "not determined", "-"
+            else:
+                etext = f"{e:.4g}"
+                rel = f"{100 * e / abs(v):.2f}%" if v != 0 else "-"
             lo, hi = c["lower"][j] * f, c["upper"][j] * f
             lines.append(
-                f"    {name:<{width}}{v:>12.6g}{e:>12.4g}  {self.units[name]:<6}{rel:>9}"
+                f"    {name:<{width}}{v:>12.6g}{etext:>16}  {self.units[name]:<6}{rel:>9}"
                 f"{c['start'][j] * f:>12.6g}  ({lo:.4g}, {hi:.4g})"
             )
         if self.fixed:
@@ -878,7 +982,7 @@ class FitResult:
         corr = self.correlation.to_numpy()
         for a in range(len(names)):
             for b in range(a + 1, len(names)):
-                if abs(corr[a, b]) >= min_correlation:
+                if np.isfinite(corr[a, b]) and abs(corr[a, b]) >= min_correlation:
                     pairs.append((abs(corr[a, b]), names[a], names[b], corr[a, b]))
         if pairs:
             lines.append(f"[[Correlations]] (|C| >= {min_correlation:g})")
@@ -894,20 +998,24 @@ class FitResult:
         """One-row table (package convention): every free parameter and its stderr, fit stats.
 
         Columns ``<name>`` and ``<name>_stderr`` in the units of ``parameters``
-        (``attrs["units"]``), then ``reduced_chi_square``, ``chi_square``,
-        ``ndata``, ``nfree``, ``nfev``, ``weighting``.
+        (``attrs["units"]``; the stderr is ``inf`` for an undetermined
+        parameter), then ``reduced_chi_square``, ``chi_square`` (see the class
+        docstring), ``residual_rms`` (nm), ``ndata``, ``nfree``, ``nfev``,
+        ``weighting``, ``determined`` (False if any parameter is undetermined).
         """
         cols, units = {}, {}
         for name in self.names:
             cols[name] = [self.parameters[name].magnitude]
             cols[f"{name}_stderr"] = [self.stderr[name].magnitude]
             units[name] = units[f"{name}_stderr"] = self.units[name]
-        for k, v in (("reduced_chi_square", self.reduced_chi_square),
-                     ("chi_square", self._core["weighted_chi_square"]),
-                     ("ndata", self.ndata), ("nfree", self.nfree), ("nfev", self.nfev),
-                     ("weighting", self.weighting)):
+        for k, v, unit in (("reduced_chi_square", self.reduced_chi_square, ""),
+                           ("chi_square", self.chi_square, ""),
+                           ("residual_rms", self.residual_rms.magnitude, "nm"),
+                           ("ndata", self.ndata, ""), ("nfree", self.nfree, ""),
+                           ("nfev", self.nfev, ""), ("weighting", self.weighting, ""),
+                           ("determined", not self.undetermined, "")):
             cols[k] = [v]
-            units[k] = ""
+            units[k] = unit
         prov = provenance(self.dna, vary=list(self._spec["vary"]),
                           fixed={k: v for k, v in self.fixed.items()},
                           thermal=self.thermal, model="hat curve, MODEL.md s.6")
@@ -992,12 +1100,17 @@ class FitResult:
             f"{self.units[k]}"
             for k in self.names if k in PHYSICAL_PARAMETERS
         )
-        fig.suptitle(f"hat-curve fit: {text}; reduced chi-square "
-                     f"{self.reduced_chi_square:.3g}", fontsize="medium")
+        if self.weighting == "unit":  # the reduced chi-square is a variance in nm^2 here
+            stat = f"noise estimate (residual RMS) {self.residual_rms.magnitude:.3g} nm"
+        else:
+            stat = f"reduced chi-square {self.reduced_chi_square:.3g}"
+        fig.suptitle(f"hat-curve fit: {text}; {stat}", fontsize="medium")
         return fig
 
 
 def _fmt_pm(v, e):
+    if np.isinf(e):
+        return f"{v:.6g} (not determined)"
     if not np.isfinite(e) or e <= 0:
         return f"{v:.6g}"
     digits = max(0, 1 - math.floor(math.log10(e)))
@@ -1082,9 +1195,12 @@ def fit_hat_curves(
     -----
     BoundWarning
         An estimate sits on a bound.
+    FitWarning
+        Singular Jacobian: names the parameters the data do not determine
+        (their standard error is ``inf``, see :attr:`FitResult.undetermined`).
     ValidityWarning
-        Singular covariance (pseudo-inverse); data points in the short-tail or
-        fully coiled region; negative turns above 0.8 pN (denaturation).
+        Data points in the short-tail or fully coiled region; negative turns
+        above 0.8 pN (denaturation).
     """
     spec = _prepare(data, dna, vary, fixed, bounds, start, sigma, fit_turns_offset,
                     fit_extension_offset, thermal, max_nfev, tol)
@@ -1100,7 +1216,7 @@ def _fit_worker(spec):
     except Exception as exc:  # reported per molecule, not raised for the batch
         return {"ok": False, "error": f"{type(exc).__name__}: {exc}"}
     keep = ("names", "kinds", "values", "stderr", "reduced_chi_square", "weighted_chi_square",
-            "ndata", "nfree", "nfev", "warnings", "seconds", "n0", "z0")
+            "ndata", "nfree", "nfev", "warnings", "seconds", "n0", "z0", "undetermined")
     return {"ok": True, **{k: core[k] for k in keep}}
 
 
@@ -1138,10 +1254,15 @@ def fit_many(
     -------
     pandas.DataFrame
         Package table convention, one row per molecule in order of first
-        appearance: ``molecule``, ``success``, ``error`` (the exception for a
-        failed fit, else ""), ``ndata``, ``reduced_chi_square``, ``nfev``, then
-        ``<name>`` and ``<name>_stderr`` for every varied parameter and offset
-        (NaN where the fit failed; ``success`` says so), ``warnings``.
+        appearance: ``molecule``, ``success`` (the fit ran and converged),
+        ``determined`` (False when the data of that molecule do not determine
+        some free parameter, e.g. a nicked molecule with a flat curve: those
+        parameters have ``<name>_stderr = inf`` and the ``warnings`` cell names
+        them; also False for a failed fit), ``error`` (the exception for a
+        failed fit, else ""), ``ndata`` (the molecule's data points, also for
+        a failed fit), ``reduced_chi_square``, ``nfev``, then ``<name>`` and
+        ``<name>_stderr`` for every varied parameter and offset (NaN where the
+        fit failed; ``success`` says so), ``warnings``.
         Warnings of single fits are also re-issued, prefixed by the molecule.
 
     Raises
@@ -1223,9 +1344,9 @@ def fit_many(
     # table
     param_names = list(names_check["names"])
     param_kinds = [k for k, _ in names_check["kinds"]]
-    cols = {"molecule": [], "success": [], "error": [], "ndata": [], "reduced_chi_square": [],
-            "nfev": []}
-    units = {"molecule": "", "success": "", "error": "", "ndata": "",
+    cols = {"molecule": [], "success": [], "determined": [], "error": [], "ndata": [],
+            "reduced_chi_square": [], "nfev": []}
+    units = {"molecule": "", "success": "", "determined": "", "error": "", "ndata": "",
              "reduced_chi_square": "", "nfev": ""}
     for name, kind in zip(param_names, param_kinds, strict=True):
         cols[name], cols[f"{name}_stderr"] = [], []
@@ -1237,6 +1358,7 @@ def fit_many(
         cols["molecule"].append(lab)
         cols["success"].append(bool(res["ok"]))
         cols["error"].append("" if res["ok"] else res["error"])
+        cols["determined"].append(bool(res["ok"]) and not np.any(res.get("undetermined", [])))
         if res["ok"]:
             cols["ndata"].append(int(res["ndata"]))
             cols["reduced_chi_square"].append(float(res["reduced_chi_square"]))
@@ -1250,8 +1372,7 @@ def fit_many(
             cols["warnings"].append("; ".join(m for _, m in res["warnings"]))
             _emit(res["warnings"], prefix=f"molecule {lab}: ")
         else:
-            ndata = len(specs[lab]["extension"]) if isinstance(specs[lab], dict) else 0
-            cols["ndata"].append(ndata)
+            cols["ndata"].append(len(df) if raw is None else int(np.sum(raw == lab)))
             cols["reduced_chi_square"].append(np.nan)
             cols["nfev"].append(0)
             for name in param_names:

@@ -118,18 +118,77 @@ def write_csv(df, path) -> Path:
     return path
 
 
-def read_csv(path) -> pd.DataFrame:
+def _header_hint(header):
+    """A hint for a header line that does not follow the ``name [unit]``, comma convention."""
+    hints = []
+    if ";" in header or "\t" in header:
+        sep = "';'" if ";" in header else "a tab"
+        hints.append(f"the header uses {sep} as delimiter; supercoil reads comma-separated "
+                     "files with '.' as decimal point")
+    if re.search(r"\(\s*[^()\s]+\s*\)", header):
+        hints.append("units go in square brackets: 'force [pN]', not 'force (pN)'")
+    if not hints:
+        return ""
+    return " (hint: " + "; ".join(hints) + "; expected e.g. 'force [pN],turns,extension [um]')"
+
+
+def _bad_record(body, n_fields):
+    """(line in ``body``, number of fields) of the first record with more fields than the header.
+
+    pandas would silently turn an extra leading field into the index (when
+    every row has one) or fail with a line count that ignores the comment lines.
+    """
+    import csv
+
+    reader = csv.reader(io.StringIO(body), skipinitialspace=True)
+    prev = 0
+    for record in reader:
+        start, prev = prev + 1, reader.line_num
+        if not record or (len(record) <= 1 and not "".join(record).strip()):
+            continue  # blank line (pandas skips it)
+        if len(record) > n_fields:
+            return start, len(record)
+    return None, None
+
+
+def read_csv(path, text_columns=("molecule",)) -> pd.DataFrame:
     """Read a table written by :func:`write_csv` (or any CSV with ``name [unit]`` headers).
 
     Lines starting with ``#`` before the header are provenance, ``# key: json``;
     a comment line that is not of that form is kept under ``"comments"``.
-    Headers without ``[unit]`` get the unit ``""``.
+    Headers without ``[unit]`` get the unit ``""``. The file is UTF-8 (a
+    byte-order mark is skipped).
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    text_columns : sequence of str
+        Columns (names without unit) read as text exactly as written, never
+        as numbers: labels such as ``molecule`` keep ``"01"`` apart from
+        ``"1"`` and ``"1.0"``. Empty cells stay missing (NaN).
+
+    Raises
+    ------
+    DataError
+        No such file; not UTF-8 text (names the line); no header; a row with
+        more fields than the header (names the file line, counting the
+        comment lines, with a hint when the header does not look like
+        ``name [unit]`` with commas); a column named twice.
     """
     path = Path(path)
     try:
-        text = path.read_text()
+        raw = path.read_bytes()
     except FileNotFoundError:
         raise DataError(f"no such file: {path}") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw[: exc.start].count(b"\n") + 1
+        raise DataError(
+            f"{path}, line {line}: not UTF-8 text ({exc.reason} at byte {exc.start}); "
+            "save the file as UTF-8 CSV"
+        ) from None
     lines = text.splitlines(keepends=True)
     prov, comments, n_comment = {}, [], 0
     for line in lines:
@@ -150,7 +209,30 @@ def read_csv(path) -> pd.DataFrame:
     body = "".join(lines[n_comment:])
     if not body.strip():
         raise DataError(f"{path}: no header line (the file is empty after its comments)")
-    df = pd.read_csv(io.StringIO(body), skipinitialspace=True)
+    header_text = next((ln for ln in lines[n_comment:] if ln.strip()), "").strip()
+    header_line = n_comment + 1 + next(
+        (i for i, ln in enumerate(lines[n_comment:]) if ln.strip()), 0)
+    try:
+        head = pd.read_csv(io.StringIO(body), skipinitialspace=True, nrows=0)
+        n_fields = len(head.columns)
+        where, got = _bad_record(body, n_fields)
+        if where is not None:
+            raise DataError(
+                f"{path}, line {n_comment + where}: {got} fields, but the header (line "
+                f"{header_line}) has {n_fields} (a decimal comma, e.g. 1,68 for 1.68, or an "
+                f"unquoted comma in a label splits a value){_header_hint(header_text)}"
+            )
+        text_set = set(text_columns or ())
+        dtype = {c: str for c in head.columns if _HEADER.match(str(c)).group("name") in text_set}
+        df = pd.read_csv(io.StringIO(body), skipinitialspace=True, dtype=dtype or None)
+    except pd.errors.EmptyDataError:
+        raise DataError(f"{path}: no header line (the file is empty after its comments)"
+                        ) from None
+    except pd.errors.ParserError as exc:
+        # pandas counts lines from the header: shift by the comment lines above it
+        msg = re.sub(r"line (\d+)", lambda m: f"line {int(m.group(1)) + n_comment}", str(exc))
+        raise DataError(f"{path}: cannot parse the table: {msg}{_header_hint(header_text)}"
+                        ) from None
     names, units = [], {}
     for col in df.columns:
         m = _HEADER.match(str(col))

@@ -10,9 +10,11 @@ The data are a long-format table, one row per measured point::
 
 with the columns
 
-* ``force`` (a force unit), ``turns`` (no unit: turns; or an angle unit such as
-  ``turn``, ``rad``, ``deg``), ``extension`` (a length unit): required;
-* ``molecule`` (any label): optional, one label per tethered molecule;
+* ``force`` (a force unit), ``turns`` (no unit or ``dimensionless``: turns; or an
+  angle unit such as ``turn``, ``rad``, ``deg``), ``extension`` (a length unit):
+  required;
+* ``molecule`` (any label): optional, one label per tethered molecule, read as
+  text exactly as written (``01``, ``1`` and ``1.0`` are three molecules);
 * ``sigma`` (a length unit): optional, the standard error of each extension;
 * any other column is kept as it is.
 
@@ -41,7 +43,7 @@ import pandas as pd
 import pint
 
 from .exceptions import DataError, DataWarning
-from .tables import read_csv
+from .tables import _header_hint, read_csv
 from .units import U, ureg
 
 __all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
@@ -116,6 +118,7 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
         if col not in df.columns:
             raise DataError(
                 f"{header}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
+                + _header_hint(",".join(map(str, df.columns)))
             )
     if len(df) == 0:
         raise DataError(f"{source}: the table has no data rows")
@@ -143,7 +146,7 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
             elif isinstance(cell, str) and _is_number(cell):
                 what = f"non-finite value {cell!r}"
             elif isinstance(cell, float | np.floating):
-                what = f"non-finite value {cell!r}"
+                what = f"non-finite value {float(cell)!r}"
             else:
                 what = f"non-numeric value {cell!r}"
             more = f" ({bad.size - 1} more rows in this column)" if bad.size > 1 else ""
@@ -154,7 +157,7 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
                 i = int(nonpos[0])
                 raise DataError(
                     f"{source}, {row_name(i)}, column {col!r}: {col} must be positive, "
-                    f"got {values[i]!r}"
+                    f"got {float(values[i]):g}"
                 )
         out[col] = values
     if "molecule" in df.columns:
@@ -273,6 +276,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
         if col not in df.columns:
             raise DataError(
                 f"{hdr}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
+                + _header_hint(",".join(map(str, df.columns)))
             )
     for col in (*REQUIRED_COLUMNS, "sigma"):
         if col in df.columns:

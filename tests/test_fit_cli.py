@@ -92,3 +92,59 @@ def test_fit_command_bad_input(tmp_path, capsys):
     good.write_text("force [pN], turns, extension [um]\n0.5, 1, 0.6\n")
     assert main(["fit", str(good), "--bound", "radius=3nm", "--out", str(tmp_path / "y")]) == 2
     assert "LO:HI" in capsys.readouterr().err
+
+
+def test_fit_command_malformed_row_is_an_error_not_a_traceback(tmp_path, capsys):
+    """Audit B3: a decimal comma row raised pandas' ParserError out of `supercoil fit`."""
+    path = tmp_path / "dc.csv"
+    path.write_text("# rig: 2\nforce [pN],turns,extension [um]\n0.5,1,0.6\n0.5,2,0,61\n")
+    assert main(["fit", str(path), "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "dc.csv, line 4: 4 fields" in err and "decimal comma" in err
+    assert "Traceback" not in err
+
+
+def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
+    """Audit P5: messages name --no-turns-offset, --fix, --start, not keyword arguments."""
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, [0.5] * u.pN, points_per_force=30, seed=4)
+    path = _write(df, tmp_path / "data.csv")
+    out = str(tmp_path / "o")
+    assert main(["fit", str(path), "--vary", "turns_offset", "--out", out]) == 2
+    err = capsys.readouterr().err
+    assert "--no-turns-offset" in err and "--vary" in err
+    assert "fit_turns_offset" not in err and "fit_extension_offset" not in err
+    assert main(["fit", str(path), "--vary", "radius", "--fix", "radius=2nm",
+                 "--out", out]) == 2
+    assert "both in --vary and in --fix" in capsys.readouterr().err
+    assert main(["fit", str(path), "--vary", "radius", "--fix", "length=-1nm",
+                 "--out", out]) == 2
+    err = capsys.readouterr().err
+    assert "--fix length must be finite and positive, got -1 nm" in err
+    assert "Quantity" not in err
+    assert main(["fit", str(path), "--vary", "radius", "--start", "length=700nm",
+                 "--out", out]) == 2
+    assert "--start given for 'length'" in capsys.readouterr().err
+
+
+def test_fit_command_reports_a_molecule_whose_parameters_are_not_determined(
+        tmp_path, capsys, true_dna):
+    """Audit B1: a nicked molecule (flat curve) is reported, and the exit status is 1."""
+    u = sc.ureg
+    forces = [0.3, 0.5, 0.7]
+    df = simulate_rotation_curves(true_dna, forces * u.pN, points_per_force=30, molecules=2,
+                                  seed=1)
+    flat = simulate_rotation_curves(true_dna, forces * u.pN, turns=np.zeros(30), seed=3)
+    df.loc[(df["molecule"] == "m2").to_numpy(), "extension"] = flat["extension"].to_numpy()
+    path = _write(df, tmp_path / "nicked.csv")
+    out = tmp_path / "n"
+    assert main(["fit", str(path), "--out", str(out)]) == 1
+    captured = capsys.readouterr()
+    assert "molecule m2: " in captured.err and "do not determine radius" in captured.err
+    report = (out / "fit_report.txt").read_text()
+    assert "[[Not determined]]" in report
+    m2 = next(line for line in report.splitlines() if line.strip().startswith("m2"))
+    assert "not determined" in m2
+    table = sc.read_csv(out / "fit_molecules.csv")
+    assert list(table["determined"]) == [True, False]
+    assert (out / "fit_molecules.png").stat().st_size > 0

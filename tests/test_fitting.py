@@ -17,6 +17,7 @@ from supercoil.exceptions import (
     ValidityWarning,
 )
 from supercoil.fitting import simulate_rotation_curves
+from supercoil.units import as_turns
 
 FORCES = (0.3, 0.5, 0.7)  # pN: below the denaturation force, so both signs of N are valid
 TRUE_N0 = 0.4  # turns
@@ -315,13 +316,144 @@ def test_no_convergence_is_a_fit_error(data, base):
 def test_singular_jacobian_warns_and_uses_pseudo_inverse(base):
     """Stretched-phase points only: the extension does not depend on r0 there."""
     u = sc.ureg
-    nb = sc.hat.buckling_turns(base, 0.5 * u.pN).m_as("")
+    # as_turns: buckling_turns may be dimensionless or in turn
+    nb = as_turns(sc.hat.buckling_turns(base, 0.5 * u.pN))
     df = simulate_rotation_curves(base, [0.5] * u.pN, turns=np.linspace(-0.6, 0.6, 40) * nb,
                                   noise=2 * u.nm, seed=1)
-    with pytest.warns(FitWarning, match="singular"):
+    with pytest.warns(FitWarning, match="singular.*do not determine radius"):
         r = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"],
                               fit_turns_offset=False)
+    # the determined parameters keep the pseudo-inverse errors; r0 is not determined
     assert np.isfinite(r.stderr["twist_persistence"].m)
+    assert r.stderr["twist_persistence"].m > 0
+    assert r.undetermined == ["radius"]
+    assert np.isinf(r.stderr["radius"].m)
+
+
+def test_undetermined_parameter_gets_infinite_stderr(base):
+    """Audit B1: one force, stretched phase only (|N| <= 3 at 1 pN), only r0 varied.
+
+    Before the fix the pseudo-inverse gave r0 a standard error of exactly 0 nm.
+    """
+    u = sc.ureg
+    df = simulate_rotation_curves(base, [1.0] * u.pN, turns=np.linspace(-3, 3, 40),
+                                  noise=2 * u.nm, seed=1)
+    with pytest.warns(ValidityWarning, match="denatures"), \
+            pytest.warns(FitWarning, match="do not determine radius; its standard error is inf"):
+        r = sc.fit_hat_curves(df, base, vary=["radius"], fit_turns_offset=False)
+    assert not np.isfinite(r.stderr["radius"].m)
+    assert r.undetermined == ["radius"]
+    # the extension offset is determined (the mean extension) and keeps a finite error
+    assert 0 < r.stderr["extension_offset"].m < 2
+    assert np.isnan(r.covariance.loc["radius"]).all()
+    assert np.isnan(r.covariance["radius"]).all()
+    assert np.isfinite(r.covariance.loc["extension_offset", "extension_offset"])
+    text = r.report()
+    radius_row = next(line for line in text.splitlines() if line.strip().startswith("radius"))
+    assert "not determined" in radius_row
+    assert "not determined" in repr(r)
+    frame = r.to_frame()
+    assert np.isinf(frame["radius_stderr"].iloc[0]) and not frame["determined"].iloc[0]
+
+
+def _flat_molecule(base, forces, points, seed):
+    """A nicked molecule: the extension does not change with the turns."""
+    u = sc.ureg
+    flat = simulate_rotation_curves(base, np.array(forces) * u.pN, turns=np.zeros(points),
+                                    noise=5 * u.nm, seed=seed)
+    return flat["extension"].to_numpy()
+
+
+def test_fit_many_marks_a_flat_molecule_as_not_determined(true_dna, base):
+    """Audit B1: a flat curve in fit_many had success True and stderr ~1e-11."""
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, np.array(FORCES) * u.pN, points_per_force=40,
+                                  noise=5 * u.nm, molecules=2, seed=1)
+    flat = (df["molecule"] == "m2").to_numpy()
+    df.loc[flat, "extension"] = _flat_molecule(true_dna, FORCES, 40, seed=3)
+    with pytest.warns(FitWarning, match="molecule m2: .*do not determine radius"):
+        table = sc.fit_many(df, base, vary=["twist_persistence", "radius"])
+    assert list(table["success"]) == [True, True]
+    assert list(table["determined"]) == [True, False]
+    assert np.isfinite(table.loc[0, "radius_stderr"]) and table.loc[0, "radius_stderr"] > 0
+    assert not np.isfinite(table.loc[1, "radius_stderr"])
+    assert "do not determine radius" in table.loc[1, "warnings"]
+
+
+def test_fit_many_reports_the_points_of_a_molecule_rejected_in_preparation(true_dna, base):
+    """Audit S3: 3 points for 4 free parameters was reported with ndata = 0."""
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, np.array(FORCES) * u.pN, points_per_force=30,
+                                  molecules=["a", "b"], seed=2)
+    keep = (df["molecule"] == "a").to_numpy().copy()
+    keep[np.flatnonzero(df["molecule"] == "b")[:3]] = True
+    small = df.loc[keep].reset_index(drop=True)
+    small.attrs = dict(df.attrs)
+    table = sc.fit_many(small, base, vary=["twist_persistence", "radius"])
+    assert list(table["success"]) == [True, False]
+    assert "3 data points cannot determine 4 free parameters" in table.loc[1, "error"]
+    assert list(table["ndata"]) == [90, 3]
+    assert not table.loc[1, "determined"]
+
+
+def test_chi_square_is_in_the_units_of_the_weighting(result, true_dna, base):
+    """Audit B2: chi_square was in m^2 with unit weights while reduced_chi_square used nm^2."""
+    resid = result.residuals.m_as("nm")
+    assert result.chi_square == pytest.approx(np.sum(resid**2), rel=1e-9)  # sigma = 1 nm
+    assert result.chi_square / result.nfree == pytest.approx(result.reduced_chi_square,
+                                                             rel=1e-12)
+    assert result.to_frame()["chi_square"].iloc[0] == pytest.approx(result.chi_square)
+    assert result.residual_rms.m_as("nm") == pytest.approx(
+        np.sqrt(result.reduced_chi_square), rel=1e-9)
+    df = simulate(true_dna, seed=11, sigma_column=True)
+    r = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"])
+    assert r.chi_square == pytest.approx(np.sum((r.residuals.m_as("nm") / NOISE) ** 2),
+                                         rel=1e-9)
+    assert r.chi_square / r.nfree == pytest.approx(r.reduced_chi_square, rel=1e-12)
+
+
+def test_unit_weights_show_the_noise_estimate_not_a_chi_square(result, true_dna, base):
+    """Audit P3: with unit weights the headline is the residual RMS in nm."""
+    import matplotlib.pyplot as plt
+
+    noise = np.sqrt(result.reduced_chi_square)
+    fig = result.plot()
+    title = fig._suptitle.get_text()
+    plt.close(fig)
+    assert f"noise estimate (residual RMS) {noise:.3g} nm" in title
+    assert "chi-square" not in title
+    text = result.report()
+    stats = text.split("[[Fit statistics]]")[1].split("[[Parameters]]")[0]
+    first = next(line for line in stats.splitlines() if "chi" in line or "noise" in line)
+    assert first.strip().startswith(f"noise estimate     = {noise:.4g} nm")
+    assert "nm^2" in stats
+    # with per-point sigma the reduced chi-square is a goodness of fit and stays in the title
+    r = sc.fit_hat_curves(simulate(true_dna, seed=11, sigma_column=True), base,
+                          vary=["twist_persistence", "radius"])
+    fig = r.plot()
+    title = fig._suptitle.get_text()
+    plt.close(fig)
+    assert f"reduced chi-square {r.reduced_chi_square:.3g}" in title
+
+
+def test_messages_print_plain_numbers(data, base):
+    """Audit P5: no np.float64(...) or <Quantity(...)> reprs in messages."""
+    u = sc.ureg
+    with pytest.raises(FitError, match=r"fixed radius must be finite and positive, got -1 nm$"):
+        sc.fit_hat_curves(data, base, vary=["twist_persistence"], fixed={"radius": -1 * u.nm})
+    with pytest.raises(FitError, match=r"lower bound 2\.0 is not below 1\.0$"):
+        sc.fit_hat_curves(data, base, bounds={"turns_offset": (np.float64(2), np.float64(1))})
+
+
+@pytest.mark.parametrize("unit", ["", "dimensionless", "turn"])
+def test_turns_as_plain_numbers_dimensionless_or_turn(data, base, result, unit):
+    """Turns given without unit, as dimensionless or in turn all count turns."""
+    df = data.copy()
+    df.attrs = {"units": dict(data.attrs["units"], turns=unit)}
+    r = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"])
+    for name in result.parameters:
+        assert r.parameters[name].m == pytest.approx(result.parameters[name].m, rel=1e-9)
+    assert r.parameters["turns_offset"].m == pytest.approx(TRUE_N0, abs=0.1)
 
 
 def test_short_tail_data_warn(base):

@@ -141,3 +141,48 @@ def test_check_frame_names_index_rows_for_in_memory_tables():
     df.attrs["units"] = {"force": "pN", "turns": "", "extension": "nm"}
     with pytest.raises(DataError, match=re.escape("row 11, column 'turns': missing value")):
         check_tweezers_frame(df)
+
+
+def test_molecule_labels_are_text_as_written(tmp_path):
+    """Audit B4: labels "1", "01", "1.0" are three molecules, not one."""
+    text = ("molecule, force [pN], turns, extension [um]\n"
+            "1, 0.5, 0, 0.6\n01, 0.5, 0, 0.6\n1.0, 0.5, 0, 0.6\n1, 0.5, 1, 0.6\n")
+    df = sc.read_tweezers_csv(write(tmp_path, text))
+    assert list(df["molecule"]) == ["1", "01", "1.0", "1"]
+    assert df["molecule"].nunique() == 3
+
+
+def test_extra_field_is_a_data_error_with_the_file_line(tmp_path):
+    """Audit B3: pandas' ParserError (wrong line number) becomes a DataError."""
+    text = "# a: 1\nforce [pN], turns, extension [um]\n1, 0, 0.7\n1, 2, 1,68\n"
+    with pytest.raises(DataError, match=r"data\.csv, line 4: 4 fields.*decimal comma"):
+        sc.read_tweezers_csv(write(tmp_path, text))
+
+
+def test_semicolon_file_missing_column_has_a_hint(tmp_path):
+    text = "force [pN];turns;extension [um]\n0.5;1;0.6\n"
+    with pytest.raises(DataError, match=r"missing column 'force'.*hint: the header uses ';'"):
+        sc.read_tweezers_csv(write(tmp_path, text))
+    text = "force (pN), turns, extension (um)\n0.5, 1, 0.6\n"
+    with pytest.raises(DataError, match=r"missing column 'force'.*square brackets"):
+        sc.read_tweezers_csv(write(tmp_path, text))
+
+
+@pytest.mark.parametrize("header", ["turns", "turns [turn]", "turns []", "turns [dimensionless]"])
+def test_turns_header_variants_count_turns(tmp_path, header):
+    df = sc.read_tweezers_csv(write(tmp_path, f"force [pN], {header}, extension [um]\n"
+                                              "0.5, 2.5, 0.6\n"))
+    q = sc.ureg.Quantity(df["turns"].to_numpy(), df.attrs["units"]["turns"] or "dimensionless")
+    assert sc.units.as_turns(q, "turns")[0] == pytest.approx(2.5)
+
+
+def test_non_finite_and_non_positive_messages_print_plain_numbers():
+    """Audit P5: no np.float64(...) reprs in messages."""
+    df = pd.DataFrame({"force": [0.5, -0.5], "turns": [1.0, 2.0], "extension": [600, 600]})
+    df.attrs["units"] = {"force": "pN", "turns": "", "extension": "nm"}
+    with pytest.raises(DataError, match=r"force must be positive, got -0\.5$"):
+        check_tweezers_frame(df)
+    df = pd.DataFrame({"force": [0.5, 0.5], "turns": [1.0, np.inf], "extension": [600, 600]})
+    df.attrs["units"] = {"force": "pN", "turns": "", "extension": "nm"}
+    with pytest.raises(DataError, match=r"non-finite value inf$"):
+        check_tweezers_frame(df)

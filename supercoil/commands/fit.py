@@ -18,7 +18,10 @@ With several molecules (and no ``--global``) each molecule is fitted alone
 (:func:`supercoil.fit_many`, ``--jobs N`` processes) and the command writes
 ``fit_molecules.csv`` (one row per molecule; failed fits are reported there
 and on stderr, they do not stop the batch), ``fit_report.txt`` and
-``fit_molecules.png``; a progress line is printed on stderr.
+``fit_molecules.png``; a progress line is printed on stderr. The exit status
+is 1 when a molecule's fit failed or left a parameter not determined (column
+``determined``), else 0. Error messages name the command's flags
+(``--no-turns-offset``, ``--fix``, ...).
 """
 
 from __future__ import annotations
@@ -42,6 +45,39 @@ def _parse_quantity(text, what):
         return ureg.Quantity(text)
     except Exception as exc:  # pint raises several parser errors
         raise argparse.ArgumentTypeError(f"cannot read {what} {text!r}: {exc}") from None
+
+
+#: library wording -> command-line wording, for error and warning messages
+_CLI_WORDS = (
+    ("(offsets are switched with fit_turns_offset and fit_extension_offset)",
+     "(the offsets are switched off with --no-turns-offset and --no-extension-offset)"),
+    ("fit_turns_offset", "--no-turns-offset"),
+    ("fit_extension_offset", "--no-extension-offset"),
+    ("is both in vary and in fixed", "is both in --vary and in --fix"),
+    ("nothing to fit: vary is empty", "nothing to fit: --vary is empty"),
+    ("start value given for", "--start given for"),
+    ("bounds given for", "--bound given for"),
+    ("fit_many fits each molecule alone:", "without --global each molecule is fitted alone:"),
+    ("sigma must be finite and positive", "--sigma must be finite and positive"),
+    ("the sigma argument", "--sigma"),
+    ("cannot vary ", "--vary: cannot vary "),
+)
+_CLI_PATTERNS = (
+    (r"\bfixed (\w+) must be", r"--fix \1 must be"),
+    (r"\bbounds\[('[^']*')\]", r"--bound \1"),
+    (r"^parameter ('[^']*'): ", r"parameter \1 (--fix/--start/--bound): "),
+)
+
+
+def _cli_text(message):
+    """A library message in the command's terms: flags instead of keyword arguments."""
+    import re
+
+    for old, new in _CLI_WORDS:
+        message = message.replace(old, new)
+    for pattern, new in _CLI_PATTERNS:
+        message = re.sub(pattern, new, message)
+    return message
 
 
 def register(sub):
@@ -100,7 +136,7 @@ def _bounds(items):
 def run(args) -> int:
     from pathlib import Path
 
-    from ..exceptions import ParameterError
+    from ..exceptions import FitError, ParameterError
     from ..fitting import fit_hat_curves
     from ..materials import DNA
     from ..parameters import load_parameters
@@ -130,13 +166,16 @@ def run(args) -> int:
         data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
         molecules = data["molecule"].astype(str).unique() if "molecule" in data.columns else []
         many = len(molecules) > 1 and not args.global_fit
-        if many:
-            table = _run_many(args, data, dna, fixed, bounds, start, options)
-        else:
-            result = fit_hat_curves(data, dna, vary=args.vary, fixed=fixed, bounds=bounds,
-                                    start=start, **options)
+        try:
+            if many:
+                table = _run_many(args, data, dna, fixed, bounds, start, options)
+            else:
+                result = fit_hat_curves(data, dna, vary=args.vary, fixed=fixed, bounds=bounds,
+                                        start=start, **options)
+        except FitError as exc:
+            raise FitError(_cli_text(str(exc))) from exc
     for w in caught:
-        print(f"supercoil fit: warning: {w.message}", file=sys.stderr)
+        print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     if many:
         csv = write_csv(table, out / "fit_molecules.csv")
@@ -147,7 +186,7 @@ def run(args) -> int:
         if not args.no_plot:
             _plot_many(table, args.vary, out / "fit_molecules.png")
             print(f"wrote {out / 'fit_molecules.png'}")
-        return 0 if table["success"].all() else 1
+        return 0 if (table["success"] & table["determined"]).all() else 1
     report = result.report()
     (out / "fit_report.txt").write_text(report + "\n")
     print(report)
@@ -190,6 +229,8 @@ def _run_many(args, data, dna, fixed, bounds, start, options):
 
 
 def _many_report(table, args):
+    import numpy as np
+
     units = table.attrs["units"]
     params = [c for c in table.columns
               if f"{c}_stderr" in table.columns]
@@ -203,20 +244,32 @@ def _many_report(table, args):
     lines.append(head)
     for _, row in table.iterrows():
         if not row["success"]:
-            lines.append(f"    {row['molecule']!s:<12}  FAILED: {row['error']}")
+            lines.append(f"    {row['molecule']!s:<12}  FAILED: {_cli_text(row['error'])}")
             continue
         text = f"    {row['molecule']!s:<12}{row['reduced_chi_square']:>10.4g}"
         for p in params:
-            cell = f"{row[p]:.5g} ± {row[p + '_stderr']:.2g}"
+            err = row[p + "_stderr"]
+            cell = (f"{row[p]:.5g} (not determined)" if np.isinf(err)
+                    else f"{row[p]:.5g} ± {err:.2g}")
             text += f"{cell:>30}"
         lines.append(text)
+    undetermined = table[table["success"] & ~table["determined"]]
+    if len(undetermined):
+        lines.append("[[Not determined]] the data of these molecules do not determine some "
+                     "parameters (stderr inf), e.g. a nicked molecule with a flat curve:")
+        for _, row in undetermined.iterrows():
+            bad = [p for p in params if np.isinf(row[p + "_stderr"])]
+            lines.append(f"    {row['molecule']!s:<12}  {', '.join(bad)}")
     ok = table[table["success"]]
     if len(ok) > 1:
-        lines.append("[[Across molecules]] mean ± standard deviation")
+        lines.append("[[Across molecules]] mean ± standard deviation (molecules whose fit "
+                     "determines the parameter)")
         for p in params:
             if p in args.vary:
-                lines.append(f"    {p:<24}{ok[p].mean():.5g} ± {ok[p].std(ddof=1):.2g} "
-                             f"{units[p]}")
+                vals = ok[p][np.isfinite(ok[p + "_stderr"])]
+                if len(vals) > 1:
+                    lines.append(f"    {p:<24}{vals.mean():.5g} ± {vals.std(ddof=1):.2g} "
+                                 f"{units[p]} ({len(vals)} molecules)")
     return "\n".join(lines)
 
 
@@ -235,8 +288,13 @@ def _plot_many(table, vary, path):
     x = np.arange(len(table))
     for ax, name in zip(axes[0], names, strict=True):
         err = table.get(f"{name}_stderr")
-        ax.errorbar(x[ok], table[name][ok], yerr=None if err is None else err[ok], fmt="o",
+        fin = ok if err is None else ok & np.isfinite(err.to_numpy())
+        ax.errorbar(x[fin], table[name][fin], yerr=None if err is None else err[fin], fmt="o",
                     ms=4, capsize=2)
+        if (ok & ~fin).any():  # not determined: value without an error bar
+            ax.plot(x[ok & ~fin], table[name][ok & ~fin], "x", color="0.4",
+                    label="not determined")
+            ax.legend(fontsize="small")
         for xi in x[~ok]:
             ax.axvline(xi, color="r", alpha=0.3, lw=4)
         ax.set_xticks(x, table["molecule"].astype(str), rotation=90, fontsize="small")
