@@ -194,9 +194,29 @@ def as_turns(value, name: str = "turns") -> np.ndarray | float:
     units = getattr(value, "_units", None)
     if units is None:
         return magnitude(value, U.dimensionless, name)
+    if getattr(value, "_REGISTRY", ureg) is not ureg:
+        raise TypeError(
+            f"argument '{name}' was built with another pint UnitRegistry; "
+            "use supercoil.ureg (the package's single registry)"
+        )
     if units == U.dimensionless._units:
         return _as_float(value._magnitude)
-    return magnitude(value, U.turn, name)
+    if _is_angle(units):  # turn, rad, degree, ...: convert to turns
+        return magnitude(value, U.turn, name)
+    # other dimensionless units (percent, m/mm, ...) are plain ratios of a count
+    return magnitude(value, U.dimensionless, name)
+
+
+_ANGLE_CACHE: dict = {}
+
+
+def _is_angle(units) -> bool:
+    """True if the unit container contains an angle (its root units hold radian)."""
+    hit = _ANGLE_CACHE.get(units)
+    if hit is None:
+        root = ureg.get_root_units(ureg.Unit(units))[1]
+        hit = _ANGLE_CACHE[units] = "radian" in root._units
+    return hit
 
 
 def quantity(mag, unit: pint.Unit) -> pint.Quantity:

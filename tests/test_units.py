@@ -91,3 +91,16 @@ def test_list_of_quantities_and_text_inputs(ureg):
 def test_thermal_flag_must_be_boolean(dna, ureg):
     with pytest.raises(TypeError, match="thermal must be True or False"):
         sc.hat_curve(dna, 1 * ureg.pN, [0.0], thermal="no")
+
+
+def test_turns_from_non_angle_dimensionless_units_are_ratios(ureg):
+    """percent or m/mm are plain ratios of a count, not radians (no 2 pi trap)."""
+    assert as_turns(4000 * ureg.percent) == pytest.approx(40.0)
+    assert as_turns(0.04 * ureg.m / ureg.mm) == pytest.approx(40.0)
+    assert as_turns(2 * np.pi * ureg.rad / ureg.m * ureg.m) == pytest.approx(1.0)
+
+
+def test_turns_from_another_registry_rejected():
+    other = pint.UnitRegistry()
+    with pytest.raises(TypeError, match="another pint UnitRegistry"):
+        as_turns(40 * other.dimensionless)
