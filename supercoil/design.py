@@ -62,7 +62,12 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
 
     ``k(2s) = [sin 2a - alpha'(s) B (L - 2s)(c^3 - 1) / (C c^2)] / (2 r)``,
     ``N(S) = N_0 + (1/2 pi) int_0^S k dS'`` with N_0 from [eq ini] at alpha(0),
-    and ``T(S)`` from [eq tension] at alpha(S/2).
+    and ``T(S)`` from [eq tension] at alpha(S/2). N(S) is evaluated through the
+    linking identity Lk = Tw + Wr [Eq Lk=Tw+Wr] at S = 2s,
+    ``N = (1/pi) int_0^s (omega + tau) ds' + omega(s) (L - 2s) / 2 pi``
+    (equal to the integral of k; its integrand grows only like 1/cos 2a near
+    pi/4 where k grows like 1/cos^2 2a), by cumulative Simpson quadrature
+    (4th order) on the grid.
 
     Feeding the returned table back as ``twist_rate`` of
     :func:`supercoil.rough_helix` (with ``turns = table["turns"][0]``) reproduces
@@ -77,12 +82,17 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     slack_max : Quantity [length], optional
         Last slack of the schedule (default: ``L (1 - 1e-6)``, the whole rod).
     n_points : int
-        Grid size (uniform in s). N(S) is a trapezoid integral on this grid.
+        Grid size (uniform in s), >= 10. N(S) comes from cumulative Simpson
+        quadrature on this grid (error ~ h^4), and the table is meant to be fed
+        back to :func:`supercoil.rough_helix`, which interpolates k linearly
+        between its rows (error ~ h^2). For the paper's sinusoid over S = 50 cm
+        the round trip misses P(s) by 4 % with 10 rows, 25 % with 7, 300 % with 5
+        (and with 3 the helix ends after 36 mm); 2001 rows give 2e-5.
     pitch_derivative : callable, optional
-        ``dP/ds(s)`` (dimensionless Quantity); default: 4th-order finite
+        ``dP/ds(s)`` (dimensionless Quantity, finite); default: 4th-order finite
         differences of ``pitch`` with step 1e-4 (slack_max / 2).
     cos2a_min : float
-        alpha -> pi/4 guard.
+        alpha -> pi/4 guard, in (0, 1).
 
     Returns
     -------
@@ -99,10 +109,21 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     ------
     SingularityError
         If P(s) <= 2 pi r somewhere (alpha >= pi/4), or P is not positive/finite.
+    ValueError
+        slack_max outside (0, L); n_points < 10; a pitch_derivative value that
+        is NaN or infinite (the message names the s); cos2a_min outside (0, 1).
+    TypeError
+        n_points not an integer.
     """
     si = rod.si
     r, L, B, C, mu = (si.radius, si.length, si.bending_rigidity, si.torsional_rigidity,
                       si.friction_coefficient)
+    if isinstance(n_points, bool) or not isinstance(n_points, int | np.integer):
+        raise TypeError(f"n_points must be an integer >= 10, got {n_points!r}")
+    if n_points < 10:
+        raise ValueError(f"n_points must be >= 10 (grid of the schedule: Simpson quadrature "
+                         f"of N(S), linear interpolation of k in rough_helix), got {n_points}")
+    cos2a_min = _sc.check_cos2a_min(cos2a_min)
     S_end = L * (1.0 - 1e-6) if slack_max is None else float(
         magnitude(slack_max, U.m, "slack_max"))
     if not 0 < S_end < L:
@@ -121,6 +142,10 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     else:
         d = magnitude(pitch_derivative(quantity(s, U.m)), U.dimensionless, "pitch_derivative(s)")
         dP = np.broadcast_to(np.asarray(d, float), s.shape)
+        if not np.all(np.isfinite(dP)):
+            i = int(np.flatnonzero(~np.isfinite(dP))[0])
+            raise ValueError(f"pitch_derivative(s) must be finite, got {float(dP[i])!r} at "
+                             f"s = {s[i] * 1e3:.9g} mm")
     out = _dh.schedule(s, P, dP, r, L, B, C, cos2a_min)
     a = out["alpha"]
     omega = _sc.twist_density(a, r, B, C)

@@ -1,9 +1,11 @@
 """Helix geometry with units: thin wrappers over :mod:`supercoil.core.helix_geometry`.
 
 MODEL.md section 1. Every function checks dimensions at the boundary (a wrong
-dimension raises :class:`pint.DimensionalityError` naming the argument),
-converts once to SI floats, calls the float kernel, and attaches units to the
-result. Inputs broadcast like numpy arrays.
+dimension raises :class:`pint.DimensionalityError` naming the argument) and
+values (NaN, inf, a negative radius, pitch or slack, a tilt outside
+[0, pi/2] raise ValueError naming the argument and the limit), converts once
+to SI floats, calls the float kernel, and attaches units to the result.
+Inputs broadcast like numpy arrays.
 """
 
 from __future__ import annotations
@@ -29,15 +31,38 @@ __all__ = [
 ]
 
 
-def _alpha(alpha):
-    return magnitude(alpha, U.rad, "alpha")
+def _finite(x, name, given):
+    a = np.asarray(x, float)
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite, got {given!r}")
+    return a
+
+
+def _alpha(alpha, hi_open=False):
+    """Tilt in rad, finite and in [0, pi/2] (``[0, pi/2)`` with ``hi_open``)."""
+    a = _finite(magnitude(alpha, U.rad, "alpha"), "alpha", alpha)
+    top = np.pi / 2
+    if np.any(a < 0) or np.any(a >= top if hi_open else a > top):
+        raise ValueError(f"alpha must lie in [0, pi/2{')' if hi_open else ']'} (tilt "
+                         f"arctan(2 pi R / P) with R, P > 0; the handedness is the sign of "
+                         f"the turns N, not of alpha), got {alpha!r}")
+    return a if a.ndim else float(a)
 
 
 def _radius(radius):
-    r = magnitude(radius, U.m, "radius")
-    if np.any(np.asarray(r) <= 0):
-        raise ValueError(f"radius must be positive, got {radius}")
-    return r
+    r = _finite(magnitude(radius, U.m, "radius"), "radius", radius)
+    if np.any(r <= 0):
+        raise ValueError(f"radius must be positive, got {radius!r}")
+    return r if r.ndim else float(r)
+
+
+def _length(value, name, positive=True):
+    """A length in m, finite and > 0 (``positive``) or >= 0."""
+    x = _finite(magnitude(value, U.m, name), name, value)
+    if np.any(x <= 0) if positive else np.any(x < 0):
+        raise ValueError(f"{name} must be {'positive' if positive else '>= 0'} (the package "
+                         f"carries the handedness in the sign of N), got {value!r}")
+    return x if x.ndim else float(x)
 
 
 def tilt_angle(radius, pitch):
@@ -53,17 +78,26 @@ def tilt_angle(radius, pitch):
     Returns
     -------
     Quantity [rad]
+        In (0, pi/2).
+
+    Raises
+    ------
+    ValueError
+        radius or pitch not finite or not positive (a negative pitch would give
+        alpha > pi/2; the handedness is the sign of the turns N).
     """
-    return quantity(_g.tilt_angle(_radius(radius), magnitude(pitch, U.m, "pitch")), U.rad)
+    return quantity(_g.tilt_angle(_radius(radius), _length(pitch, "pitch")), U.rad)
 
 
 def pitch_from_tilt(alpha, radius):
-    """Pitch ``P = 2 pi R / tan(alpha)`` (inverse of :func:`tilt_angle`).
+    """Pitch ``P = 2 pi R / tan(alpha)`` (inverse of :func:`tilt_angle`), alpha in [0, pi/2].
 
     Raises
     ------
     SingularityError
         At alpha = 0, where the pitch is infinite (straight strands).
+    ValueError
+        alpha or radius not finite or out of range.
     """
     a = _alpha(alpha)
     if np.any(np.asarray(a) == 0):
@@ -72,8 +106,9 @@ def pitch_from_tilt(alpha, radius):
 
 
 def radius_from_tilt(alpha, pitch):
-    """Radius ``R = P tan(alpha) / (2 pi)``."""
-    return quantity(_g.radius_from_tilt(_alpha(alpha), magnitude(pitch, U.m, "pitch")), U.m)
+    """Radius ``R = P tan(alpha) / (2 pi)``, alpha in [0, pi/2), pitch > 0 (finite)."""
+    a = _alpha(alpha, hi_open=True)
+    return quantity(_g.radius_from_tilt(a, _length(pitch, "pitch")), U.m)
 
 
 def curvature(alpha, radius):
@@ -100,13 +135,18 @@ def torsion_partials(alpha, radius):
 
 def curvature_error(dpitch_ds):
     """Appendix A factor ``e = sqrt(1 + (dP/ds)^2 / 4 pi^2)`` (dimensionless)."""
-    return quantity(_g.curvature_error(magnitude(dpitch_ds, U.dimensionless, "dpitch_ds")),
-                    U.dimensionless)
+    d = _finite(magnitude(dpitch_ds, U.dimensionless, "dpitch_ds"), "dpitch_ds", dpitch_ds)
+    return quantity(_g.curvature_error(d if d.ndim else float(d)), U.dimensionless)
 
 
 def superhelical_turns(alpha, radius, slack):
-    """Superhelical turns ``n = S sin(alpha) / (4 pi R)`` of a uniform double helix."""
-    n = _g.superhelical_turns(_alpha(alpha), _radius(radius), magnitude(slack, U.m, "slack"))
+    """Superhelical turns ``n = S sin(alpha) / (4 pi R)`` of a uniform double helix.
+
+    Unsigned (alpha >= 0, S >= 0): the magnitude of the count; the rod scenes
+    attach sign(N) (see :class:`supercoil.SmoothHelix`).
+    """
+    n = _g.superhelical_turns(_alpha(alpha), _radius(radius),
+                              _length(slack, "slack", positive=False))
     return quantity(n, U.turn)
 
 
@@ -125,7 +165,7 @@ def writhe(alpha, radius, slack, method="exact"):
         ``"one_view"``: the crossing count of one view (tau -> sin(alpha)/R),
         valid only for small alpha.
     """
-    a, r, s = _alpha(alpha), _radius(radius), magnitude(slack, U.m, "slack")
+    a, r, s = _alpha(alpha), _radius(radius), _length(slack, "slack", positive=False)
     if method == "exact":
         wr = _g.writhe_uniform(a, r, s)
     elif method == "one_view":
@@ -146,10 +186,14 @@ def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
     (Lk, Tw, Wr) : tuple of Quantity [turn]
     """
     a, r = _alpha(alpha), _radius(radius)
-    s = magnitude(slack, U.m, "slack")
-    L = magnitude(length, U.m, "length")
-    wh = magnitude(omega_helix, U.per_m, "omega_helix")
-    wt = wh if omega_tail is None else magnitude(omega_tail, U.per_m, "omega_tail")
+    s = _length(slack, "slack", positive=False)
+    L = _length(length, "length")
+    if np.any(np.asarray(s) > np.asarray(L)):
+        raise ValueError(f"slack must not exceed length (S <= L), got S = {slack!r}, "
+                         f"L = {length!r}")
+    wh = _finite(magnitude(omega_helix, U.per_m, "omega_helix"), "omega_helix", omega_helix)
+    wt = wh if omega_tail is None else _finite(
+        magnitude(omega_tail, U.per_m, "omega_tail"), "omega_tail", omega_tail)
     tw = _g.twist_uniform(wh, wt, s, L)
     wr = _g.writhe_uniform(a, r, s)
     return (quantity(tw + wr, U.turn), quantity(tw, U.turn), quantity(wr, U.turn))

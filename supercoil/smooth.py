@@ -11,10 +11,47 @@ import numpy as np
 
 from .core import self_contact as _sc
 from .core import smooth_helix as _sm
+from .exceptions import ValidityError
 from .tables import make_table, provenance
 from .units import U, as_turns, magnitude, quantity
 
 __all__ = ["SmoothHelix", "smooth_helix"]
+
+
+def checked_turns(turns, name="turns"):
+    """Turns N as float(s) (:func:`~supercoil.units.as_turns`), refusing None, NaN and inf.
+
+    Raises
+    ------
+    TypeError
+        If ``turns`` is None or not numeric (as_turns would read None as NaN).
+    ValueError
+        If some value is NaN or infinite ("turns must be finite").
+    """
+    if turns is None:
+        raise TypeError(f"{name} must be a number, an array of numbers or a dimensionless/"
+                        "angle quantity, got None")
+    n = as_turns(turns, name)
+    a = np.asarray(n, float)
+    if not np.all(np.isfinite(a)):
+        bad = a[~np.isfinite(a)].reshape(-1)[0]
+        raise ValueError(f"{name} must be finite, got {float(bad)!r}")
+    return n
+
+
+def check_finite_results(fields, where):
+    """Raise :class:`ValidityError` if a result array has NaN/inf (float range exceeded).
+
+    ``fields`` maps names to arrays in their display units; ``where`` names the
+    inputs (e.g. the turns) for the message.
+    """
+    for name, x in fields.items():
+        x = np.asarray(x, float)
+        if not np.all(np.isfinite(x)):
+            bad = float(x[~np.isfinite(x)].reshape(-1)[0])
+            raise ValidityError(
+                f"result {name!r} is {bad!r} ({where}): the inputs leave the floating-point "
+                "range (e.g. a pitch beyond 1e308); no finite result exists")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -47,7 +84,10 @@ class SmoothHelix:
         ``Tw = omega L / 2 pi``, ``Wr = tau S / 2 pi``, ``Lk = Tw + Wr = N``
         [Eq Lk=Tw+Wr], signed like N (a negative N mirrors the helix).
     superhelical_turns : Quantity [turn]
-        ``S sin(alpha) / (4 pi r)``.
+        ``n = S sin(alpha) / (4 pi r)``, signed like N and the writhe, so that
+        ``Wr = 2 cos(alpha) n`` holds with signs (its magnitude counts the
+        turns of the superhelix; :func:`supercoil.geometry.superhelical_turns`
+        returns that unsigned magnitude).
     """
 
     turns: object
@@ -94,11 +134,13 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
     slack : Quantity [length], scalar or array
         Slack S (rod length in the helix, both strands). Broadcasts with turns.
     cos2a_min : float
-        Singularity guard: ``cos 2 alpha < cos2a_min`` counts as alpha -> pi/4.
+        Singularity guard in (0, 1): ``cos 2 alpha < cos2a_min`` counts as
+        alpha -> pi/4.
 
     Returns
     -------
     SmoothHelix
+        Empty arrays in give empty arrays out.
 
     Raises
     ------
@@ -117,12 +159,21 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
     SingularityError
         When alpha comes within ``cos 2 alpha < cos2a_min`` of pi/4 (large
         |N| r / L): the tension ~ B / (4 r^2 cos 2 alpha) diverges.
+    ValueError
+        turns or slack NaN or infinite ("turns must be finite"), cos2a_min
+        outside (0, 1).
+    TypeError
+        turns None or text.
     """
     si = rod.si
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
-    n = as_turns(turns, "turns")
+    n = checked_turns(turns, "turns")
     S = magnitude(slack, U.m, "slack")
-    st = _sm.smooth_state(n, S, r, L, B, C, cos2a_min)
+    if not np.all(np.isfinite(S)):
+        raise ValueError(f"slack must be finite, got {slack!r}")
+    cos2a_min = _sc.check_cos2a_min(cos2a_min)
+    with np.errstate(over="ignore", divide="ignore"):  # results checked below
+        st = _sm.smooth_state(n, S, r, L, B, C, cos2a_min)
     shape = st["alpha"].shape
     n_b = np.broadcast_to(np.asarray(n, float), shape)
     S_b = np.broadcast_to(np.asarray(S, float), shape)
@@ -131,6 +182,11 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         x = np.asarray(x, float) * scale
         return quantity(float(x) if x.ndim == 0 else x, unit)
 
+    with np.errstate(over="ignore"):
+        check_finite_results({"pitch [mm]": st["pitch"] * 1e3, "omega [1/mm]": st["omega"],
+                              "tension [N]": st["tension"], "torque [N mm]": st["torque"] * 1e3,
+                              "normal_force [N/m]": st["normal_force"]},
+                             f"turns up to {float(np.max(np.abs(n_b), initial=0)):.6g}")
     return SmoothHelix(
         turns=q(n_b, U.turn),
         slack=q(S_b, U.mm, 1e3),

@@ -13,8 +13,9 @@ import numpy as np
 
 from .core import self_contact as _sc
 from .core import twist_spinning as _ts
+from .smooth import check_finite_results, checked_turns
 from .tables import make_table, provenance
-from .units import U, as_turns, magnitude, quantity
+from .units import U, magnitude, quantity
 
 __all__ = ["TwistSpinningHelix", "twist_spinning"]
 
@@ -95,24 +96,36 @@ def twist_spinning(rod, turns, head_tension):
     Raises
     ------
     NoHelixError
-        N = 0, T' < 0, or T' so large that sec(beta) < 1 (the message names it).
+        N = 0 or T' < 0 (or NaN/inf). No T' closes the tails: sec(beta) >= 1
+        holds for every solution (proof in :mod:`supercoil.core.twist_spinning`).
     SingularityError
         alpha within ``cos 2 alpha < 1e-9`` of pi/4.
+    ValueError
+        turns NaN or infinite ("turns must be finite").
+    TypeError
+        turns None or text.
     """
     si = rod.si
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
-    n = np.asarray(as_turns(turns, "turns"), float)
+    n = np.asarray(checked_turns(turns, "turns"), float)
     Tp = np.asarray(magnitude(head_tension, U.N, "head_tension"), float)
     st = _ts.spinning_state(np.abs(n), Tp, r, L, B, C)
     _sc.check_tilt(st["alpha"], "twist-spinning helix")
     shape = st["alpha"].shape
     a0 = np.broadcast_to(_sc.initial_tilt(np.abs(n), r, L, B, C), shape)
-    p0 = 2 * np.pi * r / np.tan(a0)
+    with np.errstate(over="ignore", divide="ignore"):  # results checked below
+        p0 = 2 * np.pi * r / np.tan(a0)
     sign = np.broadcast_to(np.sign(n), shape)
 
     def q(x, unit, scale=1.0):
         x = np.asarray(x, float) * scale
         return quantity(float(x) if x.ndim == 0 else x, unit)
+
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        check_finite_results({"pitch [mm]": st["pitch"] * 1e3,
+                              "pitch_slacking [mm]": p0 * 1e3,
+                              "pitch_increase": st["pitch"] / p0 - 1.0},
+                             "twist_spinning: tiny |N| or huge head_tension")
 
     return TwistSpinningHelix(
         turns=q(np.broadcast_to(n, shape), U.turn),

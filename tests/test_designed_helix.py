@@ -99,3 +99,22 @@ def test_unit_invariance(paper_pitch):
     b = sc.design_twist_schedule(rod_mm, paper_pitch, slack_max=500 * u.mm)
     np.testing.assert_allclose(a["turns"], b["turns"], rtol=1e-12)
     np.testing.assert_allclose(a["tension"], b["tension"], rtol=1e-12)
+
+
+# --- audit fixes: argument checks ---------------------------------------------------
+
+
+@pytest.mark.parametrize("n", [0, 2, 9])
+def test_too_few_points_are_refused(rod57, paper_pitch, n):
+    with pytest.raises(ValueError, match="n_points must be >= 10"):
+        sc.design_twist_schedule(rod57, paper_pitch, n_points=n)
+
+
+def test_non_finite_pitch_derivative_and_guard_are_named(rod57, paper_pitch):
+    with pytest.raises(ValueError, match="pitch_derivative"):
+        sc.design_twist_schedule(rod57, paper_pitch,
+                                 pitch_derivative=lambda s: np.nan * s.m * u.dimensionless)
+    with pytest.raises(ValueError, match="cos2a_min"):
+        sc.design_twist_schedule(rod57, paper_pitch, cos2a_min=np.nan)
+    with pytest.raises(ValueError, match="slack_max"):
+        sc.design_twist_schedule(rod57, paper_pitch, slack_max=np.nan * u.m)

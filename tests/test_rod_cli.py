@@ -43,6 +43,13 @@ def test_smooth_sweep_and_rough_stop(tmp_path):
     assert t["slack"].iloc[-1] == pytest.approx(200.0)
 
 
+def test_rough_stop_prints_the_helix_end_and_where_the_run_stopped(tmp_path, capsys):
+    assert main(["rod", "--turns", "40", "--slack", "20 cm", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    # k = 0: the helix end is known beyond the stop; s_end is where the run stopped
+    assert "s_max = 214.668 mm" in out and "s_end = 100 mm (s_stop)" in out
+
+
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
@@ -52,6 +59,8 @@ def test_smooth_sweep_and_rough_stop(tmp_path):
         (["--turns", "4 m"], "turns"),
         (["--params", "dna", "--turns", "4"], "not an ElasticRod"),
         (["--params", "no_such_set", "--turns", "4"], "unknown parameter set"),
+        (["--turns", "40", "--points", "1"], "n_points must be >= 2"),
+        (["--turns", "nan"], "turns must be finite"),
     ],
 )
 def test_errors_exit_2_with_a_named_reason(tmp_path, capsys, argv, message):

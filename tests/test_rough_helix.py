@@ -244,7 +244,9 @@ def test_twist_rate_forms_agree():
     ref = res[0].profile
     for r in res:
         assert r.method == "ode" and r.end == "s_stop"
-        assert r.s_max.m_as(u.mm) == pytest.approx(250.0, rel=1e-12)
+        # stopped by slack_max / the table's end with k != 0: the helix end is unknown
+        assert r.s_max is None
+        assert r.s_end.m_as(u.mm) == pytest.approx(250.0, rel=1e-12)
         np.testing.assert_allclose(r.profile["alpha"], ref["alpha"], atol=1e-9)
         np.testing.assert_allclose(r.profile["turns"], ref["turns"], rtol=1e-12)
 
@@ -338,3 +340,202 @@ def test_slow_twisting_relaxes_to_the_fixed_point():
     assert res.solver["ode_method"] == "LSODA" and res.end == "s_stop"
     a_star = 0.5 * np.arcsin(2 * rod_a().si.radius * k)
     assert res.profile["alpha"].iloc[-1] == pytest.approx(a_star, rel=1e-3)
+
+
+# --- audit fixes: non-finite twist rates, grids, onsets, argument checks ----------------
+
+
+@pytest.mark.parametrize("k", [np.inf, -np.inf, np.nan])
+def test_non_finite_constant_twist_rate_is_refused(k):
+    with pytest.raises(ValueError, match="twist_rate must be finite"):
+        sc.rough_helix(rod_a(), 40, twist_rate=k / u.m)
+
+
+@pytest.mark.parametrize("bad", [np.inf, np.nan])
+def test_callable_twist_rate_returning_inf_or_nan_raises_naming_the_slack(bad):
+    """Used to hang (LSODA calling the right side forever) or end in a NoHelixError."""
+    def k(S):
+        return np.where(S.m > 0.2, bad, 0.5) / u.m
+
+    for ode_method in ("LSODA", "DOP853"):
+        with pytest.raises(sc.ValidityError,
+                           match=r"twist_rate\(slack\) returned .* slack S = 0\.2"):
+            sc.rough_helix(rod_a(), 40, twist_rate=k, ode_method=ode_method)
+
+
+def test_ode_right_side_refuses_a_non_finite_rate():
+    r, L, B, C = _si(rod_a())
+    a0 = sco.initial_tilt(40.0, r, L, B, C)
+    with pytest.raises(sc.ValidityError, match="not finite"):
+        rh.integrate(a0, lambda S: np.full_like(np.asarray(S, float), np.inf), r, L, B, C,
+                     ode_method="LSODA")
+
+
+@pytest.mark.parametrize(("slack", "k", "match"), [
+    ([0.0, 0.1, 0.2], [1.0, np.inf, 1.0], "twist_rate must be finite"),
+    ([0.0, 0.1, 0.2], [1.0, np.nan, 1.0], "twist_rate must be finite"),
+    ([0.0, np.nan, 0.2], [1.0, 1.0, 1.0], "slack must be finite"),
+])
+def test_twist_rate_table_with_nan_or_inf_is_refused(slack, k, match):
+    with pytest.raises(ValueError, match=match):
+        sc.rough_helix(rod_a(), 40, twist_rate=(np.array(slack) * u.m, np.array(k) / u.m))
+
+
+def test_twist_rate_table_without_units_and_odd_sequences_are_named():
+    import pandas as pd
+
+    table = pd.DataFrame({"slack": [0.0, 0.5], "twist_rate": [1.0, 1.0]})
+    with pytest.raises(sc.DataError, match=r"attrs\['units'\] for 'slack' and 'twist_rate'"):
+        sc.rough_helix(rod_a(), 40, twist_rate=table)
+    with pytest.raises(ValueError, match=r"\(slack, twist_rate\) pair"):
+        sc.rough_helix(rod_a(), 40, twist_rate=(1, 2, 3))
+
+
+def _tw_wr_reference(rod, N, s_pts):
+    """Tw, Wr at slack 2 s of the k = 0 helix by scipy.quad of the closed form."""
+    from scipy.integrate import quad
+
+    r, L, B, C = _si(rod)
+    a0 = sco.initial_tilt(N, r, L, B, C)
+
+    def alpha(x):
+        return float(sco.alpha_of_y(rh.k0_y_of_s(x, a0, L, B, C)))
+
+    out = []
+    for s in s_pts:
+        om = quad(lambda x: sco.twist_density(alpha(x), r, B, C), 0, s, epsabs=0, epsrel=1e-13)[0]
+        ta = quad(lambda x: np.sin(2 * alpha(x)) / (2 * r), 0, s, epsabs=0, epsrel=1e-13)[0]
+        om_s = sco.twist_density(alpha(s), r, B, C)
+        out.append((om / np.pi + om_s * (L - 2 * s) / (2 * np.pi), ta / np.pi))
+    return np.array(out)
+
+
+def test_twist_and_writhe_do_not_depend_on_the_grid():
+    """A grid starting at s > 0 or a coarse grid gave Tw = 15.83, Wr = 0 at s = 100 mm
+    (trapezoids from s[0] on the user grid); now they are integrals from the head."""
+    rod = rod_a()
+    ref = _tw_wr_reference(rod, 40.0, [0.05, 0.1])
+    off = sc.rough_helix(rod, 40, s=100 * u.mm).profile
+    assert off["twist"].iloc[0] == pytest.approx(ref[1, 0], rel=1e-10)
+    assert off["writhe"].iloc[0] == pytest.approx(ref[1, 1], rel=1e-10)
+    assert off["twist"].iloc[0] == pytest.approx(27.3522, abs=1e-4)
+    coarse = sc.rough_helix(rod, 40, s=[0, 50, 100] * u.mm).profile
+    np.testing.assert_allclose(coarse["twist"].iloc[1:], ref[:, 0], rtol=1e-10)
+    np.testing.assert_allclose(coarse["writhe"].iloc[1:], ref[:, 1], rtol=1e-10)
+    np.testing.assert_allclose(coarse["twist"] + coarse["writhe"], 40, rtol=1e-12)
+
+
+@pytest.mark.parametrize("kw", [{"method": "ode"}, {"twist_rate": 20 / u.m, "slack_max": 0.4 * u.m},
+                                {"twist_rate": -20 / u.m}, {"twist_rate": (
+                                    np.array([0, 0.2, 0.45]) * u.m,
+                                    np.array([2.0, 30.0, -5.0]) / u.m)}])
+def test_linking_number_on_offset_and_coarse_grids(kw):
+    """Lk = Tw + Wr = N(S) to ~1e-9 relative on any grid; values agree between grids."""
+    dense = sc.rough_helix(rod_a(), 40, **kw)
+    s_end = dense.s_end.m_as(u.mm)
+    pts = np.array([0.31, 0.62, 0.93]) * s_end
+    coarse = sc.rough_helix(rod_a(), 40, s=pts * u.mm, **kw).profile
+    for p in (dense.profile, coarse):
+        np.testing.assert_allclose(p["twist"] + p["writhe"], p["turns"], rtol=0, atol=4e-9 * 40)
+    ref = dense.profile
+    for col in ("twist", "writhe", "turns"):
+        np.testing.assert_allclose(coarse[col], np.interp(pts, ref["s"], ref[col]), rtol=1e-4)
+    if isinstance(kw.get("twist_rate"), tuple):  # N(S) of a piecewise-linear table: exact
+        nodes, ks = [0.0, 0.2, 0.45], [2.0, 30.0, -5.0]
+        exact = []
+        for Sj in 2 * pts * 1e-3:
+            x = np.array([v for v in nodes if v < Sj] + [Sj])
+            exact.append(np.trapezoid(np.interp(x, nodes, ks), x))
+        np.testing.assert_allclose(coarse["turns"], 40 + np.array(exact) / (2 * np.pi),
+                                   rtol=1e-13)
+
+
+@pytest.mark.parametrize(("s", "match"), [
+    ([0, 50, 20] * u.mm, "increase strictly"),
+    ([0, 50, 50] * u.mm, "increase strictly"),
+    ([0, np.nan] * u.mm, "s must be finite"),
+    (np.array([]) * u.mm, "at least one point"),
+])
+def test_profile_grid_must_be_finite_and_increasing(s, match):
+    with pytest.raises(ValueError, match=match):
+        sc.rough_helix(rod_a(), 40, s=s)
+
+
+def test_onsets_do_not_depend_on_the_output_grid():
+    """n_points = 1 reported slip_onset 212.52 mm (the head dropped, s[0] taken as the
+    onset); the onsets now come from an internal grid from s = 0."""
+    ref = sc.rough_helix(rod_a(), 40)
+    assert ref.slip_onset.m_as(u.mm) == pytest.approx(193.5408695, rel=1e-8)
+    with pytest.raises(ValueError, match="n_points must be >= 2"):
+        sc.rough_helix(rod_a(), 40, n_points=1)
+    for res in (sc.rough_helix(rod_a(), 40, n_points=2),
+                sc.rough_helix(rod_a(), 40, s=[150, 200] * u.mm),
+                sc.rough_helix(rod_a(), 40, s=[195, 196] * u.mm)):
+        assert res.slip_onset.m_as(u.mm) == pytest.approx(ref.slip_onset.m_as(u.mm), rel=1e-10)
+        assert res.curvature_error_onset.m_as(u.mm) == pytest.approx(
+            ref.curvature_error_onset.m_as(u.mm), rel=1e-10)
+
+
+@pytest.mark.parametrize(("kw", "match"), [
+    ({"slack_max": np.nan * u.m, "twist_rate": 1 / u.m}, "slack_max must be > 0"),
+    ({"slack_max": -0.5 * u.m, "twist_rate": 1 / u.m}, "slack_max must be > 0"),
+    ({"slack_max": 0 * u.m}, "slack_max must be > 0"),
+    ({"curvature_tolerance": np.nan}, "curvature_tolerance"),
+    ({"curvature_tolerance": -0.01}, "curvature_tolerance"),
+    ({"cos2a_min": np.nan}, r"cos2a_min must lie in \(0, 1\)"),
+    ({"cos2a_min": 0.0}, r"cos2a_min must lie in \(0, 1\)"),
+    ({"cos2a_min": 1.0}, r"cos2a_min must lie in \(0, 1\)"),
+    ({"method": "ode", "rtol": 0.5}, r"rtol must be finite and lie in \(0, 0.1\]"),
+    ({"method": "ode", "atol": 0.0}, "atol"),
+    ({"n_points": 0}, "n_points"),
+])
+def test_out_of_range_arguments_are_named(kw, match):
+    with pytest.raises(ValueError, match=match):
+        sc.rough_helix(rod_a(), 40, **kw)
+
+
+def test_turns_must_be_a_finite_number():
+    with pytest.raises(ValueError, match="turns must be finite"):
+        sc.rough_helix(rod_a(), np.nan)
+    with pytest.raises(ValueError, match="turns must be finite"):
+        sc.rough_helix(rod_a(), np.inf)
+    with pytest.raises(TypeError, match="turns"):
+        sc.rough_helix(rod_a(), None)
+    with pytest.raises(TypeError, match="n_points"):
+        sc.rough_helix(rod_a(), 40, n_points=10.5)
+
+
+def test_tiny_turns_are_accurate_or_a_named_error():
+    """N_0 = 1e-30: a real, tiny helix (closed form and ODE agree; no cancellation in
+    Phi(c) - Phi(c0)); N_0 = 1e-300: pitch gradients beyond the float range are an
+    error, never a raw RuntimeWarning or an inf in the table."""
+    _, L, B, C = _si(rod_a())
+    cf = sc.rough_helix(rod_a(), 1e-30)
+    ode = sc.rough_helix(rod_a(), 1e-30, method="ode")
+    a0 = cf.alpha0.m_as(u.rad)
+    # small alpha: s_max = (L/2)(B/C)(3/2) y0 with y0 = 2 a0^2
+    assert cf.s_max.m_as(u.m) == pytest.approx(0.5 * L * (B / C) * 3 * a0**2, rel=1e-12)
+    assert ode.s_max.m_as(u.m) == pytest.approx(cf.s_max.m_as(u.m), rel=1e-8)
+    assert np.isfinite(cf.profile.select_dtypes("number").to_numpy()).all()
+    for method in ("closed_form", "ode"):
+        with pytest.raises(sc.SupercoilError):
+            sc.rough_helix(rod_a(), 1e-300, method=method)
+
+
+def test_turns_is_a_quantity_and_s_max_is_the_true_end():
+    ref = sc.rough_helix(rod_a(), 40)
+    assert ref.turns.check("[]") and ref.turns.m_as(u.turn) == 40
+    assert sc.rough_helix(rod_a(), -40 * u.turn).turns.m_as(u.turn) == -40
+    assert ref.s_end == ref.s_max and ref.end == "alpha->0"
+    # k = 0 stopped at slack_max: the end is still known in closed form
+    for method in ("closed_form", "ode"):
+        stop = sc.rough_helix(rod_a(), 40, slack_max=20 * u.cm, method=method)
+        assert stop.end == "s_stop" and stop.s_end.m_as(u.mm) == pytest.approx(100.0)
+        assert stop.s_max.m_as(u.mm) == pytest.approx(ref.s_max.m_as(u.mm), rel=1e-12)
+    # k != 0 stopped at slack_max: the end depends on the twisting beyond the stop
+    k_stop = sc.rough_helix(rod_a(), 40, twist_rate=5 / u.m, slack_max=20 * u.cm)
+    assert k_stop.s_max is None and k_stop.s_end.m_as(u.mm) == pytest.approx(100.0)
+    # k > 0 relaxing to the fixed point: the helix takes the whole rod
+    whole = sc.rough_helix(rod_a(), 40, twist_rate=5 / u.m)
+    assert whole.end == "s_stop" and whole.s_max == whole.s_end
+    assert whole.s_end.m_as(u.m) == pytest.approx(rod_a().si.length / 2, rel=1e-5)

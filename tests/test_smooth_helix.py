@@ -189,3 +189,50 @@ def test_normal_force_is_the_contact_multiplier(fig2_rod):
         assert F == pytest.approx(2 * sco.normal_force_paper(a, r, B), rel=1e-12)
         # Kirchhoff rod, free head: F = B sin^4(a) / (r^3 cos 2a)
         assert F == pytest.approx(B * np.sin(a) ** 4 / (r**3 * np.cos(2 * a)), rel=1e-12)
+
+
+# --- audit fixes: empty input, None/NaN turns, signed superhelical turns, guards --------
+
+
+def test_empty_turns_give_empty_results(fig2_rod):
+    h = sc.smooth_helix(fig2_rod, np.array([]), 0.1 * u.m)
+    assert h.alpha.shape == (0,) and h.tension.shape == (0,)
+    assert len(h.to_table()) == 0
+    assert sc.smooth_helix(fig2_rod, np.zeros((0, 3)), [0.1, 0.2, 0.3] * u.m).alpha.shape == (0, 3)
+
+
+@pytest.mark.parametrize(("turns", "exc", "match"), [
+    (None, TypeError, "turns must be a number"),
+    (np.nan, ValueError, "turns must be finite"),
+    ([40, np.inf], ValueError, "turns must be finite"),
+])
+def test_bad_turns_are_named(fig2_rod, turns, exc, match):
+    with pytest.raises(exc, match=match):
+        sc.smooth_helix(fig2_rod, turns, 0.1 * u.m)
+
+
+def test_bad_slack_and_guard_are_named(fig2_rod):
+    with pytest.raises(ValueError, match="slack must be finite"):
+        sc.smooth_helix(fig2_rod, 40, np.nan * u.m)
+    for c in (np.nan, 0.0, 1.0, -1.0):
+        with pytest.raises(ValueError, match=r"cos2a_min must lie in \(0, 1\)"):
+            sc.smooth_helix(fig2_rod, 40, 0.1 * u.m, cos2a_min=c)
+
+
+def test_superhelical_turns_are_signed_like_the_writhe(fig2_rod):
+    h = sc.smooth_helix(fig2_rod, [40, -40], 0.2 * u.m)
+    n = h.superhelical_turns.m_as(u.turn)
+    assert n[0] > 0 and n[1] == -n[0]
+    np.testing.assert_allclose(h.writhe.m_as(u.turn),
+                               2 * np.cos(h.alpha.m_as(u.rad)) * n, rtol=1e-12)
+    unsigned = sc.geometry.superhelical_turns(h.alpha[1], 1 * u.mm, 0.2 * u.m)
+    assert unsigned.m_as(u.turn) == pytest.approx(-n[1], rel=1e-12)
+
+
+def test_tiny_turns_give_the_loose_helix_or_a_named_error(fig2_rod):
+    """alpha ~ 2 pi N r / S for tiny N (bisection reaches subnormal roots); a pitch
+    beyond the float range is an error, not an inf."""
+    a = sc.smooth_helix(fig2_rod, 1e-300, 0.1 * u.m).alpha.m_as(u.rad)
+    assert a == pytest.approx(2 * np.pi * 1e-300 * 1e-3 / 0.1, rel=1e-6)
+    with pytest.raises(sc.ValidityError, match="pitch"):
+        sc.smooth_helix(fig2_rod, 5e-324, 0.1 * u.m)

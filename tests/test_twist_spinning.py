@@ -118,3 +118,25 @@ def test_unit_invariance(rubber_rod):
     b = sc.twist_spinning(rubber_rod, 80 * np.pi * u.rad, 250 * u.mN)
     assert a.beta.magnitude == pytest.approx(b.beta.magnitude, rel=1e-13)
     assert a.pitch.magnitude == pytest.approx(b.pitch.magnitude, rel=1e-13)
+
+
+# --- audit fixes: named errors for bad turns, no raw warnings at edge values -------------
+
+
+def test_turns_must_be_finite(rubber_rod):
+    with pytest.raises(ValueError, match="turns must be finite"):
+        sc.twist_spinning(rubber_rod, np.nan, 0.1 * u.N)
+    with pytest.raises(TypeError, match="turns"):
+        sc.twist_spinning(rubber_rod, None, 0.1 * u.N)
+
+
+def test_edge_values_give_the_limits_not_warnings_or_errors(rubber_rod):
+    # T' -> 0+: 2 T_s / T' overflows, beta is the T' = 0 limit pi/2
+    sp = sc.twist_spinning(rubber_rod, 40, 5e-324 * u.N)
+    assert sp.beta.m_as(u.rad) == np.pi / 2
+    assert sp.alpha == sc.twist_spinning(rubber_rod, 40, 0 * u.N).alpha
+    # |N| -> 0 at finite T': T_s underflows; sec(beta) >= 1 (proved) -> beta -> 0, no error
+    sp = sc.twist_spinning(rubber_rod, 1e-300, 0.1 * u.N)
+    assert 0 <= sp.beta.m_as(u.rad) < 1e-100 and sp.alpha.m_as(u.rad) > 0
+    with pytest.raises(sc.ValidityError, match="pitch"):
+        sc.twist_spinning(rubber_rod, 40, 1e308 * u.N)

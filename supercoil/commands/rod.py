@@ -41,7 +41,8 @@ def register(sub):
                    help="rough: solver (default auto = closed form for k = 0)")
     p.add_argument("--curvature-tolerance", type=float, default=0.01,
                    help="rough: tolerance on |e - 1| for the curvature-error flag (default 0.01)")
-    p.add_argument("--points", type=int, default=801, help="grid size (default 801)")
+    p.add_argument("--points", type=int, default=801,
+                   help="grid size (default 801; rough: >= 2, smooth sweep: >= 1)")
     p.add_argument("--out", type=Path, required=True, help="output folder")
     p.set_defaults(func=run)
 
@@ -78,7 +79,8 @@ def run(args) -> int:
         if args.surface == "smooth":
             return _smooth(rod, turns, slack, args)
         return _rough(rod, turns, slack, args)
-    except pint.DimensionalityError as exc:
+    except (pint.DimensionalityError, ValueError, TypeError) as exc:
+        # named errors (NoHelixError, ...) are ValueErrors too; the message names the input
         print(f"supercoil rod: error: {exc}", file=sys.stderr)
         return 2
 
@@ -170,10 +172,13 @@ def _rough(rod, turns, slack, args) -> int:
     fig.savefig(png, dpi=110)
     plt.close(fig)
 
-    def fmt(q):
-        return "None" if q is None else f"{q.m_as(U.mm):.6g} mm"
+    def fmt(q, none="None"):
+        return none if q is None else f"{q.m_as(U.mm):.6g} mm"
 
-    print(f"alpha0 = {res.alpha0.m_as(U.rad):.6g} rad, s_max = {fmt(res.s_max)} ({res.end}), "
+    # s_max is the helix end (alpha -> 0, or the rod's end); s_end where the run stopped
+    print(f"alpha0 = {res.alpha0.m_as(U.rad):.6g} rad, s_max = "
+          f"{fmt(res.s_max, 'unknown (depends on the twisting beyond the stop)')}, "
+          f"integrated to s_end = {fmt(res.s_end)} ({res.end}), "
           f"slip onset = {fmt(res.slip_onset)}, |e-1| > {args.curvature_tolerance:g} from "
           f"{fmt(res.curvature_error_onset)}")
     print(f"wrote {csv} and {png}")

@@ -21,7 +21,11 @@ The schedule then is
     N(S) = N_0 + (1/2 pi) int_0^S k dS'                      [k]
     T(S) = B/(8 r^2) (1 - c)^2 (2 + c) / c  at s = S/2       [eq tension]
 
-N(S) is integrated with the cumulative trapezoid rule on the (fine) grid.
+:func:`schedule` evaluates N(S) through the linking identity Lk = Tw + Wr at
+S = 2s, ``N = (1/pi) int_0^s (omega + tau) ds' + omega(s) (L - 2s) / 2 pi``
+(whose derivative in S is k / 2 pi), by cumulative Simpson quadrature (4th
+order) on the grid: its integrand grows like 1/cos 2a near pi/4, while k
+itself grows like 1/cos^2 2a.
 """
 
 from __future__ import annotations

@@ -52,9 +52,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ..exceptions import NoHelixError, SingularityError
+from ..exceptions import NoHelixError, SingularityError, ValidityError
 from . import self_contact as sc
-from .helix_geometry import cumulative_strand_integral, curvature, curvature_error, torsion
+from .helix_geometry import curvature, torsion
 
 TWO_PI = 2.0 * np.pi
 
@@ -75,9 +75,23 @@ def phi(y):
     return np.log(2.0 - y) - 1.0 / (1.0 - y)
 
 
+def phi_diff(ya, yb):
+    """``Phi(ya) - Phi(yb)`` without cancellation (accurate also for tiny y, ya ~ yb).
+
+    ``ln((2 - ya)/(2 - yb)) - [1/(1 - ya) - 1/(1 - yb)]
+    = log1p((yb - ya)/(2 - yb)) - (ya - yb) / ((1 - ya)(1 - yb))``; the plain
+    difference of two O(1) values of Phi loses everything below 1e-16 (the
+    k = 0 helix of N_0 = 1e-300 turns would get s_max = 0).
+    """
+    ya = np.asarray(ya, float)
+    yb = np.asarray(yb, float)
+    d = ya - yb
+    return np.log1p(-d / (2.0 - yb)) - d / ((1.0 - ya) * (1.0 - yb))
+
+
 def k0_s_of_alpha(alpha, alpha0, L, B, C):
     """Closed form [eq example k=0]: arclength s (m) at which the tilt equals alpha."""
-    x = phi(sc.y_of_alpha(alpha)) - phi(sc.y_of_alpha(alpha0))
+    x = phi_diff(sc.y_of_alpha(alpha), sc.y_of_alpha(alpha0))
     return -0.5 * L * np.expm1(-(B / C) * x)
 
 
@@ -93,7 +107,8 @@ def k0_y_of_s(s, alpha0, L, B, C):
     and convex in y (``Phi' < 0``, ``Phi'' < 0``), so Newton's method started at
     ``y = y0`` (where q >= 0) decreases monotonically onto the root without
     overshooting; it stops when the steps reach rounding level (about 1e-16
-    absolute in y, the conditioning of the closed form itself).
+    y0 in y, the conditioning of the closed form itself; ``Phi`` differences
+    are taken by :func:`phi_diff`, so a tiny y0 keeps its relative accuracy).
 
     Raises
     ------
@@ -109,15 +124,15 @@ def k0_y_of_s(s, alpha0, L, B, C):
         )
     y0 = float(sc.y_of_alpha(alpha0))
     with np.errstate(divide="ignore"):  # s = L/2 only if s_max rounds to L/2
-        target = phi(y0) - (C / B) * np.log1p(-2.0 * s / L)
-    target = np.where(np.isfinite(target), target, phi(0.0))
-    y = np.full_like(target, y0)
+        drop = -(C / B) * np.log1p(-2.0 * s / L)  # Phi(y(s)) - Phi(y0) >= 0
+    drop = np.where(np.isfinite(drop), drop, phi_diff(0.0, y0))
+    y = np.full_like(drop, y0)
     for _ in range(100):
-        q = target - phi(y)
+        q = drop - phi_diff(y, y0)  # = Phi_target(s) - Phi(y), without cancellation
         dq = 1.0 / (2.0 - y) + 1.0 / (1.0 - y) ** 2  # -Phi'(y) > 0
         step = q / dq
         y_new = np.clip(y - step, 0.0, y0)
-        done = np.all(np.abs(y_new - y) <= 1e-15)
+        done = np.all(np.abs(y_new - y) <= 2.5e-15 * y0)  # relative: tiny y0 too
         y = y_new
         if done:
             break
@@ -200,7 +215,12 @@ class Integration:
 
     def dy(self, s, y):
         s = np.asarray(s, float)
-        return dy_ds(s, y, self._k(2.0 * s), *self._p)
+        k = np.asarray(self._k(2.0 * s), float)
+        if not np.all(np.isfinite(k)):
+            bad = np.flatnonzero(~np.isfinite(np.broadcast_to(k, s.shape)).reshape(-1))[0]
+            raise _nonfinite_rate(float(np.broadcast_to(k, s.shape).reshape(-1)[bad]),
+                                  2.0 * float(np.reshape(s, -1)[bad]))
+        return dy_ds(s, y, k, *self._p)
 
     def _invert(self, sol, x):
         """y with ``sol(y) = x`` on an s(y) segment: Newton (ds/dy = 1/(dy/ds)), safeguarded."""
@@ -227,6 +247,13 @@ class Integration:
 
 def _zero_rate(S):
     return np.zeros_like(np.asarray(S, float))
+
+
+def _nonfinite_rate(k, S):
+    return ValidityError(
+        f"twisting rate k = {k!r} rad/m at slack S = {float(S):.9g} m is not finite: "
+        "[eq da/ds] is undefined there (twist_rate must be finite)"
+    )
 
 
 def _singular(s_sing, cos2a_min):
@@ -294,7 +321,10 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
     else:
 
         def kscalar(S):
-            return float(np.asarray(kfun(S)).reshape(-1)[0])
+            k = float(np.asarray(kfun(S)).reshape(-1)[0])
+            if not math.isfinite(k):  # never integrate on: a NaN/inf k stalls the solver
+                raise _nonfinite_rate(k, S)
+            return k
 
     def ydot(s, y):
         return _dy_ds_scalar(float(s), float(y), kscalar(2.0 * s), r, L, B, C)
@@ -408,53 +438,160 @@ def profile_grid(s_end, n_points=801, n_end=60, include_end=False):
     return grid[grid <= s_end]
 
 
-def profile_columns(s, y, dyds, turns_abs_of_s, r, L, B, C, mu=None):
+#: Gauss-Legendre rules of :func:`cumulative_integrals` (8 points, and 4 for the error estimate).
+_GL8 = np.polynomial.legendre.leggauss(8)
+_GL4 = np.polynomial.legendre.leggauss(4)
+
+
+def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000):
+    """Running integrals ``int_{b_0}^{b_j} f ds`` of a vector integrand at sorted breakpoints.
+
+    Adaptive composite Gauss-Legendre quadrature: every panel between two
+    breakpoints is integrated with 8 points; the 4-point rule gives a
+    (pessimistic) error estimate. A panel is accepted when its estimate is below
+    its share of ``rtol`` times the integral of ``|f|`` (in proportion to its
+    width); the rest are halved, level by level, until the estimates of all
+    panels together are below that budget (so rounding noise of the integrand
+    does not force endless halving), at most ``max_depth`` times and while
+    fewer than ``max_panels`` panels are pending. The 8-point rule is exact for
+    polynomials of degree 15, so smooth integrands converge at once, and a jump
+    of a twisting-rate callable is localised by the halving.
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(x) -> array (m, x.size)``, vectorised over a 1-D array x.
+    breaks : array_like
+        Strictly increasing breakpoints (1-D, at least one).
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, breaks.size)
+        The integrals from ``breaks[0]``, 0 in the first column.
+    """
+    b = np.asarray(breaks, float)
+    if b.size < 2:
+        m = np.asarray(fun(b[:1])).shape[0]
+        return np.zeros((m, b.size))
+    x8, w8 = _GL8
+    x4, w4 = _GL4
+    lo, hi = b[:-1], b[1:]
+    owner = np.arange(lo.size)
+    span = b[-1] - b[0]
+    totals = budget = spent = None
+    for depth in range(max_depth + 1):
+        half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
+        nodes = np.concatenate([(mid[:, None] + half[:, None] * x8).ravel(),
+                                (mid[:, None] + half[:, None] * x4).ravel()])
+        f = np.asarray(fun(nodes), float)
+        m, n8 = f.shape[0], lo.size * 8
+        f8 = f[:, :n8].reshape(m, lo.size, 8)
+        i8 = (f8 @ w8) * half
+        err = np.abs(i8 - (f[:, n8:].reshape(m, lo.size, 4) @ w4) * half)
+        if totals is None:
+            totals = np.zeros((m, b.size - 1))
+            budget = rtol * np.sum((np.abs(f8) @ w8) * half, axis=1)
+            spent = np.zeros(m)
+        ok = np.all(err <= (budget / span)[:, None] * (hi - lo), axis=0)
+        ok |= ~np.all(np.isfinite(i8), axis=0)  # NaN/inf: no refinement helps; caller checks
+        if (depth == max_depth or np.count_nonzero(~ok) > max_panels
+                or np.all(spent + err.sum(axis=1) <= budget)):
+            ok[:] = True
+        np.add.at(totals, (slice(None), owner[ok]), i8[:, ok])
+        spent = spent + np.where(np.isfinite(err), err, 0.0)[:, ok].sum(axis=1)
+        if np.all(ok):
+            break
+        lo, hi, owner = lo[~ok], hi[~ok], owner[~ok]
+        mid = 0.5 * (lo + hi)
+        lo, hi, owner = (np.concatenate([lo, mid]), np.concatenate([mid, hi]),
+                         np.concatenate([owner, owner]))
+    return np.concatenate([np.zeros((totals.shape[0], 1)), np.cumsum(totals, axis=1)], axis=1)
+
+
+def strand_integrals(breaks, y_at, kfun, r, B, C):
+    """``(int omega ds, int tau ds, int k(2s) ds)`` from s = breaks[0] at every breakpoint.
+
+    ``y_at(s)`` gives ``y = 1 - cos 2 alpha`` along the helix and ``kfun(S)``
+    the twisting rate (rad/m) at slack S. With these integrals (one strand,
+    s from the head) [Eq Lk=Tw+Wr] at slack S = 2 s reads
+
+        Tw = (1/pi) int_0^s omega + omega(s) (L - 2 s) / 2 pi,
+        Wr = (1/pi) int_0^s tau,      N = N_0 + (1/pi) int_0^s k(2s') ds',
+
+    and ``Tw + Wr = N`` holds for the exact solution of [eq da/ds] (its
+    derivative is the ODE). See :func:`cumulative_integrals` for the quadrature.
+    """
+
+    def f(x):
+        alpha = sc.alpha_of_y(y_at(x))
+        k = np.broadcast_to(np.asarray(kfun(2.0 * x), float), x.shape)
+        return np.vstack([sc.twist_density(alpha, r, B, C), torsion(alpha, r), k])
+
+    return cumulative_integrals(f, breaks)
+
+
+def profile_columns(s, y, dyds, turns_abs, omega_int, tau_int, r, L, B, C, mu=None):
     """All profile columns (SI floats) from y(s) and dy/ds on a grid s (one strand).
+
+    ``turns_abs`` is N(S) at S = 2 s; ``omega_int`` and ``tau_int`` are
+    ``int_0^s omega ds'`` and ``int_0^s tau ds'`` from the head (see
+    :func:`strand_integrals`), so the grid s may start anywhere and be coarse.
 
     Returns a dict with ``s, alpha, pitch, omega, curvature, torsion, tension,
     normal_force, friction_torque_required, friction_torque_available,
     curvature_error, slack, turns, twist, writhe`` (unsigned; the caller
     attaches sign(N) to omega, twist, writhe, turns and torque).
-    ``friction_torque_available`` is NaN-free: zeros if ``mu`` is None is *not*
-    done here; the caller omits the column instead.
+    ``friction_torque_available`` is only present when ``mu`` is given.
     """
     s = np.asarray(s, float)
     y = np.asarray(y, float)
     alpha = sc.alpha_of_y(y)
-    s2 = np.sqrt(np.clip(y * (2.0 - y), 0.0, None))
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         pitch = np.where(y > 0, TWO_PI * r / np.tan(alpha), np.inf)
-        dpds = np.where(y > 0, -TWO_PI * r * dyds / (s2 * y), np.inf)
-    omega = sc.twist_density(alpha, r, B, C)
-    tau = torsion(alpha, r)
-    wr = cumulative_strand_integral(s, tau)
-    tw = cumulative_strand_integral(s, omega) + omega * (L - 2.0 * s) / TWO_PI
-    out = {
-        "s": s,
-        "slack": 2.0 * s,
-        "alpha": alpha,
-        "pitch": pitch,
-        "omega": omega,
-        "curvature": curvature(alpha, r),
-        "torsion": tau,
-        "tension": sc.tension(alpha, r, B),
-        "normal_force": sc.normal_force(alpha, r, B),
-        "friction_torque_required": sc.friction_torque_required_y(y, dyds, r, B),
-        "curvature_error": curvature_error(dpds),
-        "turns": np.asarray(turns_abs_of_s, float) * np.ones_like(s),
-        "twist": tw,
-        "writhe": wr,
-    }
-    if mu is not None:
-        out["friction_torque_available"] = sc.friction_torque_available(alpha, r, B, mu)
+        omega = sc.twist_density(alpha, r, B, C)
+        tau = torsion(alpha, r)
+        out = {
+            "s": s,
+            "slack": 2.0 * s,
+            "alpha": alpha,
+            "pitch": pitch,
+            "omega": omega,
+            "curvature": curvature(alpha, r),
+            "torsion": tau,
+            "tension": sc.tension(alpha, r, B),
+            "normal_force": sc.normal_force(alpha, r, B),
+            "friction_torque_required": sc.friction_torque_required_y(y, dyds, r, B),
+            "curvature_error": curvature_error_y(y, dyds, r),
+            "turns": np.asarray(turns_abs, float) * np.ones_like(s),
+            "twist": np.asarray(omega_int, float) / np.pi + omega * (L - 2.0 * s) / TWO_PI,
+            "writhe": np.asarray(tau_int, float) / np.pi,
+        }
+        if mu is not None:
+            out["friction_torque_available"] = sc.friction_torque_available(alpha, r, B, mu)
     return out
+
+
+def curvature_error_y(y, dyds, r):
+    """Appendix A factor ``e = sqrt(1 + (dP/ds)^2 / 4 pi^2)`` from y and dy/ds.
+
+    ``dP/ds = -2 pi r (dy/ds) / (y sqrt(y (2 - y)))``, so
+    ``(dP/ds) / 2 pi = -r (dy/ds) / (y sqrt(y (2 - y)))``; ``hypot`` keeps e
+    finite where dP/ds is huge (tiny tilts); ``inf`` at y = 0 (pitch infinite).
+    """
+    y = np.asarray(y, float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        s2 = np.sqrt(np.clip(y * (2.0 - y), 0.0, None))
+        x = np.where(y > 0, r * np.asarray(dyds, float) / s2 / y, np.inf)
+        return np.hypot(1.0, x)
 
 
 def first_crossing(s, g, g_at):
     """First s where ``g`` (tabulated on grid ``s``) turns positive, refined by brentq.
 
     ``g_at(s_scalar)`` evaluates the same function anywhere. Returns None if
-    ``g <= 0`` on the whole grid, ``s[0]`` if already positive there.
+    ``g <= 0`` on the whole grid, ``s[0]`` if already positive there: pass a
+    grid that starts at the head, s = 0 (the caller's internal grid), or the
+    onset of a helix that fails from its head would be reported at ``s[0] > 0``.
     """
     g = np.asarray(g, float)
     idx = np.flatnonzero(g > 0)
@@ -488,8 +625,6 @@ def curvature_error_function(y_at, dy_at, r, tol):
         y = y_at(s)
         if y <= 0:
             return np.inf
-        s2 = np.sqrt(y * (2.0 - y))
-        dpds = -TWO_PI * r * dy_at(s, y) / (s2 * y)
-        return float(curvature_error(dpds) - 1.0 - tol)
+        return float(curvature_error_y(y, dy_at(s, y), r) - 1.0 - tol)
 
     return g

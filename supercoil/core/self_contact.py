@@ -74,7 +74,53 @@ QUARTER_PI = 0.25 * np.pi
 COS2A_MIN = 1e-9
 
 
-def bisect_increasing(fun, lo, hi, n_iter=200, xtol=0.0):
+def check_cos2a_min(cos2a_min):
+    """Return ``cos2a_min`` as a float after checking ``0 < cos2a_min < 1``.
+
+    Raises
+    ------
+    ValueError
+        If it is NaN or outside (0, 1): 0 or less never fires (the tension is
+        returned up to infinity), 1 or more rejects every tilt.
+    """
+    try:
+        c = float(cos2a_min)
+    except (TypeError, ValueError):
+        raise TypeError(f"cos2a_min must be a number in (0, 1), got {cos2a_min!r}") from None
+    if not 0.0 < c < 1.0:
+        raise ValueError(f"cos2a_min must lie in (0, 1) (the alpha -> pi/4 guard on "
+                         f"cos 2 alpha), got {cos2a_min!r}")
+    return c
+
+
+def check_scalar(value, name, lo=-np.inf, hi=np.inf, lo_open=True, hi_open=True, what=""):
+    """Return ``value`` as a finite float after checking it lies in the interval (lo, hi).
+
+    ``lo_open``/``hi_open`` choose open or closed ends; the message names the
+    argument, the interval and ``what`` (why the limit exists).
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number.
+    ValueError
+        If it is NaN, infinite or outside the interval.
+    """
+    if isinstance(value, bool | str | bytes) or value is None:
+        raise TypeError(f"{name} must be a number, got {value!r}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number, got {value!r}") from None
+    below = x <= lo if lo_open else x < lo
+    above = x >= hi if hi_open else x > hi
+    if not np.isfinite(x) or below or above:
+        interval = f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+        raise ValueError(f"{name} must be finite and lie in {interval}{what}, got {value!r}")
+    return x
+
+
+def bisect_increasing(fun, lo, hi, n_iter=1100, xtol=0.0):
     """Vectorised bisection for the sign change of an increasing function.
 
     Parameters
@@ -87,7 +133,10 @@ def bisect_increasing(fun, lo, hi, n_iter=200, xtol=0.0):
         Brackets (broadcast together).
     n_iter : int
         Maximum halvings; stops early once every bracket has collapsed to
-        adjacent floats (or is narrower than ``xtol``).
+        adjacent floats (or is narrower than ``xtol``). The default 1100 lets a
+        bracket [0, x] reach a root anywhere down to the smallest subnormal
+        (about 1075 halvings from 1 to 5e-324, plus 53 for the mantissa); a
+        root near the top of the bracket takes about 55.
 
     Returns
     -------

@@ -29,11 +29,15 @@ TWO_PI = 2.0 * np.pi
 
 
 def check_inputs(turns_abs, slack, L):
-    """Raise :class:`NoHelixError` naming the failed condition (N = 0, S < 0, S >= L)."""
+    """Raise :class:`NoHelixError` naming the failed condition (N = 0, S < 0, S >= L).
+
+    Non-finite N or S raise ValueError ("turns N must be finite").
+    """
     n = np.asarray(turns_abs, float)
     S = np.asarray(slack, float)
-    if not (np.all(np.isfinite(n)) and np.all(np.isfinite(S))):
-        raise NoHelixError("turns N and slack S must be finite")
+    for name, x in (("turns N", n), ("slack S", S)):
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{name} must be finite, got {float(x[~np.isfinite(x)][0])!r}")
     if np.any(S < 0):
         raise NoHelixError(
             f"slack S = {float(np.min(S)):.6g} m < 0: the ends are pulled apart, no helix"
@@ -72,8 +76,8 @@ def smooth_state(turns, slack, r, L, B, C, cos2a_min=sc.COS2A_MIN):
     dict of numpy.ndarray
         ``alpha`` [rad], ``pitch`` [m], ``omega`` [rad/m] (signed), ``curvature``,
         ``torsion`` [1/m], ``tension`` [N], ``torque`` ``C omega`` [N m] (signed),
-        ``normal_force`` [N/m], ``twist``, ``writhe``, ``linking_number`` (signed
-        turns), ``superhelical_turns``.
+        ``normal_force`` [N/m], ``twist``, ``writhe``, ``linking_number`` and
+        ``superhelical_turns`` (signed turns, like N; ``Wr = 2 cos(alpha) n``).
 
     Raises
     ------
@@ -85,8 +89,9 @@ def smooth_state(turns, slack, r, L, B, C, cos2a_min=sc.COS2A_MIN):
     n = np.asarray(turns, float)
     sign = np.sign(n)
     alpha = solve_tilt(np.abs(n), slack, r, L, B, C)
-    sc.check_tilt(alpha, f"smooth helix, |N| r / L up to {np.max(np.abs(n)) * r / L:.3g}",
-                  cos2a_min)
+    if alpha.size:  # (an empty input gives empty results)
+        sc.check_tilt(alpha, f"smooth helix, |N| r / L up to {np.max(np.abs(n)) * r / L:.3g}",
+                      cos2a_min)
     S = np.broadcast_to(np.asarray(slack, float), alpha.shape)
     sign = np.broadcast_to(sign, alpha.shape)
     tau = torsion(alpha, r)
@@ -105,7 +110,7 @@ def smooth_state(turns, slack, r, L, B, C, cos2a_min=sc.COS2A_MIN):
         "twist": sign * twist,
         "writhe": sign * writhe,
         "linking_number": sign * (twist + writhe),
-        "superhelical_turns": S * np.sin(alpha) / (2.0 * TWO_PI * r),
+        "superhelical_turns": sign * S * np.sin(alpha) / (2.0 * TWO_PI * r),
     }
 
 
