@@ -114,6 +114,14 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
         is NaN or infinite (the message names the s); cos2a_min outside (0, 1).
     TypeError
         n_points not an integer.
+
+    Warns
+    -----
+    ValidityWarning
+        No friction coefficient; or the pitch is so small that hard contact fails
+        (Hertz contact half-width above the rod radius, alpha > 0.699 rad, i.e.
+        P < 2 pi r / tan(0.699) = 7.5 r; see
+        :func:`supercoil.core.self_contact.contact_width_ratio`).
     """
     si = rod.si
     r, L, B, C, mu = (si.radius, si.length, si.bending_rigidity, si.torsional_rigidity,
@@ -148,6 +156,10 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
                              f"s = {s[i] * 1e3:.9g} mm")
     out = _dh.schedule(s, P, dP, r, L, B, C, cos2a_min)
     a = out["alpha"]
+    msg = _sc.contact_warning(a, "designed helix, pitch down to "
+                                 f"{float(np.min(out['pitch'])) * 1e3:.6g} mm")
+    if msg:
+        warnings.warn(msg, ValidityWarning, stacklevel=2)
     omega = _sc.twist_density(a, r, B, C)
     cols = {
         "slack": out["slack"] * 1e3,

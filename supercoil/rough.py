@@ -323,6 +323,10 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     ValidityWarning
         When the rod has no friction coefficient (no-slip not checked, the
         ``friction_torque_available`` column is NaN and ``slip_onset`` is None).
+        When hard contact fails somewhere on the helix long before the pi/4
+        singularity: the Hertz contact half-width exceeds the rod radius,
+        ``b / r = sin^2 a / sqrt(cos 2a) > 1`` (alpha > 0.699 rad; see
+        :func:`supercoil.core.self_contact.contact_width_ratio`).
 
     Notes
     -----
@@ -462,6 +466,10 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
         ce_onset = _rh.first_crossing(
             inner, err_in - curvature_tolerance,
             _rh.curvature_error_function(y_at, dy_at, r, curvature_tolerance))
+    msg = _sc.contact_warning(_sc.alpha_of_y(np.concatenate([[_sc.y_of_alpha(alpha0)], y_in])),
+                              f"rough helix, N_0 = {n0:g}, max over [0, s_end]")
+    if msg:
+        warnings.warn(msg, ValidityWarning, stacklevel=2)
     if mu is None:
         warnings.warn(
             "rod.friction_coefficient is None: the no-slip condition [eq friction con] is "

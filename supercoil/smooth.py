@@ -6,12 +6,13 @@ Public unit wrapper over :mod:`supercoil.core.smooth_helix`.
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import numpy as np
 
 from .core import self_contact as _sc
 from .core import smooth_helix as _sm
-from .exceptions import ValidityError
+from .exceptions import ValidityError, ValidityWarning
 from .tables import make_table, provenance
 from .units import U, as_turns, magnitude, quantity
 
@@ -164,6 +165,14 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         outside (0, 1).
     TypeError
         turns None or text.
+
+    Warns
+    -----
+    ValidityWarning
+        Where hard contact fails long before the singularity: the Hertz contact
+        half-width of the strands exceeds the rod radius, ``b / r = sin^2 a /
+        sqrt(cos 2a) > 1`` (alpha > 0.699 rad; derivation and strains in
+        :func:`supercoil.core.self_contact.contact_width_ratio`).
     """
     si = rod.si
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
@@ -187,6 +196,9 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
                               "tension [N]": st["tension"], "torque [N mm]": st["torque"] * 1e3,
                               "normal_force [N/m]": st["normal_force"]},
                              f"turns up to {float(np.max(np.abs(n_b), initial=0)):.6g}")
+    msg = _sc.contact_warning(st["alpha"], "smooth helix")
+    if msg:
+        warnings.warn(msg, ValidityWarning, stacklevel=2)
     return SmoothHelix(
         turns=q(n_b, U.turn),
         slack=q(S_b, U.mm, 1e3),

@@ -8,11 +8,13 @@ the stated energy, what is held fixed, and the T' = 0 limit.
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import numpy as np
 
 from .core import self_contact as _sc
 from .core import twist_spinning as _ts
+from .exceptions import ValidityWarning
 from .smooth import check_finite_results, checked_turns
 from .tables import make_table, provenance
 from .units import U, magnitude, quantity
@@ -104,6 +106,12 @@ def twist_spinning(rod, turns, head_tension):
         turns NaN or infinite ("turns must be finite").
     TypeError
         turns None or text.
+
+    Warns
+    -----
+    ValidityWarning
+        Hard contact fails: Hertz contact half-width above the rod radius
+        (alpha > 0.699 rad, see :func:`supercoil.core.self_contact.contact_width_ratio`).
     """
     si = rod.si
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
@@ -127,6 +135,9 @@ def twist_spinning(rod, turns, head_tension):
                               "pitch_increase": st["pitch"] / p0 - 1.0},
                              "twist_spinning: tiny |N| or huge head_tension")
 
+    msg = _sc.contact_warning(st["alpha"], "twist-spinning helix")
+    if msg:
+        warnings.warn(msg, ValidityWarning, stacklevel=2)
     return TwistSpinningHelix(
         turns=q(np.broadcast_to(n, shape), U.turn),
         head_tension=q(np.broadcast_to(Tp, shape), U.N),

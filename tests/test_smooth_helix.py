@@ -1,5 +1,7 @@
 """Case I, smooth surface (MODEL.md s.3): physics checks of supercoil.smooth_helix."""
 
+import warnings
+
 import numpy as np
 import pint
 import pytest
@@ -47,7 +49,9 @@ def test_linking_number_equals_turns(N, frac):
     rod = sc.load_parameters("silicone_rubber_rod")
     L = rod.si.length
     for sign in (1.0, -1.0):
-        h = sc.smooth_helix(rod, sign * N, frac * L * u.m)
+        with warnings.catch_warnings():  # N ~ 300: past hard contact (Hertz warning)
+            warnings.simplefilter("ignore", sc.ValidityWarning)
+            h = sc.smooth_helix(rod, sign * N, frac * L * u.m)
         lk = (h.twist + h.writhe).m_as(u.turn)
         assert lk == pytest.approx(sign * N, rel=1e-12, abs=1e-12)
         assert h.linking_number.m_as(u.turn) == pytest.approx(sign * N, rel=1e-12)
@@ -149,14 +153,20 @@ def test_no_helix_conditions_are_named(fig2_rod, N, S, match):
 
 
 def test_alpha_to_pi_over_4_is_a_named_singularity(fig2_rod):
-    # tension grows without bound as N r / L grows ...
-    T = sc.smooth_helix(fig2_rod, [1e2, 1e4, 1e6], 0.1 * u.m).tension.m_as(u.N)
+    # tension grows without bound as N r / L grows (past alpha = 0.699 rad hard contact
+    # is no longer valid: a ValidityWarning) ...
+    with pytest.warns(sc.ValidityWarning, match="Hertz contact half-width"):
+        T = sc.smooth_helix(fig2_rod, [1e2, 1e4, 1e6], 0.1 * u.m).tension.m_as(u.N)
     assert np.all(np.diff(T) > 0) and T[-1] > 1e3 * T[0]
-    # ... and the pi/4 limit is reported, not returned as inf/NaN
-    with pytest.raises(sc.SingularityError, match=r"pi/4"):
-        sc.smooth_helix(fig2_rod, 1e13, 0.1 * u.m)
-    with pytest.raises(sc.SingularityError, match="alpha"):
-        sc.smooth_helix(fig2_rod, 1e3, 0.1 * u.m, cos2a_min=0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sc.smooth_helix(fig2_rod, [10.0, 100.0], 0.1 * u.m)  # the paper's range: no warning
+        warnings.simplefilter("ignore", sc.ValidityWarning)
+        # ... and the pi/4 limit is reported, not returned as inf/NaN
+        with pytest.raises(sc.SingularityError, match=r"pi/4"):
+            sc.smooth_helix(fig2_rod, 1e13, 0.1 * u.m)
+        with pytest.raises(sc.SingularityError, match="alpha"):
+            sc.smooth_helix(fig2_rod, 1e3, 0.1 * u.m, cos2a_min=0.1)
 
 
 def test_table_convention(fig2_rod):
@@ -236,3 +246,22 @@ def test_tiny_turns_give_the_loose_helix_or_a_named_error(fig2_rod):
     assert a == pytest.approx(2 * np.pi * 1e-300 * 1e-3 / 0.1, rel=1e-6)
     with pytest.raises(sc.ValidityError, match="pitch"):
         sc.smooth_helix(fig2_rod, 5e-324, 0.1 * u.m)
+
+
+def test_hard_contact_validity_limit_is_the_hertz_half_width():
+    """b/r = sin^2 a / sqrt(cos 2a) reaches 1 at cos 2a = 3 - 2 sqrt 2 (alpha = 0.699 rad);
+    the paper's rods stay well below (N = 40, r = 1 mm, L = 56.7 cm: b/r = 0.29)."""
+    from supercoil.core import self_contact as sco
+
+    a_star = 0.5 * np.arccos(3 - 2 * np.sqrt(2))
+    assert a_star == pytest.approx(0.699, abs=5e-4)
+    assert sco.contact_width_ratio(a_star) == pytest.approx(1.0, rel=1e-12)
+    rod = sc.load_parameters("silicone_rubber_rod")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        h = sc.rough_helix(rod, 40)
+    assert sco.contact_width_ratio(h.alpha0.m_as(u.rad)) == pytest.approx(0.29, abs=0.01)
+    n_star = (sco.g_contact(a_star) * rod.si.bending_rigidity / rod.si.torsional_rigidity
+              * rod.si.length / (4 * np.pi * rod.si.radius))
+    with pytest.warns(sc.ValidityWarning, match=r"b = 1\.\d+ r exceeds the limit b = 1 r"):
+        sc.rough_helix(rod, 1.05 * n_star)

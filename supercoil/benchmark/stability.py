@@ -273,7 +273,8 @@ def _rough(rod, method, k, quick):
     u = sc.ureg
     si = rod.si
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
-    loads = np.concatenate([[0.0], _log(1e-9, 1e10, 7 if quick else 30)])
+    # plus the paper's own twist loads (N r / L ~ 0.05-0.1: N = 30-60, r = 1 mm, L = 56.7 cm)
+    loads = np.unique(np.concatenate([[0.0, 0.05, 0.1], _log(1e-9, 1e10, 7 if quick else 30)]))
     fr = _end_fractions(quick)
     out = np.empty((fr.size, loads.size), dtype=object)
     kw = {"method": method}

@@ -74,6 +74,62 @@ QUARTER_PI = 0.25 * np.pi
 COS2A_MIN = 1e-9
 
 
+#: Validity limit of hard contact (R = r): the Hertz contact half-width b of the two
+#: strands may not exceed the rod radius, ``b / r <= 1`` (see :func:`contact_width_ratio`).
+CONTACT_WIDTH_MAX = 1.0
+
+
+def contact_width_ratio(alpha):
+    """Hertz half-width of the strand-strand contact over the rod radius, ``b / r``.
+
+    The hard-contact model (R = r) treats the cross-section as rigid against
+    the contact force per length ``F = B sin^4(a) / (r^3 cos 2a)``. Two parallel
+    elastic cylinders of radius r pressed together by F per length touch over a
+    strip of half-width (Hertz line contact, reduced radius r/2, contact modulus
+    ``E* = E / (2 (1 - nu^2))``)
+
+        b^2 = 4 F (r/2) / (pi E*) = 4 (1 - nu^2) F r / (pi E),
+
+    and with ``B = pi E r^4 / 4`` (solid circular rod)
+
+        b / r = sqrt(1 - nu^2) sin^2(a) / sqrt(cos 2a)  <=  sin^2(a) / sqrt(cos 2a),
+
+    independent of E and r; this returns the bound (nu = 0; for rubber,
+    nu ~ 0.4-0.5, b is 13-15 % smaller). Hertz theory, and R = r with it,
+    needs ``b << r``: at ``b = r`` (:data:`CONTACT_WIDTH_MAX`), i.e.
+    ``sin^4 a = cos 2a``, ``cos 2a = 3 - 2 sqrt 2 = 0.172``, alpha = 0.699 rad
+    (40.1 deg), the contact would flatten the strand across its whole diameter
+    and the model has certainly failed. There the bending strain is
+    ``r kappa = sin^2 a = sqrt 2 - 1 = 0.41`` and the surface shear strain of
+    the twist ``r omega = (B/C) (1 - c) tan(2a) / 2 = 2.38 B/C`` (3.3 for
+    silicone rubber, B/C = E/(2G) = 1.39). The paper's own rods already reach
+    ``r omega = 2 pi N r / L = 0.44`` (r = 1 mm, L = 56.7 cm, N = 40; b/r = 0.29)
+    and 1.13 (r = 1.7 mm, L = 142 cm, N = 150; b/r = 0.53) at the head, so a
+    small-strain limit such as r omega < 0.1 would flag every experiment the
+    model is meant to describe; the contact width is the assumption that
+    diverges with the tension at alpha -> pi/4.
+    """
+    a = np.asarray(alpha, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.sin(a) ** 2 / np.sqrt(np.cos(2.0 * a))
+
+
+def contact_warning(alpha, where):
+    """Message for a ValidityWarning if some ``b / r > CONTACT_WIDTH_MAX``, else None."""
+    a = np.asarray(alpha, float)
+    if a.size == 0:
+        return None
+    ratio = contact_width_ratio(a)
+    worst = float(np.max(ratio))
+    if not worst > CONTACT_WIDTH_MAX:
+        return None
+    a_w = float(a.reshape(-1)[int(np.argmax(ratio))])
+    return (f"tilt alpha = {a_w:.6g} rad ({where}): the Hertz contact half-width of the "
+            f"strands b = {worst:.3g} r exceeds the limit b = {CONTACT_WIDTH_MAX:g} r "
+            f"(alpha > 0.699 rad, cos 2 alpha < 0.172): hard contact R = r has failed and "
+            "tension, torque and normal force (~ 1/cos 2 alpha) are not trustworthy")
+
+
 def check_cos2a_min(cos2a_min):
     """Return ``cos2a_min`` as a float after checking ``0 < cos2a_min < 1``.
 
