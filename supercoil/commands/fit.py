@@ -136,7 +136,7 @@ def _bounds(items):
 def run(args) -> int:
     from pathlib import Path
 
-    from supercoil.dna.fitting.fit import fit_hat_curves
+    from supercoil.dna.fitting import fit_hat_curves
     from supercoil.dna.material import DNA
     from supercoil.dna.tweezers import read_tweezers_csv
     from supercoil.exceptions import FitError, ParameterError
@@ -208,7 +208,7 @@ def run(args) -> int:
 
 
 def _run_many(args, data, dna, fixed, bounds, start, options):
-    from supercoil.dna.fitting.fit import fit_many
+    from supercoil.dna.fitting import fit_many
 
     total_width = [0]
 

@@ -5,7 +5,7 @@ import pytest
 
 import supercoil as sc
 from supercoil.cli import main
-from supercoil.dna.fitting.fit import simulate_rotation_curves
+from supercoil.dna.fitting import simulate_rotation_curves
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +27,8 @@ def test_fit_command_single_molecule(tmp_path, capsys, true_dna):
     rc = main(["fit", str(path), "--vary", "twist_persistence", "radius", "--out", str(out)])
     assert rc == 0
     report = (out / "fit_report.txt").read_text()
-    assert "twist_persistence" in report and "reduced chi-square" in report
+    assert "twist_persistence" in report and "noise estimate" in report
+    assert "reduced chi-square" not in report  # unit weights: no chi-square (issue 15)
     assert (out / "fit.png").stat().st_size > 0
     params = sc.read_csv(out / "fit_parameters.csv")
     assert params.attrs["units"]["twist_persistence"] == "nm"
