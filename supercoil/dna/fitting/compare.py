@@ -41,7 +41,7 @@ def _fit_one(data, dna, model, vary, kw):
     m = get_model(model)
     names = [v for v in vary if v not in m.parameters] + list(m.parameters)
     interaction = kw["interaction"] if m.uses_interaction else None
-    spec = prepare(data, dna, vary=names, **dict(kw, interaction=interaction))
+    spec = prepare(data, dna, vary=names, model=m, **dict(kw, interaction=interaction))
     core = run_fit(spec)
     return FitResult(core, spec, data, dna)
 
@@ -100,10 +100,12 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
 
     Parameters
     ----------
-    data, dna, vary, fixed, bounds, sigma, fit_turns_offset, fit_extension_offset, thermal,
+    data, dna, fixed, bounds, sigma, fit_turns_offset, fit_extension_offset, thermal,
     max_nfev, tol
-        As for :func:`fit_hat_curves`. ``vary`` lists DNA fields; each model's
-        own parameters (``model.parameters``) are varied as well.
+        As for :func:`fit_hat_curves`.
+    vary : sequence of str, or dict of model name -> sequence of str
+        DNA fields fitted (for every model, or per model); each model's own
+        parameters (``model.parameters``) are varied as well.
     models : sequence of str or DNAModel
         The models (registered names or instances), at least one.
     interaction : str or Interaction
@@ -137,10 +139,12 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     rows, units, results = [], {}, {}
     for spec in models:
         label = get_model(spec).name
+        names = vary.get(label, DEFAULT_VARY) if isinstance(vary, dict) else vary
         result, error = None, ""
         try:
             with warnings.catch_warnings(record=True):  # re-issued below with the model name
-                result = _fit_one(data, dna, spec, list(vary), kw)
+                result = _fit_one(data, dna, spec, [names] if isinstance(names, str)
+                                  else list(names), kw)
         except SupercoilError as exc:
             error = f"{type(exc).__name__}: {exc}"
         if result is not None:
@@ -152,7 +156,9 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         units.update(u)
     rows.sort(key=lambda r: r.get("aic", np.inf))
     cols, all_units = _assemble(rows, units)
-    prov = provenance(dna, models=[r["model"] for r in rows], vary=list(vary),
+    prov = provenance(dna, models=[r["model"] for r in rows],
+                      vary={k: list(v) for k, v in vary.items()} if isinstance(vary, dict)
+                      else list(vary),
                       thermal=thermal, interaction=str(getattr(interaction, "name", interaction)),
                       criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
     table = make_table(cols, all_units, prov)

@@ -63,8 +63,8 @@ PLAUSIBLE = {
 
 
 def display_factor(unit: str) -> float:
-    """Factor from the SI value (turns for ``"turn"``) to ``unit``."""
-    if unit in ("turn", ""):
+    """Factor from the SI value to ``unit`` (an angle's SI unit is the radian)."""
+    if unit == "":
         return 1.0
     q = ureg.Quantity(1.0, unit)
     return 1.0 / q.to_base_units().magnitude
@@ -137,7 +137,9 @@ class FitParameter:
 
     @property
     def factor(self) -> float:
-        """SI -> display unit."""
+        """SI -> display unit (the turns offset is stored in turns, not radians)."""
+        if self.owner == "offset" and self.unit == "turn":
+            return 1.0
         return display_factor(self.unit)
 
     def quantity(self, si_value=None):
