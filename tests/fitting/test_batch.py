@@ -125,3 +125,42 @@ def test_fit_many_with_a_client_like_executor(many, base):
     other = sc.fit_many(many, base, vary=["twist_persistence", "radius"],
                         executor=_NonStandardExecutor())
     _compare(serial, other)
+
+
+def test_worker_limits_blas_threads_only_in_a_worker_process(many, base, monkeypatch):
+    import os
+
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from supercoil.dna.fitting import batch
+    from supercoil.dna.fitting.fit import prepare
+
+    one = many[many["molecule"] == "m1"].drop(columns="molecule").reset_index(drop=True)
+    one.attrs = dict(many.attrs)
+    spec = prepare(one, base)
+    seen = []
+    real = batch.run_fit
+
+    def spy(s):
+        seen.append(max(i["num_threads"] for i in threadpool_info()))
+        return real(s)
+
+    monkeypatch.setattr(batch, "run_fit", spy)
+    with threadpool_limits(limits=2):
+        assert batch._fit_worker(spec, parent_pid=-1)["ok"]  # "another process"
+        assert batch._fit_worker(spec, parent_pid=os.getpid())["ok"]  # a thread of the parent
+        after = max(i["num_threads"] for i in threadpool_info())
+    assert seen == [1, 2] and after == 2
+
+
+def test_fit_many_splits_a_per_point_sigma_by_molecule(many, base):
+    sigma = np.where(many["molecule"] == "m2", 5.5, 5.0) * sc.ureg.nm
+    ok = many[many["molecule"].isin(["m1", "m2"])].reset_index(drop=True)
+    ok.attrs = dict(many.attrs)
+    table = sc.fit_many(ok, base, sigma=sigma[: len(ok)])
+    for i, lab in enumerate(["m1", "m2"]):
+        sub = ok[ok["molecule"] == lab].drop(columns="molecule").reset_index(drop=True)
+        sub.attrs = dict(ok.attrs)
+        r = sc.fit_hat_curves(sub, base, sigma=(5.5 if lab == "m2" else 5.0) * sc.ureg.nm)
+        assert table.loc[i, "radius_stderr"] == pytest.approx(r.stderr["radius"].m, rel=1e-9)
+    assert table.attrs["provenance"]["weighting"] == "sigma argument"

@@ -21,7 +21,6 @@ from supercoil.dna.interactions import DEFAULT_INTERACTION
 from supercoil.dna.models import DEFAULT_MODEL
 from supercoil.exceptions import SupercoilError
 from supercoil.tables import make_table, provenance
-from supercoil.units import U, magnitude
 
 __all__ = ["fit_many"]
 
@@ -130,8 +129,6 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         parameter names); failures of single fits are reported in the table.
     """
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
-    if sigma is not None:
-        magnitude(sigma, U.m, "sigma")
     whole = RotationData.from_frame(data)
     kw = dict(vary=vary, fixed=fixed, bounds=bounds, start=start,
               fit_turns_offset=fit_turns_offset, fit_extension_offset=fit_extension_offset,
@@ -139,9 +136,8 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
               interaction=interaction)
     groups = whole.groups()
     # validate the arguments once on the whole table as one molecule (names, units, vary)
-    template = prepare(None, dna, sigma=None if sigma is None or np.ndim(
-        getattr(sigma, "magnitude", sigma)) else sigma,
-        rotation=whole.take(np.arange(whole.n), "all"), **kw)
+    template = prepare(None, dna, sigma=sigma, rotation=whole.take(np.arange(whole.n), "all"),
+                       **kw)
     labels = list(whole.labels)
     ndata = {lab: len(g) for lab, g in zip(labels, groups, strict=True)}
     results, pending, done = {}, {}, [0]

@@ -109,6 +109,10 @@ def _check_params(params, rot, model, inter):
                "model": tuple(model.parameters), "interaction": tuple(inter.parameters),
                "offset": ("turns_offset", "extension_offset")}
     for p in params.values():
+        want = "per-molecule" if p.owner == "offset" else "global"
+        if p.shared != want:  # per-force parameters: declared, not implemented yet
+            raise FitError(f"parameter {p.name!r}: shared={p.shared!r} is not supported for "
+                           f"{p.owner} parameters (only {want!r})")
         if p.kind not in allowed.get(p.owner, ()):
             raise FitError(f"parameter {p.name!r}: {p.owner} parameter {p.kind!r} is not one "
                            f"of {list(allowed.get(p.owner, ()))}")
