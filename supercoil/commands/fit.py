@@ -206,6 +206,12 @@ def run(args) -> int:
             _plot_many(table, args.vary, out / "fit_molecules.png")
             print(f"wrote {out / 'fit_molecules.png'}")
         return 0 if (table["success"] & table["determined"]).all() else 1
+    return _write_single(result, out, args)
+
+
+def _write_single(result, out, args):
+    from supercoil.tables import write_csv
+
     report = result.report()
     (out / "fit_report.txt").write_text(report + "\n")
     print(report)

@@ -86,6 +86,18 @@ def _table(labels, results, template, ndata, dna, options):
     return make_table(cols, units, prov)
 
 
+def _collect(pending, finished):
+    """Results of the submitted fits as they complete (``finished(label, result)``)."""
+    order = as_completed(pending) if all(isinstance(f, Future) for f in pending) else list(
+        pending)  # e.g. a dask.distributed Client used directly: not cf.Futures
+    for fut in order:
+        try:
+            res = fut.result()
+        except Exception as exc:  # the executor itself failed (e.g. a worker died)
+            res = {"ok": False, "error": f"{type(exc).__name__}: {exc}"}
+        finished(pending[fut], res)
+
+
 def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=None, sigma=None,
              fit_turns_offset=True, fit_extension_offset=True, thermal=True, max_nfev=None,
              tol=1e-10, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION, executor=None,
@@ -161,14 +173,7 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
             finished(lab, _fit_worker(spec))
         else:
             pending[executor.submit(_fit_worker, spec, pid)] = lab
-    order = as_completed(pending) if all(isinstance(f, Future) for f in pending) else list(
-        pending)  # e.g. a dask.distributed Client used directly: not cf.Futures
-    for fut in order:
-        try:
-            res = fut.result()
-        except Exception as exc:  # the executor itself failed (e.g. a worker died)
-            res = {"ok": False, "error": f"{type(exc).__name__}: {exc}"}
-        finished(pending[fut], res)
+    _collect(pending, finished)
     options = {"fixed": {k: str(v) for k, v in (fixed or {}).items()},
                "bounds": {k: [str(x) for x in v] for k, v in (bounds or {}).items()}}
     return _table(labels, results, template, ndata, dna, options)

@@ -29,6 +29,7 @@ from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.model import HatCurveModel, guess_turns_center
 from supercoil.dna.fitting.parameters import FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
+from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import DEFAULT_MODEL, get_model
 from supercoil.exceptions import (
@@ -299,12 +300,10 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     Parameters
     ----------
     data : pandas.DataFrame
-        Long table in the package convention (as :func:`read_tweezers_csv`
-        returns): ``force``, ``turns``, ``extension``, optional ``molecule``
-        and ``sigma``, magnitudes in the units of ``data.attrs["units"]``.
+        Long table as :func:`read_tweezers_csv` returns: ``force``, ``turns``,
+        ``extension``, optional ``molecule`` and ``sigma`` (``attrs["units"]``).
     dna : DNA
-        Start values of the varied parameters and values of all others
-        (temperature included).
+        Start values of the varied parameters, values of all others.
     vary : sequence of str
         Parameters fitted, shared by all forces and molecules: DNA fields
         (``length``, ``bending_persistence``, ``twist_persistence``,
@@ -319,16 +318,13 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         their declared range. Start values must lie strictly inside, else
         :class:`FitError` names the parameter before any fitting.
     start : dict of str -> Quantity, optional
-        Start values overriding ``dna`` and the automatic offset guesses
-        (turns offset: centre of symmetry of the curves; extension offset:
-        median difference to the start model).
+        Start values overriding ``dna`` and the offset guesses (turns: centre
+        of symmetry of the curves; extension: median difference to the model).
     sigma : Quantity [length], optional
-        Standard error of the extensions (scalar or one per point); overrides
-        a ``sigma`` column. Without either, unit weights are used and the
-        covariance is scaled by the residual variance.
+        Standard error of the extensions (scalar or per point; overrides a
+        ``sigma`` column). Without either: unit weights, errors scaled by the noise.
     fit_turns_offset, fit_extension_offset : bool
-        Fit the per-molecule offsets (default True). Off: held at 0 (or at
-        the value in ``fixed``).
+        Fit the per-molecule offsets (default); off: held at 0 or at ``fixed``.
     thermal : bool
         Thermal hat curve (Moroz-Nelson tail); False for the athermal variant.
     max_nfev : int, optional
@@ -352,11 +348,10 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     DataError
         The table is malformed (names the row and column).
     FitError
-        Unknown or conflicting parameter names, bad bounds, a start value
-        outside its bounds, the model failing at the start (a force without
-        plectoneme equilibrium), or no convergence.
+        Unknown or conflicting names, bad bounds, a start value outside its
+        bounds, the model failing at the start, or no convergence.
     ModelError
-        Unknown model or interaction, or an interaction for a model without one.
+        Unknown model or interaction; an interaction for a model without one.
 
     Warns
     -----
@@ -371,8 +366,6 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         Data points in the short-tail or fully coiled region; negative turns
         above 0.8 pN (denaturation); the model's own validity messages.
     """
-    from supercoil.dna.fitting.result import FitResult
-
     spec = prepare(data, dna, vary, fixed, bounds, start, sigma, fit_turns_offset,
                    fit_extension_offset, thermal, max_nfev, tol, model, interaction, params)
     core = run_fit(spec)

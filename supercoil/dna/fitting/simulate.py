@@ -65,6 +65,14 @@ def _labels(molecules):
     return [str(m) for m in molecules], True
 
 
+def _offsets(turns_offset, extension_offset, n):
+    n0 = np.broadcast_to(np.asarray(as_turns(turns_offset, "turns_offset"), dtype=float), (n,))
+    z0 = np.broadcast_to(np.asarray(magnitude(
+        extension_offset if extension_offset is not None else 0 * U.nm, U.m,
+        "extension_offset"), dtype=float), (n,))
+    return n0, z0
+
+
 def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, noise=None,
                              turns_offset=0.0, extension_offset=None, molecules=None, seed=None,
                              thermal=True, extension_unit="um", sigma_column=False,
@@ -112,11 +120,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
     sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
     labels, has_mol = _labels(molecules)
-    n0 = np.broadcast_to(np.asarray(as_turns(turns_offset, "turns_offset"), dtype=float),
-                         (len(labels),))
-    z0 = np.broadcast_to(np.asarray(magnitude(
-        extension_offset if extension_offset is not None else 0 * U.nm, U.m,
-        "extension_offset"), dtype=float), (len(labels),))
+    n0, z0 = _offsets(turns_offset, extension_offset, len(labels))
     if turns is None:
         nmax = valid_turns_range(dna, quantity(F, U.N), thermal=thermal, model=m,
                                  interaction=inter)
