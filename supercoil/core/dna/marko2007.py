@@ -75,6 +75,7 @@ class MarkoParameters(NamedTuple):
     loop_excess: np.ndarray  # excess free energy eps of the loop, J (0: no loop)
     jump_turns: np.ndarray  # N*: where buckling happens (N_b without loop)
     torque_overshoot: np.ndarray  # stretched torque at N* minus M_b, N m
+    extension_jump: np.ndarray  # z just below N* minus z just above, m (0: no loop)
 
 
 class MarkoPoints(NamedTuple):
@@ -169,7 +170,7 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     zero = np.zeros_like(force)
     if not end_loop:
         return MarkoParameters(force, g, gp, cs, csp, M, Mp, om_s, om_p, zhat, gamma, Nb,
-                               slope, zero, zero, zero, zero, Nb, zero)
+                               slope, zero, zero, zero, zero, Nb, zero, zero)
     R = _loop.loop_radius(gamma, B)
     ell = _TWO_PI * R
     Eb = _loop.loop_bending_energy(R, B)
@@ -182,8 +183,11 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     _check(~(Ls < length - ell), force, "with the end loop the molecule is too short: "
            "the plectoneme at the buckling jump would have negative length")
     w = np.full_like(force, loop_writhe)
+    # [end-loop.md#3-jump]: stretched z at N* minus the looped coexistence's L_s zhat_s
+    om_star = _TWO_PI * Nstar / length
+    jump = length * (gp - 0.5 * kT * csp * om_star**2) - Ls * zhat
     return MarkoParameters(force, g, gp, cs, csp, M, Mp, om_s, om_p, zhat, gamma, Nb, slope,
-                           ell, Eb, w, eps, Nstar, dM)
+                           ell, Eb, w, eps, Nstar, dM, jump)
 
 
 def points(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,

@@ -1,0 +1,140 @@
+"""The plectoneme end loop (docs/theory/end-loop.md): a jump at buckling, G continuous.
+
+Independent references: a numerical minimisation of the loop's excess free
+energy over its radius, finite differences of each branch's free energy for
+the extension jump, the crossing of the two free-energy branches, and the
+L^(-1/2) scaling of the torque overshoot.
+"""
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+import supercoil
+from supercoil.core.dna import end_loop as el
+from supercoil.core.dna import marko2007 as mk
+from supercoil.dna.models.marko2007 import Marko2007
+from supercoil.exceptions import ValidityError
+
+TWO_PI = 2 * np.pi
+
+
+def _dna(A=48.0, C=86.0, L=750.0):
+    u = supercoil.ureg
+    return supercoil.DNA(length=L * u.nm, bending_persistence=A * u.nm,
+                         twist_persistence=C * u.nm, radius=1.75 * u.nm,
+                         temperature=300 * u.K).si
+
+
+def test_loop_radius_minimises_the_excess_free_energy():
+    B, gamma, M = 48e-9 * 4.14e-21, 2.3e-12, 21e-21
+    eps = lambda R: np.pi * B / R + TWO_PI * R * gamma - TWO_PI * M  # noqa: E731
+    res = minimize_scalar(eps, bounds=(1e-10, 1e-7), method="bounded",
+                          options={"xatol": 1e-16})
+    assert el.loop_radius(gamma, B) == pytest.approx(res.x, rel=1e-5)
+    assert el.loop_excess_free_energy(gamma, M, B) == pytest.approx(res.fun, rel=1e-10)
+    assert el.loop_length(gamma, B) == pytest.approx(TWO_PI * res.x, rel=1e-5)
+
+
+def test_loop_off_by_default_gives_no_jump():
+    par = Marko2007().parameters_at(np.array([2e-12]), _dna(), True)
+    assert par.extension_jump[0] == 0 and par.torque_overshoot[0] == 0
+    assert par.jump_turns[0] == par.buckling_turns[0]
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+@pytest.mark.parametrize("F", [1e-12, 2e-12, 4e-12])
+def test_jump_at_buckling_documented_and_G_continuous(F, thermal):
+    dna = _dna()
+    m = Marko2007(end_loop=True)
+    par = m.parameters_at(np.array([F]), dna, thermal)
+    Ns, jump, dM = par.jump_turns[0], par.extension_jump[0], par.torque_overshoot[0]
+    d = 1e-9
+    pt = m.points(np.array([Ns - d, Ns + d]), np.full(2, F), dna, thermal)
+    assert list(pt.phase) == [0, 1]
+    # z drops by the documented jump, the torque by the documented overshoot
+    assert jump > 0 and dM > 0
+    np.testing.assert_allclose(pt.extension[0] - pt.extension[1], jump, rtol=1e-6)
+    np.testing.assert_allclose(pt.torque[0] - pt.torque[1], dM, rtol=1e-6)
+    # G continuous: the change is only the slope times 2d
+    dG = abs(pt.free_energy[1] - pt.free_energy[0])
+    assert dG <= 2 * d * TWO_PI * (par.torque[0] + dM) * 1.01
+    # overshoot closed form: sqrt(2 eps c_s kT / L)
+    cs = par.twist_stiffness[0] * dna.kT
+    assert dM == pytest.approx(np.sqrt(2 * par.loop_excess[0] * cs / dna.length), rel=1e-12)
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+def test_jump_equals_difference_of_branch_derivatives(thermal):
+    """Delta z = -dG_s/dF + dG_c/dF at N*, each branch differentiated numerically."""
+    dna = _dna()
+    L, A, Ct, kT = dna.length, dna.bending_persistence, dna.twist_persistence, dna.kT
+    F = 2.5e-12
+    par = Marko2007(end_loop=True).parameters_at(np.array([F]), dna, thermal)
+    Ns = par.jump_turns[0]
+
+    def G_stretched(f):
+        g, _ = mk.wlc_free_energy_gain(f, A, kT, thermal)
+        cs, _ = mk.stretched_twist_stiffness(f, A, Ct, kT, thermal)
+        return L * (-g + 0.5 * cs * kT * (TWO_PI * Ns / L) ** 2)
+
+    def G_looped(f):
+        p = mk.marko_parameters(np.array([f]), L, A, Ct, 24e-9, kT, thermal, True)
+        return (-(L - p.loop_length) * p.gamma + TWO_PI * p.torque * (Ns - p.loop_writhe)
+                + p.loop_energy)[0]
+
+    h = 1e-5 * F
+    zs = -(G_stretched(F + h) - G_stretched(F - h)) / (2 * h)
+    zc = -(G_looped(F + h) - G_looped(F - h)) / (2 * h)
+    assert G_stretched(F) == pytest.approx(G_looped(F), rel=1e-12)  # N* is the crossing
+    assert zs - zc == pytest.approx(par.extension_jump[0], rel=1e-6)
+
+
+def test_overshoot_scales_as_inverse_root_length_and_shift_as_root_length():
+    F = np.array([2e-12])
+    a = Marko2007(end_loop=True).parameters_at(F, _dna(L=1000.0), True)
+    b = Marko2007(end_loop=True).parameters_at(F, _dna(L=4000.0), True)
+    assert b.torque_overshoot[0] / a.torque_overshoot[0] == pytest.approx(0.5, rel=1e-12)
+    shift = lambda p: p.jump_turns[0] - p.buckling_turns[0]  # noqa: E731
+    assert shift(b) / shift(a) == pytest.approx(2.0, rel=1e-12)
+    # the loop itself does not depend on L
+    assert b.loop_excess[0] == pytest.approx(a.loop_excess[0], rel=1e-14)
+
+
+def test_fully_coiled_with_loop_is_continuous():
+    dna = _dna()
+    m = Marko2007(end_loop=True)
+    F = np.array([1.5e-12])
+    par = m.parameters_at(F, dna, True)
+    B, K = dna.bending_rigidity, 24e-9 * dna.kT
+    n_full = (par.omega_plectoneme * (dna.length - par.loop_length) / TWO_PI)[0]
+    # the coiled loop radius at the boundary equals the coexistence's R*
+    R = el.coiled_loop_radius(n_full, dna.length, B, K)
+    assert TWO_PI * R == pytest.approx(par.loop_length[0], rel=1e-12)
+    N = n_full + par.loop_writhe[0] + np.array([-1e-8, 1e-8])
+    pt = m.points(N, np.full(2, F[0]), dna, True)
+    assert list(pt.phase) == [1, 2]
+    # G continuous: it changes by no more than the slope 2 pi M_b times the 2e-8 turns
+    dG = abs(pt.free_energy[1] - pt.free_energy[0])
+    assert dG <= 2e-8 * TWO_PI * par.torque[0] * 1.001
+    np.testing.assert_allclose(pt.torque[0], pt.torque[1], rtol=1e-7)
+    assert abs(pt.extension[0]) < 1e-15 and pt.extension[1] == 0
+
+
+def test_loop_failures_are_named():
+    with pytest.raises(ValidityError, match="too short"):
+        Marko2007(end_loop=True).parameters_at(np.array([1e-12]), _dna(L=60.0), True)
+    # P > A: the loop's excess free energy 2 pi M_b (sqrt(A/P) - 1) is negative
+    with pytest.raises(ValidityError, match="not positive"):
+        Marko2007(end_loop=True, plectoneme_twist_persistence=60e-9).parameters_at(
+            np.array([2e-12]), _dna(A=48.0, C=120.0), True)
+    with pytest.raises(ValidityError, match="gamma"):
+        el.loop_radius(-1.0, 1e-28)
+
+
+def test_excess_free_energy_ratio_is_force_independent():
+    """eps / (2 pi M_b) = sqrt(A/P) - w for Marko's gamma: a closed-form limit."""
+    dna = _dna()
+    par = Marko2007(end_loop=True).parameters_at(np.array([1, 2, 3, 4]) * 1e-12, dna, True)
+    np.testing.assert_allclose(par.loop_excess / (TWO_PI * par.torque),
+                               np.sqrt(48.0 / 24.0) - 1.0, rtol=1e-12)
