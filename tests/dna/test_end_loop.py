@@ -27,13 +27,24 @@ def _dna(A=48.0, C=86.0, L=750.0):
 
 
 def test_loop_radius_minimises_the_excess_free_energy():
-    B, gamma, M = 48e-9 * 4.14e-21, 2.3e-12, 21e-21
-    eps = lambda R: np.pi * B / R + TWO_PI * R * gamma - TWO_PI * M  # noqa: E731
+    """Minimise bending + gamma l + twist energy - 2 pi M (w + t) over R and t numerically."""
+    B, C, gamma, M = 48e-9 * 4.14e-21, 86e-9 * 4.14e-21, 2.3e-12, 21e-21
+
+    def eps(R):
+        ell = TWO_PI * R
+        inner = minimize_scalar(  # twist turns t stored in the loop
+            lambda t: 0.5 * C * (TWO_PI * t / ell) ** 2 * ell - TWO_PI * M * t,
+            bounds=(0.0, 5.0), method="bounded", options={"xatol": 1e-14})
+        return np.pi * B / R + ell * gamma + inner.fun - TWO_PI * M
+
     res = minimize_scalar(eps, bounds=(1e-10, 1e-7), method="bounded",
                           options={"xatol": 1e-16})
-    assert el.loop_radius(gamma, B) == pytest.approx(res.x, rel=1e-5)
-    assert el.loop_excess_free_energy(gamma, M, B) == pytest.approx(res.fun, rel=1e-10)
-    assert el.loop_length(gamma, B) == pytest.approx(TWO_PI * res.x, rel=1e-5)
+    gl = el.loop_tension(gamma, M, C)
+    assert el.loop_radius(gl, B) == pytest.approx(res.x, rel=1e-4)
+    assert el.loop_excess_free_energy(gl, M, B) == pytest.approx(res.fun, rel=1e-8)
+    assert el.loop_length(gl, B) == pytest.approx(TWO_PI * res.x, rel=1e-4)
+    ell = el.loop_length(gl, B)
+    assert el.loop_twist(M, ell, C) == pytest.approx(M * ell / (TWO_PI * C), rel=1e-14)
 
 
 def test_loop_off_by_default_gives_no_jump():
@@ -80,7 +91,7 @@ def test_jump_equals_difference_of_branch_derivatives(thermal):
 
     def G_looped(f):
         p = mk.marko_parameters(np.array([f]), L, A, Ct, 24e-9, kT, thermal, True)
-        return (-(L - p.loop_length) * p.gamma + TWO_PI * p.torque * (Ns - p.loop_writhe)
+        return (-(L - p.loop_length) * p.gamma + TWO_PI * p.torque * (Ns - p.loop_linking)
                 + p.loop_energy)[0]
 
     h = 1e-5 * F
@@ -106,11 +117,13 @@ def test_fully_coiled_with_loop_is_continuous():
     m = Marko2007(end_loop=True)
     F = np.array([1.5e-12])
     par = m.parameters_at(F, dna, True)
-    B, K = dna.bending_rigidity, 24e-9 * dna.kT
-    n_full = (par.omega_plectoneme * (dna.length - par.loop_length) / TWO_PI)[0]
-    # the coiled loop radius at the boundary equals the coexistence's R*
-    R = el.coiled_loop_radius(n_full, dna.length, B, K)
+    B, K, C = dna.bending_rigidity, 24e-9 * dna.kT, dna.torsional_rigidity
+    twist = (par.loop_linking - par.loop_writhe)[0]
+    n_full = (par.omega_plectoneme * (dna.length - par.loop_length) / TWO_PI)[0] + twist
+    # the coiled state's loop radius and torque at the boundary equal the coexistence's
+    _, M, R = el.coiled_state(n_full, dna.length, B, K, C)
     assert TWO_PI * R == pytest.approx(par.loop_length[0], rel=1e-12)
+    assert M == pytest.approx(par.torque[0], rel=1e-12)
     N = n_full + par.loop_writhe[0] + np.array([-1e-8, 1e-8])
     pt = m.points(N, np.full(2, F[0]), dna, True)
     assert list(pt.phase) == [1, 2]
@@ -132,9 +145,10 @@ def test_loop_failures_are_named():
         el.loop_radius(-1.0, 1e-28)
 
 
-def test_excess_free_energy_ratio_is_force_independent():
-    """eps / (2 pi M_b) = sqrt(A/P) - w for Marko's gamma: a closed-form limit."""
+@pytest.mark.parametrize("thermal", [True, False])
+def test_excess_free_energy_ratio_is_force_independent(thermal):
+    """eps / (2 pi M_b) = sqrt(A/P - A/C) - w with Marko's gamma: a closed-form limit."""
     dna = _dna()
-    par = Marko2007(end_loop=True).parameters_at(np.array([1, 2, 3, 4]) * 1e-12, dna, True)
+    par = Marko2007(end_loop=True).parameters_at(np.array([1, 2, 3, 4]) * 1e-12, dna, thermal)
     np.testing.assert_allclose(par.loop_excess / (TWO_PI * par.torque),
-                               np.sqrt(48.0 / 24.0) - 1.0, rtol=1e-12)
+                               np.sqrt(48.0 / 24.0 - 48.0 / 86.0) - 1.0, rtol=1e-12)

@@ -70,8 +70,9 @@ class MarkoParameters(NamedTuple):
     buckling_turns: np.ndarray  # N_b (tangent point, no loop)
     slope: np.ndarray  # dz/dN in the coexistence for N > 0, m per turn (negative)
     loop_length: np.ndarray  # contour of the end loop, m (0: no loop)
-    loop_energy: np.ndarray  # bending energy of the loop, J (0: no loop)
-    loop_writhe: np.ndarray  # turns absorbed by the loop (0: no loop)
+    loop_energy: np.ndarray  # bending + twist energy of the loop, J (0: no loop)
+    loop_writhe: np.ndarray  # turns absorbed by the loop as writhe (0: no loop)
+    loop_linking: np.ndarray  # writhe + twist turns absorbed by the loop (0: no loop)
     loop_excess: np.ndarray  # excess free energy eps of the loop, J (0: no loop)
     jump_turns: np.ndarray  # N*: where buckling happens (N_b without loop)
     torque_overshoot: np.ndarray  # stretched torque at N* minus M_b, N m
@@ -170,14 +171,18 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     zero = np.zeros_like(force)
     if not end_loop:
         return MarkoParameters(force, g, gp, cs, csp, M, Mp, om_s, om_p, zhat, gamma, Nb,
-                               slope, zero, zero, zero, zero, Nb, zero, zero)
-    R = _loop.loop_radius(gamma, B)
+                               slope, zero, zero, zero, zero, zero, Nb, zero, zero)
+    C = Ct * kT  # bare twist rigidity of the tightly bent loop
+    gl = _loop.loop_tension(gamma, M, C)
+    R = _loop.loop_radius(gl, B)
     ell = _TWO_PI * R
-    Eb = _loop.loop_bending_energy(R, B)
-    eps = _loop.loop_excess_free_energy(gamma, M, B, loop_writhe)
+    # loop energy: bending + twist at the common torque; linking: writhe + twist
+    El = _loop.loop_bending_energy(R, B) + M**2 * ell / (2.0 * C)
+    link = loop_writhe + _loop.loop_twist(M, ell, C)
+    eps = _loop.loop_excess_free_energy(gl, M, B, loop_writhe)
     Nstar = Nb + _loop.buckling_shift(eps, cs * kT, length)
     dM = _loop.torque_overshoot(eps, cs * kT, length)
-    Ls = (om_p * (length - ell) - _TWO_PI * (Nstar - loop_writhe)) / (om_p - om_s)
+    Ls = (om_p * (length - ell) - _TWO_PI * (Nstar - link)) / (om_p - om_s)
     _check(~(Ls > 0.0), force, "with the end loop the molecule is too short: the stretched "
            "state would jump straight to a fully coiled one")
     _check(~(Ls < length - ell), force, "with the end loop the molecule is too short: "
@@ -187,7 +192,7 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     om_star = _TWO_PI * Nstar / length
     jump = length * (gp - 0.5 * kT * csp * om_star**2) - Ls * zhat
     return MarkoParameters(force, g, gp, cs, csp, M, Mp, om_s, om_p, zhat, gamma, Nb, slope,
-                           ell, Eb, w, eps, Nstar, dM, jump)
+                           ell, El, w, link, eps, Nstar, dM, jump)
 
 
 def points(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,
@@ -209,11 +214,11 @@ def points(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     tail = np.full(turns.shape, L)
     phase = np.zeros(turns.shape, np.int8)
     # coexistence of a tail, a plectoneme and (optionally) the end loop
-    ell, w = par.loop_length, par.loop_writhe
+    ell, link = par.loop_length, par.loop_linking
     om_s, om_p = par.omega_stretched, par.omega_plectoneme
-    Ls = (om_p * (L - ell) - _TWO_PI * (n - w)) / (om_p - om_s)
+    Ls = (om_p * (L - ell) - _TWO_PI * (n - link)) / (om_p - om_s)
     co = (n > par.jump_turns) & (Ls > 0.0)
-    Gc = -(L - ell) * par.gamma + _TWO_PI * par.torque * (n - w) + par.loop_energy
+    Gc = -(L - ell) * par.gamma + _TWO_PI * par.torque * (n - link) + par.loop_energy
     G = np.where(co, Gc, G)
     zeta = np.where(co, par.extension_factor, zeta)
     M = np.where(co, par.torque, M)
@@ -222,18 +227,12 @@ def points(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     # fully plectonemic
     full = (n > par.jump_turns) & ~co
     if np.any(full):
-        nf = n - w
+        nf = (n - par.loop_writhe)[full]
         if end_loop:
-            R = _loop.coiled_loop_radius(nf, L, A * kT, K)
-            lp = L - _TWO_PI * R
-            Gf = _loop.loop_bending_energy(R, A * kT) + 0.5 * K * (_TWO_PI * nf) ** 2 / lp
+            Gf, Mf, _ = _loop.coiled_state(nf, L, A * kT, K, Ct * kT)
         else:
-            lp = np.full(turns.shape, L)
-            Gf = 0.5 * K * (_TWO_PI * nf) ** 2 / L
-        G = np.where(full, Gf, G)
-        M = np.where(full, K * _TWO_PI * nf / lp, M)
-        zeta = np.where(full, 0.0, zeta)
-        tail = np.where(full, 0.0, tail)
+            Gf, Mf = 0.5 * K * (_TWO_PI * nf) ** 2 / L, K * _TWO_PI * nf / L
+        G[full], M[full], zeta[full], tail[full] = Gf, Mf, 0.0, 0.0
         phase[full] = FULLY_COILED
     return MarkoPoints(zeta * tail, sign * M, tail, phase, zeta, G)
 
