@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...exceptions import ValidityError
+from supercoil.exceptions import ValidityError
 
 __all__ = [
     "LOOP_WRITHE",

@@ -32,7 +32,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...exceptions import ValidityError
+from supercoil.exceptions import ValidityError
+
 from . import end_loop as _loop
 
 __all__ = [
