@@ -28,7 +28,8 @@ FORCES = np.array([1.0, 2.0, 3.0, 4.0])  # pN
 UNITS = {"set": "", "force": "pN", "buckling_turns": "turn", "jump_turns": "turn",
          "plectoneme_torque": "pN nm", "torque_overshoot": "pN nm", "extension_jump": "nm",
          "loop_radius": "nm", "loop_length": "nm", "loop_excess_free_energy": "pN nm",
-         "loop_excess_free_energy_kT": "", "post_buckling_slope": "nm/turn"}
+         "loop_excess_free_energy_kT": "", "post_buckling_slope": "nm/turn",
+         "jump_over_slope": "turn"}
 
 
 def _dna(A, C):
@@ -55,6 +56,8 @@ def _table():
         rows["loop_excess_free_energy"] += list(p.loop_excess * 1e21)
         rows["loop_excess_free_energy_kT"] += list(p.loop_excess / si.kT)
         rows["post_buckling_slope"] += list(p.slope * 1e9)
+        # the jump in units of the extension lost per later turn (Forth et al. 2008: ~2)
+        rows["jump_over_slope"] += list(p.extension_jump / np.abs(p.slope))
     prov = sc.tables.provenance({"sets": {k: f"A = {a} nm, C = {c} nm, P = 24 nm, L = 750 nm, "
                                           "T = 300 K" for k, (a, c) in SETS.items()}},
                                 model="marko2007 (end_loop=True)")
