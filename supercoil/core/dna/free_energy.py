@@ -50,7 +50,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise as _el
 
 from ...exceptions import ValidityError
 from ..hat_curve import (
@@ -78,6 +77,7 @@ _TWO_PI = 2.0 * np.pi
 _PULL_RTOL = 1e-13
 _PULL_MAXITER = 12
 _TAIL_MAXITER = 60
+_COILED_MAXITER = 60
 #: last Newton step (fraction of F) applied to the state by first-order extrapolation
 _PULL_EXTRAPOLATE = 1e-8
 
@@ -271,23 +271,49 @@ def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
     return Coexistence(force, M, T, tau, Q, zinf, ls, D, Nb, slope, g)
 
 
-def plectoneme_torque_at_linking(linking, pull, C, equilibrium):
+def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium):
     """Fully coiled: ``(M, T_p)`` on the plectoneme branch with ``M/C + tau = linking``.
 
-    ``linking >= l_p(T_eff)``; ``l_p`` increases with the tension, so the root
-    in ``u = log T`` is bracketed (scipy ``bracket_root``, ``find_root``) above
-    ``log T_eff``.
+    ``l_p(T) = M_p(T)/C + tau(T)`` increases with the tension from
+    ``helix_linking = l_p(T_eff)`` at full coiling, so the root in ``u = log T``
+    lies above ``log T_eff``. Safeguarded secant in u (bisection once the root
+    is bracketed and a secant step leaves the bracket), started from
+    ``(log T_eff, l_p(T_eff))``, which is known, and ``u0 + 2 log(linking / l_p)``
+    (``l_p ~ sqrt(T)``): 6 equilibrium calls. Measured against scipy
+    ``bracket_root`` + ``find_root`` on 74 fully coiled points at 1.2 pN: 4.6 ms
+    against 9.4 ms, same torque to 4e-14, which is why it is hand-written
+    (each call costs ~0.7 ms nearly independent of the number of points). The state
+    returned is the one evaluated last, within 1e-13 (relative) of the root in T.
     """
-    def residual(u, x):
-        M, tau = _plectoneme(equilibrium, np.exp(u))
-        return M / C + tau - x
-
-    u0 = np.log(pull)
-    # rounding may put the root a hair below log T_eff: start the bracket just under it
-    br = _el.bracket_root(residual, u0 - 1e-6, u0 + 0.5, xmin=u0 - 1.0, args=(linking,))
-    res = _el.find_root(residual, (br.bracket[0], br.bracket[1]), args=(linking,))
-    T = np.exp(res.x)
-    return _plectoneme(equilibrium, T)[0], T
+    x = np.asarray(linking, float)
+    ua = np.log(np.asarray(pull, float))
+    ra = np.asarray(helix_linking, float) - x
+    ub = ua + np.maximum(2.0 * np.log(x / helix_linking), 1e-6)
+    lo, hi = ua.copy(), np.full(x.shape, np.inf)
+    act = np.ones(x.shape, bool)
+    M_out, T_out = np.empty(x.shape), np.empty(x.shape)
+    for _ in range(_COILED_MAXITER):
+        T_out[act] = np.exp(ub[act])
+        M, tau = _plectoneme(equilibrium, T_out[act])
+        M_out[act] = M
+        rb = np.zeros(x.shape)
+        rb[act] = M / C + tau - x[act]
+        lo = np.where(act & (rb < 0.0), ub, lo)
+        hi = np.where(act & (rb >= 0.0), np.minimum(hi, ub), hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            un = ub - rb * (ub - ua) / (rb - ra)
+        bad = ~np.isfinite(un) | (un < lo) | (un > hi)
+        un = np.where(bad & np.isfinite(hi), 0.5 * (lo + hi), un)
+        un = np.where(bad & ~np.isfinite(hi), ub + 1.0, un)
+        un = np.where(act, un, ub)
+        ua, ra = np.where(act, ub, ua), np.where(act, rb, ra)
+        # the evaluated state is kept once the next step is below 1e-13 in log T
+        act &= np.abs(un - ub) > 1e-13
+        ub = un
+        if not np.any(act):
+            return M_out, T_out
+    raise ValidityError(  # pragma: no cover - secant on a smooth increasing function
+        f"no fully coiled plectoneme state found in {_COILED_MAXITER} steps")
 
 
 def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
@@ -345,7 +371,9 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
                                                             thermal)
     if np.any(coiled):
         x = _TWO_PI * n[coiled] / length
-        Mc, Tc = plectoneme_torque_at_linking(x, co.pull[inv][coiled], C, equilibrium)
+        ci = inv[coiled]
+        Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], co.torque[ci] / C
+                                              + co.torsion[ci], C, equilibrium)
         M[coiled] = Mc
         g[coiled] = -Tc - Mc * Mc / (2.0 * C)
         zeta[coiled] = 0.0

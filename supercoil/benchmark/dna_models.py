@@ -1,0 +1,83 @@
+"""Cost of the DNA models side by side: li-zhao against free-energy.
+
+:func:`model_cost` measures, for each model, at the float level (no units):
+
+* ``per force``: the per-force constants (plectoneme equilibrium, and for
+  free-energy the coexistence at the tail's effective pull, three equilibrium
+  calls), vectorised over ``n_forces`` forces 0.3-10 pN, time per force;
+* ``hat points``: hat-curve points per second at 1.2 pN for ``sizes`` turns
+  values, on two ranges: up to full coiling of the free-energy model
+  (stretched and plectoneme phases, where tweezers data lie) and the range
+  +-25 turns of :func:`supercoil.benchmark.dna.hat_cost` (7 % of it fully
+  coiled for free-energy, where each point needs a root solve on the
+  plectoneme branch: the expensive part).
+
+Rows are a dict of lists (``measurement``, ``model``, ``points``, ``time``,
+``per_item``, ``rate``, ``ratio_to_li_zhao``) for
+:func:`supercoil.tables.make_table`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .timing import best_time
+
+MODELS = ("li-zhao", "free-energy")
+
+
+def _kernels(d):
+    from supercoil.core import hat_curve as hc
+    from supercoil.core import plectoneme as pl
+    from supercoil.core.dna import free_energy as fe
+
+    L, B, C, kT, r0 = d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
+
+    def eq(T):
+        return pl.equilibrium(T, B, C, kT, r0)
+
+    per_force = {
+        "li-zhao": lambda F: hc.hat_parameters(F, L, B, C, kT, r0),
+        "free-energy": lambda F: fe.coexistence(F, L, B, C, kT, eq),
+    }
+    points = {
+        "li-zhao": lambda N, F: hc.hat_curve_points(N, F, L, B, C, kT, r0),
+        "free-energy": lambda N, F: fe.hat_points(N, F, L, B, C, kT, eq),
+    }
+    return per_force, points
+
+
+def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, repeat=3):
+    """Time per force and points per second of both models (dict of lists)."""
+    import supercoil as sc
+
+    d = (dna or sc.load_parameters("dna")).si
+    per_force, points = _kernels(d)
+    rows = {k: [] for k in ("measurement", "model", "points", "time", "per_item", "rate",
+                            "ratio_to_li_zhao")}
+
+    def add(measurement, model, n, t):
+        rows["measurement"].append(measurement)
+        rows["model"].append(model)
+        rows["points"].append(n)
+        rows["time"].append(t)
+        rows["per_item"].append(t / n)
+        rows["rate"].append(n / t)
+        base = rows["time"][-2] if model != MODELS[0] else t
+        rows["ratio_to_li_zhao"].append(t / base)
+
+    forces = np.geomspace(0.3e-12, 10e-12, n_forces)
+    for model in MODELS:
+        add(f"per-force constants, {n_forces} forces 0.3-10 pN", model, n_forces,
+            best_time(lambda m=model: per_force[m](forces), repeat=repeat))
+    co = per_force["free-energy"](np.array([force]))
+    n_full = float(co.buckling_turns[0] + d.length * co.linking_rate[0] / (2 * np.pi))
+    for label, top in ((f"hat points to full coiling (|N| <= {n_full:.1f})", n_full),
+                       ("hat points, |N| <= 25", 25.0)):
+        for n in sizes:
+            N = np.linspace(-top, top, n)
+            F = np.full(n, force)
+            for model in MODELS:
+                add(f"{label} at {force * 1e12:g} pN", model, n,
+                    best_time(lambda m=model, N=N, F=F: points[m](N, F), repeat=repeat))
+    return rows
