@@ -249,3 +249,54 @@ def test_validity_errors_name_the_force(si):
         fe.coexistence(np.array([-1e-12]), L, B, C, kT, eq, thermal=False)
     with pytest.raises(ValueError, match="finite"):
         _points(si, np.nan, 1e-12)
+
+
+# ---------------------------------------------------------------------------
+# the model class on the DNA model interface
+# ---------------------------------------------------------------------------
+
+
+class _HardCore:
+    """The paper's Marko-Siggia interaction through the interaction interface."""
+
+    name = "hard-core"
+
+    def equilibrium(self, tension, dna):
+        return pl.equilibrium(tension, dna.bending_rigidity, dna.torsional_rigidity, dna.kT,
+                              dna.radius)
+
+
+def test_model_class_wraps_the_kernel(si):
+    import pickle
+
+    from supercoil.dna.models.free_energy import FreeEnergy
+
+    dna = sc.load_parameters("dna").si
+    model = pickle.loads(pickle.dumps(FreeEnergy()))
+    assert model.name == "free-energy" and model.has_free_energy(True)
+    assert model.has_free_energy(False)
+    F = np.repeat(FORCES[:3], 5)
+    N = np.tile(np.linspace(-12, 12, 5), 3)
+    p = model.points(N, F, dna, True, _HardCore(), None)
+    q = _points(si, N, F)
+    for name in q._fields:
+        np.testing.assert_array_equal(getattr(p, name), getattr(q, name))
+    np.testing.assert_array_equal(model.free_energy(N, F, dna, True, _HardCore()), q.free_energy)
+    b = model.buckling(FORCES, dna, True, _HardCore())
+    co = fe.coexistence(FORCES, *si[:4], _eq(si))
+    np.testing.assert_array_equal(b.turns, co.buckling_turns)
+    np.testing.assert_array_equal(b.slope, co.slope)
+    assert model.validity(N, F, p, dna, True) == []
+
+
+@pytest.mark.parametrize(("force", "words"), [(0.105e-12, "<= 0"), (0.15e-12, "not converged")])
+def test_model_validity_messages(force, words):
+    from supercoil.dna.models.free_energy import FreeEnergy
+
+    dna = sc.load_parameters("dna").si
+    N = np.array([0.0, 3.0, 8.0])  # stretched, stretched, plectoneme
+    F = np.full(3, force)
+    p = FreeEnergy().points(N, F, dna, True, _HardCore(), None)
+    msgs = FreeEnergy().validity(N, F, p, dna, True)
+    assert len(msgs) == 1 and words in msgs[0] and f"{force * 1e12:.6g} pN" in msgs[0]
+    assert FreeEnergy().validity(N, F, p, dna, False) == []

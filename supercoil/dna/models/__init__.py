@@ -1,0 +1,1 @@
+"""DNA models (stand-in package until the lead's registry lands)."""
