@@ -1,1 +1,1 @@
-"""Float-only DNA kernels."""
+"""."""
