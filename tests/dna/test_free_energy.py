@@ -21,11 +21,12 @@ import pytest
 from scipy.optimize import elementwise
 
 import supercoil as sc
-from supercoil.core import hat_curve as hc
-from supercoil.core import moroz_nelson as mn
-from supercoil.core import plectoneme as pl
 from supercoil.core.dna import free_energy as fe
-from supercoil.exceptions import NoEquilibriumError, ValidityError
+from supercoil.core.dna import hat as hc
+from supercoil.core.dna import moroz_nelson as mn
+from supercoil.core.dna import plectoneme as pl
+from supercoil.dna.interactions.hard_core import HardCore
+from supercoil.exceptions import ModelError, NoEquilibriumError, ValidityError, ValidityWarning
 
 FORCES = np.array([0.3, 0.4, 1.2, 3.0, 5.0, 10.0]) * 1e-12
 H_N, H_F = 1e-3, 1e-5
@@ -256,16 +257,6 @@ def test_validity_errors_name_the_force(si):
 # ---------------------------------------------------------------------------
 
 
-class _HardCore:
-    """The paper's Marko-Siggia interaction through the interaction interface."""
-
-    name = "hard-core"
-
-    def equilibrium(self, tension, dna):
-        return pl.equilibrium(tension, dna.bending_rigidity, dna.torsional_rigidity, dna.kT,
-                              dna.radius)
-
-
 def test_model_class_wraps_the_kernel(si):
     import pickle
 
@@ -277,12 +268,12 @@ def test_model_class_wraps_the_kernel(si):
     assert model.has_free_energy(False)
     F = np.repeat(FORCES[:3], 5)
     N = np.tile(np.linspace(-12, 12, 5), 3)
-    p = model.points(N, F, dna, True, _HardCore(), None)
+    p = model.points(N, F, dna, True, HardCore(), None)
     q = _points(si, N, F)
     for name in q._fields:
         np.testing.assert_array_equal(getattr(p, name), getattr(q, name))
-    np.testing.assert_array_equal(model.free_energy(N, F, dna, True, _HardCore()), q.free_energy)
-    b = model.buckling(FORCES, dna, True, _HardCore())
+    np.testing.assert_array_equal(model.free_energy(N, F, dna, True, HardCore()), q.free_energy)
+    b = model.buckling(FORCES, dna, True, HardCore())
     co = fe.coexistence(FORCES, *si[:4], _eq(si))
     np.testing.assert_array_equal(b.turns, co.buckling_turns)
     np.testing.assert_array_equal(b.slope, co.slope)
@@ -296,7 +287,32 @@ def test_model_validity_messages(force, words):
     dna = sc.load_parameters("dna").si
     N = np.array([0.0, 3.0, 8.0])  # stretched, stretched, plectoneme
     F = np.full(3, force)
-    p = FreeEnergy().points(N, F, dna, True, _HardCore(), None)
+    p = FreeEnergy().points(N, F, dna, True, HardCore(), None)
     msgs = FreeEnergy().validity(N, F, p, dna, True)
     assert len(msgs) == 1 and words in msgs[0] and f"{force * 1e12:.6g} pN" in msgs[0]
     assert FreeEnergy().validity(N, F, p, dna, False) == []
+
+
+def test_model_through_the_public_functions(dna):
+    """Same columns for both models plus free_energy; named error where there is none."""
+    u = sc.ureg
+    F = [0.4, 3.0] * u.pN
+    turns = np.linspace(0, 30, 7)  # positive (no denaturation warning), to full coiling
+    fe_df = sc.hat_curve(dna, F, turns, model="free-energy", thermal=False)
+    lz_df = sc.hat_curve(dna, F, turns, model="li-zhao", thermal=False)
+    assert "free_energy" in fe_df.columns and "free_energy" not in lz_df.columns
+    assert [c for c in fe_df.columns if c != "free_energy"] == list(lz_df.columns)
+    keep = lz_df["phase"] != "fully coiled"
+    for col in ("extension", "torque", "plectoneme_length"):
+        np.testing.assert_array_equal(fe_df[col][keep], lz_df[col][keep])
+    G = sc.free_energy(dna, F, turns, model="free-energy", thermal=False)
+    np.testing.assert_allclose(G.to("pN nm").magnitude, fe_df["free_energy"], rtol=1e-15)
+    with pytest.raises(ModelError, match="li-zhao"):
+        sc.free_energy(dna, F, turns, model="li-zhao")
+    nb_fe = sc.buckling_turns(dna, F, model="free-energy")
+    nb_lz = sc.buckling_turns(dna, F, model="li-zhao")
+    assert np.all(nb_fe < nb_lz)  # the tail's effective pull lowers the buckling torque
+    with pytest.warns(ValidityWarning, match="free-energy model: Moroz-Nelson expansion"):
+        sc.post_buckling_slope(dna, 0.15 * u.pN, model="free-energy")
+    with pytest.warns(ValidityWarning, match="not converged at force 0.15 pN, turns 8"):
+        sc.hat_curve(dna, 0.15 * u.pN, [0.0, 8.0], model="free-energy")

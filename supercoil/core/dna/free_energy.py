@@ -39,7 +39,7 @@ counterpart in this free energy and is omitted (z -> 0 as the tail vanishes);
 tails shorter than ``short_tail_length`` are still flagged.
 
 With ``thermal=False`` every formula reduces, operation for operation, to the
-athermal li-zhao construction of :mod:`supercoil.core.hat_curve`.
+athermal li-zhao construction of :mod:`supercoil.core.dna.hat`.
 
 ``equilibrium`` is a callable ``T -> PlectonemeState`` (1-D SI tensions), e.g.
 ``lambda T: interaction.equilibrium(T, dna)``.
@@ -51,13 +51,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...exceptions import ValidityError
-from ..hat_curve import (
+from supercoil.core.dna.hat import (
     FULLY_COILED,
     PLECTONEME,
     SHORT_TAIL_PERSISTENCE_LENGTHS,
     STRETCHED,
 )
+from supercoil.exceptions import ValidityError
 
 __all__ = [
     "Coexistence",
@@ -317,7 +317,7 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium):
 
 
 def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
-               short_tail_length=None):
+               short_tail_length=None, trial_equilibrium=None):
     """Free-energy hat-curve points, one (turns, force) pair per point.
 
     Parameters
@@ -332,6 +332,11 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         Moroz-Nelson tail; ``False``: the athermal limit (li-zhao athermal).
     short_tail_length : float, optional
         Flag tails shorter than this (m); default ``3 B/kT``.
+    trial_equilibrium : callable, optional
+        Used instead of ``equilibrium`` for the secant's trial tensions of the
+        fully coiled points, whose final states are then solved once more by
+        ``equilibrium``: a caller recording states for validity checks sees
+        the final states only, not the trials.
 
     Returns
     -------
@@ -373,7 +378,10 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         x = _TWO_PI * n[coiled] / length
         ci = inv[coiled]
         Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], co.torque[ci] / C
-                                              + co.torsion[ci], C, equilibrium)
+                                              + co.torsion[ci], C,
+                                              trial_equilibrium or equilibrium)
+        if trial_equilibrium is not None:
+            Mc = np.asarray(equilibrium(Tc).torque, float)
         M[coiled] = Mc
         g[coiled] = -Tc - Mc * Mc / (2.0 * C)
         zeta[coiled] = 0.0

@@ -11,10 +11,12 @@ No own parameters; the plectoneme comes from the ``interaction`` (its
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import numpy as np
 
-from ...core.dna import free_energy as _fe
-from .base import Buckling, DNAModel, HatPoints
+from supercoil.core.dna import free_energy as _fe
+from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 
 __all__ = ["CONVERGED_BRACKET", "FreeEnergy"]
 
@@ -48,6 +50,7 @@ class FreeEnergy(DNAModel):
     name = "free-energy"
     summary = ("Moroz-Nelson tail and plectoneme from one free energy: "
                "Maxwell-consistent extension and torque")
+    parameters: ClassVar[dict] = {}
 
     def has_free_energy(self, thermal: bool) -> bool:
         """True for both ``thermal=True`` and ``thermal=False``."""
@@ -68,15 +71,27 @@ class FreeEnergy(DNAModel):
         return Buckling(co.buckling_turns, co.torque, co.slope)
 
     def points(self, turns, force, dna, thermal, interaction, short_tail_length):
-        """Hat-curve points with the ``free_energy`` column (J)."""
+        """Hat-curve points with the ``free_energy`` column (J).
+
+        The secant's trial tensions of fully coiled points go to the bare
+        interaction when ``interaction`` is the public layer's state recorder
+        (attribute ``interaction``); only the final states are recorded.
+        """
+        bare = getattr(interaction, "interaction", interaction)
         p = _fe.hat_points(turns, force, *_args(dna), _equilibrium(interaction, dna), thermal,
-                           short_tail_length)
+                           short_tail_length, trial_equilibrium=_equilibrium(bare, dna))
         return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
                          p.zeta, p.free_energy)
 
     def free_energy(self, turns, force, dna, thermal, interaction):
         """``G(N, F)`` (J) of docs/theory/free-energy.md#3, up to a constant independent of N, F."""
         return self.points(turns, force, dna, thermal, interaction, None).free_energy
+
+    def slope_validity(self, force, torque, dna):
+        """Messages where the tail's expansion fails at the coexistence torque."""
+        force = np.asarray(force, float)
+        return _messages(force, _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT),
+                         np.ones(force.shape, bool), lambda i: f"force {force[i] * 1e12:.6g} pN")
 
     def validity(self, turns, force, points, dna, thermal):
         """Messages where the tail's expansion fails (zeta_inf <= 0, or bracket Q < 1)."""
@@ -91,17 +106,22 @@ class FreeEnergy(DNAModel):
         def at(i):
             return f"force {force.flat[i] * 1e12:.6g} pN, turns {turns.flat[i]:.6g}"
 
-        bad = where & (Q <= 0.25)
-        if np.any(bad):
-            i = np.flatnonzero(bad)[0]
-            return [f"free-energy model: Moroz-Nelson tail not valid at {at(i)}: its long-tail "
-                    f"factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.4g} <= 0 (the "
-                    "extension would grow with turns; below 0.1123 pN for the seed set)"]
-        rough = where & (Q < CONVERGED_BRACKET)
-        if np.any(rough):
-            i = np.flatnonzero(rough)[0]
-            return [f"free-energy model: Moroz-Nelson expansion not converged at {at(i)}: the "
-                    f"long-tail factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.3g} < 0.5 "
-                    "(bracket Q < 1), so extension, torque and slope are qualitative there "
-                    "(below 0.1817 pN for the seed set)"]
-        return []
+        return _messages(force, Q, where, at)
+
+
+def _messages(force, Q, where, at):
+    """zeta_inf <= 0 (Q <= 1/4), else not converged (Q < 1), at the first such point."""
+    bad = where & (Q <= 0.25)
+    if np.any(bad):
+        i = np.flatnonzero(bad)[0]
+        return [f"free-energy model: Moroz-Nelson tail not valid at {at(i)}: its long-tail "
+                f"factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.4g} <= 0 (the "
+                "extension would grow with turns; below 0.1123 pN for the seed set)"]
+    rough = where & (Q < CONVERGED_BRACKET)
+    if np.any(rough):
+        i = np.flatnonzero(rough)[0]
+        return [f"free-energy model: Moroz-Nelson expansion not converged at {at(i)}: the "
+                f"long-tail factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.3g} < 0.5 "
+                "(bracket Q < 1), so extension, torque and slope are qualitative there "
+                "(below 0.1817 pN for the seed set)"]
+    return []
