@@ -3,10 +3,11 @@
 Extension and torque at fixed force and turns come from one free energy only
 if they satisfy the Maxwell relation dz/dN|_F = -2 pi dM/dF|_N (Mosconi,
 Allemand and Croquette, Phys. Rev. Lett. 102, 078301, 2009). This script
-measures the ratio (dz/dN) / (-2 pi dM/dF) on the hat curves of both models
-(seed parameters, central differences with steps 1e-3 turn and 1e-5 F) in
-each phase: mid-stretched (0.5 N_b), just before buckling (0.99 N_b) and in
-the plectoneme phase (30 % of the way to full coiling), and compares the
+measures the ratio (dz/dN) / (-2 pi dM/dF) on the public hat curves of both
+models (``sc.hat_curve(..., model=...)``, seed parameters, central differences
+with steps 1e-3 turn and 1e-5 F) in each phase: mid-stretched (0.5 N_b), just
+before buckling (0.99 N_b) and in the plectoneme phase (N_b + 3 turns), and
+compares the
 buckling torque, buckling turns and post-buckling slope of the two models
 (docs/theory/free-energy.md).
 
@@ -26,60 +27,51 @@ import numpy as np
 
 import supercoil as sc
 from supercoil.cli import example_arguments
-from supercoil.core import hat_curve as hc
-from supercoil.core import plectoneme as pl
-from supercoil.core.dna import free_energy as fe
 from supercoil.tables import make_table, provenance
 
 H_N, H_F = 1e-3, 1e-5  # finite-difference steps: turns, relative force
-PHASES = {"stretched_mid": 0.5, "before_buckling": 0.99, "plectoneme": None}
+MODELS = ("li-zhao", "free-energy")
+#: test points in turns: fractions of N_b (stretched) and N_b + 3 turns (plectoneme:
+#: S <= 165 nm for the seed set over 0.3-10 pN, so the tail stays > 3 persistence lengths)
+PHASES = {"stretched_mid": 0.5, "before_buckling": 0.99, "plectoneme": 3.0}
 REPORT_FORCES = (0.4, 1.2, 3.0, 5.0)
 
 
-class Models:
-    """Float-level hat curves and per-force constants of both models (seed set)."""
-
-    def __init__(self, dna):
-        d = dna.si
-        self.L, self.B, self.C, self.kT, self.r0 = (
-            d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)
-
-    def eq(self, T):
-        return pl.equilibrium(T, self.B, self.C, self.kT, self.r0)
-
-    def points(self, model, N, F):
-        N, F = np.broadcast_arrays(np.asarray(N, float), np.asarray(F, float))
-        if model == "li-zhao":
-            return hc.hat_curve_points(N, F, self.L, self.B, self.C, self.kT, self.r0)
-        return fe.hat_points(N, F, self.L, self.B, self.C, self.kT, self.eq)
-
-    def constants(self, model, F):
-        """(torque at buckling, N_b, slope, linking rate D) at the forces F."""
-        if model == "li-zhao":
-            p = hc.hat_parameters(F, self.L, self.B, self.C, self.kT, self.r0)
-        else:
-            p = fe.coexistence(F, self.L, self.B, self.C, self.kT, self.eq)
-        return p.torque, p.buckling_turns, p.slope, p.linking_rate
-
-    def maxwell_ratio(self, model, N, F):
-        dz = (self.points(model, N + H_N, F).extension
-              - self.points(model, N - H_N, F).extension) / (2 * H_N)
-        dM = (self.points(model, N, F * (1 + H_F)).torque
-              - self.points(model, N, F * (1 - H_F)).torque) / (2 * H_F * F)
-        return dz / (-2 * np.pi * dM)
+def _point(dna, model, F, N):
+    """(extension [nm], torque [pN nm]) of ``sc.hat_curve`` at one force and turns values."""
+    df = sc.hat_curve(dna, F * sc.ureg.pN, N, model=model)
+    return df["extension"].to_numpy(), df["torque"].to_numpy()
 
 
-def measure(models, forces):
-    cols = {"force": forces * 1e12}
-    for model in ("li-zhao", "free-energy"):
+def maxwell_ratio(dna, model, F, N):
+    """``(dz/dN) / (-2 pi dM/dF)`` by central differences of the public hat curve."""
+    dz = (_point(dna, model, F, N + H_N)[0] - _point(dna, model, F, N - H_N)[0]) / (2 * H_N)
+    dM = (_point(dna, model, F * (1 + H_F), N)[1]
+          - _point(dna, model, F * (1 - H_F), N)[1]) / (2 * H_F * F)  # nm
+    return dz / (-2 * np.pi * dM)
+
+
+def measure(dna, forces):
+    """One row per force (pN): buckling torque, N_b, slope and Maxwell ratios, both models."""
+    cols = {"force": forces}
+    for model in MODELS:
         key = model.replace("-", "_")
-        M, Nb, slope, D = models.constants(model, forces)
-        cols[f"torque_{key}"] = M * 1e21
-        cols[f"buckling_turns_{key}"] = Nb
-        cols[f"slope_{key}"] = slope * 1e9
-        for phase, frac in PHASES.items():
-            N = Nb * frac if frac is not None else Nb + 0.3 * models.L * D / (2 * np.pi)
-            cols[f"maxwell_{phase}_{key}"] = models.maxwell_ratio(model, N, forces)
+        nb = sc.buckling_turns(dna, forces * sc.ureg.pN, model=model).magnitude
+        cols[f"buckling_turns_{key}"] = nb
+        cols[f"slope_{key}"] = sc.post_buckling_slope(dna, forces * sc.ureg.pN,
+                                                      model=model).magnitude
+        ratios = {p: np.empty(forces.size) for p in PHASES}
+        torque = np.empty(forces.size)
+        for i, F in enumerate(forces):
+            N = np.array([nb[i] * PHASES["stretched_mid"], nb[i] * PHASES["before_buckling"],
+                          nb[i] + PHASES["plectoneme"]])
+            r = maxwell_ratio(dna, model, F, N)
+            for j, p in enumerate(PHASES):
+                ratios[p][i] = r[j]
+            torque[i] = _point(dna, model, F, N[2:])[1][0]  # the plateau torque
+        cols[f"torque_{key}"] = torque
+        for p in PHASES:
+            cols[f"maxwell_{p}_{key}"] = ratios[p]
     for q in ("torque", "buckling_turns", "slope"):
         cols[f"{q}_relative_difference"] = cols[f"{q}_free_energy"] / cols[f"{q}_li_zhao"] - 1
     units = {c: "" for c in cols}
@@ -89,9 +81,9 @@ def measure(models, forces):
         units[f"slope_{key}"] = "nm/turn"
         units[f"buckling_turns_{key}"] = "turn"
     return make_table(cols, units, provenance(
-        sc.load_parameters("dna"), scene="Maxwell relation dz/dN = -2 pi dM/dF, both models",
-        steps=f"dN = {H_N} turn, dF = {H_F} F (central differences)",
-        plectoneme_point="N_b + 0.3 (N_full - N_b)"))
+        dna, scene="Maxwell relation dz/dN = -2 pi dM/dF, both models (thermal)",
+        steps=f"dN = {H_N} turn, dF = {H_F} F (central differences of sc.hat_curve)",
+        points="0.5 N_b, 0.99 N_b, N_b + 3 turns; torque at N_b + 3 turns (plateau)"))
 
 
 def plot(df, path):
@@ -125,17 +117,17 @@ def plot(df, path):
 def main(argv=None):
     args = example_arguments(__doc__, argv, default_out="results/thermodynamic_consistency")
     out = args.out
-    models = Models(sc.load_parameters("dna"))
+    dna = sc.load_parameters("dna")
     grid = np.geomspace(0.3, 10.0, 8 if args.quick else 40)
-    forces = np.unique(np.concatenate((grid, REPORT_FORCES))) * 1e-12
-    df = measure(models, forces)
+    forces = np.unique(np.concatenate((grid, REPORT_FORCES)))
+    df = measure(dna, forces)
     sc.write_csv(df, out / "thermodynamic_consistency.csv")
     plot(df, out / "thermodynamic_consistency.png")
     rows = df[np.isin(np.round(df["force"], 9), REPORT_FORCES)]
     print(f"{'F':>4} | {'M* [pN nm]':>15} | {'N_b':>13} | {'dz/dN [nm/turn]':>15} | "
-          f"{'li-zhao Maxwell ratio':>28} | free-energy |ratio - 1|")
+          f"{'li-zhao Maxwell ratio':>26} | free-energy")
     print(f"{'pN':>4} | {'LZ':>7} {'FE':>7} | {'LZ':>6} {'FE':>6} | {'LZ':>7} {'FE':>7} | "
-          f"{'0.5 Nb':>8} {'0.99 Nb':>8} {'plect.':>8} |")
+          f"{'0.5 Nb':>8} {'0.99 Nb':>8} {'Nb+3':>8} | max |ratio - 1|")
     for _, r in rows.iterrows():
         fe_dev = max(abs(r[f"maxwell_{p}_free_energy"] - 1) for p in PHASES)
         print(f"{r.force:4.1f} | {r.torque_li_zhao:7.3f} {r.torque_free_energy:7.3f} | "
@@ -143,6 +135,11 @@ def main(argv=None):
               f"{r.slope_li_zhao:7.3f} {r.slope_free_energy:7.3f} | "
               f"{r.maxwell_stretched_mid_li_zhao:8.4f} {r.maxwell_before_buckling_li_zhao:8.4f} "
               f"{r.maxwell_plectoneme_li_zhao:8.4f} | {fe_dev:.1e}")
+    for top in (5.0, df.force.max()):
+        lz = df.loc[df.force <= top, [f"maxwell_{p}_li_zhao" for p in PHASES]]
+        print(f"li-zhao Maxwell ratio over {df.force.min():g}-{top:g} pN: before buckling "
+              f"{lz.iloc[:, 1].min():.3f}-{lz.iloc[:, 1].max():.3f}, plectoneme "
+              f"{lz.iloc[:, 2].min():.3f}-{lz.iloc[:, 2].max():.3f}")
     print(f"wrote {out / 'thermodynamic_consistency.csv'}, "
           f"{out / 'thermodynamic_consistency.png'}")
 
