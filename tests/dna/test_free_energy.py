@@ -18,6 +18,8 @@ the ~1e-15-accurate torque ~1e-10). Both are far below the 1e-6 asserted.
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from scipy.optimize import elementwise
 
 import supercoil as sc
@@ -94,12 +96,32 @@ def test_li_zhao_violates_maxwell(si):
         assert 0.67 < after < 0.95
 
 
+@given(force=st.floats(0.3, 10.0), frac=st.floats(0.02, 0.98), plectoneme=st.booleans(),
+       sign=st.sampled_from([-1.0, 1.0]))
+def test_maxwell_relation_property(si, force, frac, plectoneme, sign):
+    """Anywhere in 0.3-10 pN and in either phase (away from the boundary by 2 % of it)."""
+    L, B, C, kT, _ = si
+    F = force * 1e-12
+    co = fe.coexistence(np.array([F]), L, B, C, kT, _eq(si))
+    Nb = co.buckling_turns[0]
+    N = Nb + frac * L * co.linking_rate[0] / (2 * np.pi) if plectoneme else frac * Nb
+    ratio = _maxwell_ratio(si, np.array([sign * N]), F)
+    assert abs(ratio[0] - 1.0) < 1e-6
+
+
 @pytest.mark.parametrize("F", [0.4e-12, 3e-12])
 def test_fully_coiled_is_consistent(si, F):
     """Beyond full coiling z = 0 and M depends on N only; M = (1/2 pi) dG/dN still holds."""
     _, _, coiled = _turns(si, F)
     p = _points(si, coiled, F)
     assert np.all(p.phase == hc.FULLY_COILED) and np.all(p.extension == 0.0)
+    assert np.all(p.short_tail) and np.all(p.plectoneme_length == si[0])
+    # tails shorter than 3 B/kT are flagged in the plectoneme phase too, longer ones not
+    _, pc, _ = _turns(si, F)
+    q = _points(si, pc, F)
+    tail = si[0] - q.plectoneme_length
+    np.testing.assert_array_equal(q.short_tail, tail < 3 * si[1] / si[3])
+    assert q.short_tail[-1] and not q.short_tail[0]
     dM = _points(si, coiled, F * (1 + H_F)).torque - p.torque
     np.testing.assert_allclose(dM, 0.0, atol=1e-12 * p.torque.max())
     # the torque rises beyond full coiling (the plectoneme is twisted further)

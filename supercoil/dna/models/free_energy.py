@@ -39,7 +39,7 @@ class FreeEnergy(DNAModel):
     """Hat curve from one free energy: Maxwell-consistent extension and torque.
 
     Differs from ``li-zhao`` (the paper's construction) in three places, each
-    forced by the free energy (docs/theory/free-energy.md#1): the tail twists
+    forced by the free energy (docs/theory/free-energy.md#maxwell): the tail twists
     with the Moroz-Nelson compliance at its own torque,
     ``1/C_eff = 1/C + 1/(4 B sqrt(Q))``; the plectoneme coexists with a tail
     that pulls with ``T_eff = F - (kT^2/B) sqrt(Q)`` instead of F; and there is
@@ -84,7 +84,7 @@ class FreeEnergy(DNAModel):
                          p.zeta, p.free_energy)
 
     def free_energy(self, turns, force, dna, thermal, interaction):
-        """``G(N, F)`` (J) of docs/theory/free-energy.md#3, up to a constant independent of N, F."""
+        """``G(N, F)`` (J), docs/theory/free-energy.md#coexistence (up to a constant)."""
         return self.points(turns, force, dna, thermal, interaction, None).free_energy
 
     def slope_validity(self, force, torque, dna):
