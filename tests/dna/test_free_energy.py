@@ -338,3 +338,15 @@ def test_model_through_the_public_functions(dna):
         sc.post_buckling_slope(dna, 0.15 * u.pN, model="free-energy")
     with pytest.warns(ValidityWarning, match="not converged at force 0.15 pN, turns 8"):
         sc.hat_curve(dna, 0.15 * u.pN, [0.0, 8.0], model="free-energy")
+
+
+def test_fully_coiled_state_does_not_depend_on_force(si):
+    """With no tail left, F drops out: the same torque and G at 0.3 and 5 pN, far past
+    full coiling; beyond the plectoneme's range the error names the turns."""
+    N = np.array([50.0, 200.0, 800.0])
+    a, b = _points(si, N, 0.3e-12), _points(si, N, 5e-12)
+    assert np.all(a.phase == hc.FULLY_COILED) and np.all(b.phase == hc.FULLY_COILED)
+    np.testing.assert_allclose(a.torque, b.torque, rtol=1e-12)
+    np.testing.assert_allclose(a.free_energy, b.free_energy, rtol=1e-12)
+    with pytest.raises(NoEquilibriumError, match=r"fully coiled plectoneme for \|N\| up to 20000"):
+        _points(si, [20000.0], 1e-12)

@@ -57,7 +57,7 @@ from supercoil.core.dna.hat import (
     SHORT_TAIL_PERSISTENCE_LENGTHS,
     STRETCHED,
 )
-from supercoil.exceptions import ValidityError
+from supercoil.exceptions import NoEquilibriumError, ValidityError
 
 __all__ = [
     "Coexistence",
@@ -305,6 +305,9 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium):
         bad = ~np.isfinite(un) | (un < lo) | (un > hi)
         un = np.where(bad & np.isfinite(hi), 0.5 * (lo + hi), un)
         un = np.where(bad & ~np.isfinite(hi), ub + 1.0, un)
+        # until the root is bracketed, at most a factor e^2 in T per step: a secant
+        # overshoot must not leave the interaction's range when the root is inside it
+        un = np.where(np.isfinite(hi), un, np.minimum(un, ub + 2.0))
         un = np.where(act, un, ub)
         ua, ra = np.where(act, ub, ua), np.where(act, rb, ra)
         # the evaluated state is kept once the next step is below 1e-13 in log T
@@ -377,9 +380,14 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     if np.any(coiled):
         x = _TWO_PI * n[coiled] / length
         ci = inv[coiled]
-        Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], co.torque[ci] / C
-                                              + co.torsion[ci], C,
-                                              trial_equilibrium or equilibrium)
+        try:
+            Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], co.torque[ci] / C
+                                                  + co.torsion[ci], C,
+                                                  trial_equilibrium or equilibrium)
+        except NoEquilibriumError as e:
+            raise NoEquilibriumError(
+                f"no fully coiled plectoneme for |N| up to {n[coiled].max():.6g} turns "
+                f"(L = {length * 1e9:.6g} nm): {e}") from e
         if trial_equilibrium is not None:
             Mc = np.asarray(equilibrium(Tc).torque, float)
         M[coiled] = Mc
