@@ -192,11 +192,23 @@ def test_athermal_limit_equals_li_zhao_athermal(si):
         # torque equal except beyond full coiling, where li-zhao keeps M_p by convention
         keep = q.phase != hc.FULLY_COILED
         np.testing.assert_array_equal(p.torque[keep], q.torque[keep])
+        # closed form of the athermal stretched phase: twist energy minus F z
+        st = p.phase == hc.STRETCHED
+        np.testing.assert_allclose(p.free_energy[st],
+                                   -F * L + (2 * np.pi * N[st]) ** 2 * C / (2 * L), rtol=1e-13)
     co = fe.coexistence(FORCES, L, B, C, kT, _eq(si), thermal=False)
     par = hc.hat_parameters(FORCES, L, B, C, kT, r0, thermal=False)
     np.testing.assert_array_equal(co.buckling_turns, par.buckling_turns)
     np.testing.assert_array_equal(co.slope, par.slope)
     np.testing.assert_array_equal(co.torque, par.torque)
+
+
+def test_free_energy_at_zero_turns_is_the_moroz_nelson_chain(si):
+    """G(0, F) = L (-F + (kT^2/B) sqrt(B F/kT^2 - 1/32)): the untwisted fluctuating chain."""
+    L, B, _, kT, _ = si
+    G = _points(si, np.zeros(FORCES.size), FORCES).free_energy
+    np.testing.assert_allclose(G, L * (-FORCES + kT**2 / B * np.sqrt(B * FORCES / kT**2
+                                                                      - 1 / 32)), rtol=1e-14)
 
 
 def test_symmetry_in_turns(si):
