@@ -2,7 +2,7 @@
 
 Extension and torque at fixed force and turns come from one free energy only
 if they satisfy the Maxwell relation dz/dN|_F = -2 pi dM/dF|_N (Mosconi,
-Allemand and Croquette, Phys. Rev. Lett. 102, 078301, 2009). This script
+Allemand, Bensimon and Croquette, Phys. Rev. Lett. 102, 078301, 2009). This script
 measures the ratio (dz/dN) / (-2 pi dM/dF) on the public hat curves of both
 models (``sc.hat_curve(..., model=...)``, seed parameters, central differences
 with steps 1e-3 turn and 1e-5 F) in each phase: mid-stretched (0.5 N_b), just
