@@ -5,7 +5,7 @@ if they satisfy the Maxwell relation dz/dN|_F = -2 pi dM/dF|_N (Mosconi,
 Allemand, Bensimon and Croquette, Phys. Rev. Lett. 102, 078301, 2009). This script
 measures the ratio (dz/dN) / (-2 pi dM/dF) on the public hat curves of both
 models (``sc.hat_curve(..., model=...)``, seed parameters, central differences
-with steps 1e-3 turn and 1e-5 F) in each phase: mid-stretched (0.5 N_b), just
+with steps 1e-4 turn and 1e-5 F) in each phase: mid-stretched (0.5 N_b), just
 before buckling (0.99 N_b) and in the plectoneme phase (N_b + 3 turns), and
 compares the
 buckling torque, buckling turns and post-buckling slope of the two models
@@ -29,7 +29,7 @@ import supercoil as sc
 from supercoil.cli import example_arguments
 from supercoil.tables import make_table, provenance
 
-H_N, H_F = 1e-3, 1e-5  # finite-difference steps: turns, relative force
+H_N, H_F = 1e-4, 1e-5  # finite-difference steps: turns, relative force
 MODELS = ("li-zhao", "free-energy")
 #: test points in turns: fractions of N_b (stretched) and N_b + 3 turns (plectoneme:
 #: S <= 165 nm for the seed set over 0.3-10 pN, so the tail stays > 3 persistence lengths)
