@@ -78,8 +78,9 @@ class FreeEnergy(DNAModel):
         (attribute ``interaction``); only the final states are recorded.
         """
         bare = getattr(interaction, "interaction", interaction)
+        trial = None if bare is interaction else _equilibrium(bare, dna)
         p = _fe.hat_points(turns, force, *_args(dna), _equilibrium(interaction, dna), thermal,
-                           short_tail_length, trial_equilibrium=_equilibrium(bare, dna))
+                           short_tail_length, trial_equilibrium=trial)
         return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
                          p.zeta, p.free_energy)
 
