@@ -363,3 +363,21 @@ def test_fully_coiled_state_does_not_depend_on_force(si):
     np.testing.assert_allclose(a.free_energy, b.free_energy, rtol=1e-12)
     with pytest.raises(NoEquilibriumError, match=r"fully coiled plectoneme for \|N\| up to 20000"):
         _points(si, [20000.0], 1e-12)
+
+
+def test_state_recorder_sees_final_fully_coiled_states_only(si):
+    """The public layer's recorder gets the coexistence solves and one final solve of the
+    fully coiled points, not the secant's trials (which could trip R < r0 spuriously)."""
+    from supercoil.dna.models.free_energy import FreeEnergy
+    from supercoil.dna.validity import StateRecorder
+
+    dna = sc.load_parameters("dna").si
+    rec = StateRecorder(HardCore())
+    N = np.array([2.0, 10.0, 40.0, 60.0])
+    F = np.full(4, 1.2e-12)
+    p = FreeEnergy().points(N, F, dna, True, rec, None)
+    coiled = p.phase == hc.FULLY_COILED
+    assert coiled.sum() == 2
+    assert len(rec.states) == 4  # three Newton solves of the pull, one final coiled solve
+    assert np.all(rec.states[-1].force > 1.2e-12) and rec.states[-1].force.size == 2
+    np.testing.assert_array_equal(rec.states[-1].torque, p.torque[coiled])
