@@ -16,7 +16,12 @@ interaction, no units):
 
 Rows are a dict of lists (``measurement``, ``model``, ``points``, ``time``,
 ``per_item``, ``rate``, ``ratio_to_li_zhao``) for
-:func:`supercoil.tables.make_table`.
+:func:`supercoil.tables.make_table` with :data:`UNITS`. Wiring into
+``supercoil bench`` (suite.run)::
+
+    rows = dna_models.model_cost(n_forces=100 if quick else 1000,
+                                 sizes=(1_000,) if quick else (1_000, 100_000))
+    write_csv(make_table(rows, dna_models.UNITS, provenance(...)), out / "dna_model_cost.csv")
 """
 
 from __future__ import annotations
@@ -26,6 +31,9 @@ import numpy as np
 from .timing import best_time
 
 MODELS = ("li-zhao", "free-energy")
+#: units of the :func:`model_cost` columns, for ``make_table(rows, UNITS, ...)``
+UNITS = {"measurement": "", "model": "", "points": "", "time": "s", "per_item": "s",
+         "rate": "1/s", "ratio_to_li_zhao": ""}
 
 
 def _calls(d, names):
