@@ -18,10 +18,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import supercoil
-from supercoil.core import moroz_nelson as mn
 from supercoil.core.dna import marko2007 as mk
+from supercoil.core.dna import moroz_nelson as mn
 from supercoil.dna.models.marko2007 import Marko2007
-from supercoil.exceptions import SupercoilError, ValidityError
+from supercoil.exceptions import ValidityError
 
 KB = 1.380649e-23
 TWO_PI = 2 * np.pi
@@ -196,10 +196,11 @@ def test_validity_errors_name_the_quantity_and_limit():
     with pytest.raises(ValidityError, match=r"c_s.*P = 80 nm"):
         Marko2007(plectoneme_twist_persistence=80e-9).parameters_at(
             np.array([1e-12]), dna, True)
-    # athermal: c_s = C = 86 nm < P -> same error
+    # athermal: c_s = C = 70 nm < P -> same error
     with pytest.raises(ValidityError, match="no buckling"):
-        Marko2007(plectoneme_twist_persistence=80e-9).replace(
-            plectoneme_twist_persistence=90e-9).parameters_at(np.array([1e-12]), dna, False)
+        Marko2007(plectoneme_twist_persistence=60e-9).replace(
+            plectoneme_twist_persistence=75e-9).parameters_at(np.array([1e-12]),
+                                                              _dna(C=70.0), False)
     # low-force warning messages (the public layer warns them)
     msgs = m.validity(None, np.array([0.2e-12, 1e-12]), None, dna, True)
     assert msgs and "kT/A" in msgs[0]
@@ -218,8 +219,10 @@ def test_model_object():
     assert Marko2007.name == "marko2007" and not Marko2007.uses_interaction
     with pytest.raises(TypeError, match="end_loop"):
         Marko2007(end_loop="yes")
-    with pytest.raises(SupercoilError):
+    with pytest.raises(TypeError, match="no parameter"):
         Marko2007(persistence=3.0)
+    with pytest.raises(ValueError, match="allowed range"):
+        Marko2007(plectoneme_twist_persistence=200 * u.nm)
     with pytest.raises(AttributeError):
         m.end_loop = True
     # unit invariance at the model level: P in nm or um gives the same curve
@@ -231,3 +234,37 @@ def test_model_object():
     # plectoneme length is what is not in the tail; short tails flagged
     assert np.all(a.plectoneme_length[a.phase == 0] == 0)
     assert np.all(a.short_tail[a.phase == 2])
+
+
+# ---- public layer (model="marko2007") -------------------------------------------------
+def test_public_layer_units_and_registry():
+    u = supercoil.ureg
+    dna = supercoil.load_parameters("dna")
+    turns = np.linspace(0, 30, 13)
+    a = supercoil.hat_curve(dna, [1.0, 2.5] * u.pN, turns, model="marko2007")
+    b = supercoil.hat_curve(dna.replace(length=0.75 * u.um), [1e-12, 2.5e-12] * u.N,
+                            turns * 2 * np.pi * u.rad, model=Marko2007())
+    for col in ("extension", "torque", "free_energy", "plectoneme_length"):
+        np.testing.assert_allclose(a[col], b[col], rtol=1e-12, atol=1e-12)
+    # the table is the kernel's numbers in display units
+    pt = Marko2007().points(np.tile(turns, 2), np.repeat([1e-12, 2.5e-12], 13), dna.si, True)
+    np.testing.assert_allclose(a["extension"], pt.extension * 1e9, rtol=1e-13)
+    np.testing.assert_allclose(a["free_energy"], pt.free_energy * 1e21, rtol=1e-13)
+    nb = supercoil.buckling_turns(dna, 2 * u.pN, model="marko2007")
+    slope = supercoil.post_buckling_slope(dna, 2 * u.pN, model="marko2007")
+    par = Marko2007().parameters_at(np.array([2e-12]), dna.si, True)
+    assert nb.to("turn").magnitude[0] == pytest.approx(par.buckling_turns[0], rel=1e-13)
+    assert slope.to("nm/turn").magnitude[0] == pytest.approx(par.slope[0] * 1e9, rel=1e-13)
+    looped = supercoil.buckling_turns(dna, 2 * u.pN, model=Marko2007(end_loop=True))
+    assert looped.magnitude[0] > nb.magnitude[0]
+
+
+def test_public_layer_failures():
+    u = supercoil.ureg
+    dna = supercoil.load_parameters("dna")
+    with pytest.raises(supercoil.exceptions.ModelError, match="no plectoneme helix state"):
+        supercoil.hat_curve(dna, 1 * u.pN, [5.0], model="marko2007", interaction="screened")
+    with pytest.raises(ValidityError, match="kT/A"):
+        supercoil.hat_curve(dna, 0.05 * u.pN, [5.0], model="marko2007")
+    with pytest.warns(supercoil.ValidityWarning, match="marko2007: force 0.3 pN"):
+        supercoil.hat_curve(dna, 0.3 * u.pN, [2.0], model="marko2007")

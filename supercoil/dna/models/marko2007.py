@@ -17,9 +17,10 @@ from typing import ClassVar
 
 import numpy as np
 
-from ...core.dna import end_loop as _loop
-from ...core.dna import marko2007 as _mk
-from .base import Buckling, DNAModel, HatPoints, ModelParameter
+from supercoil.core.dna import end_loop as _loop
+from supercoil.core.dna import marko2007 as _mk
+from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
+from supercoil.dna.parameters import ModelParameter
 
 __all__ = ["LOW_FORCE_FACTOR", "Marko2007"]
 
@@ -39,9 +40,9 @@ class Marko2007(DNAModel):
     ----------
     plectoneme_twist_persistence : Quantity [length] or float (m)
         P, the plectoneme phase's effective twist stiffness (default 24 nm).
-    end_loop_writhe : float or Quantity [turn]
-        Turns of linking absorbed by the end loop (default 1); used only with
-        ``end_loop=True``.
+    end_loop_writhe : float
+        Turns of linking absorbed by the end loop, a plain number (default 1);
+        used only with ``end_loop=True``.
     end_loop : bool
         Option (not a fitted parameter): add the plectoneme end loop of
         ``docs/theory/end-loop.md`` (default False).
@@ -60,7 +61,7 @@ class Marko2007(DNAModel):
             "2018; salt not stated there); Marko (2007) gives no single value in its "
             "abstract"),
         "end_loop_writhe": ModelParameter(
-            "end_loop_writhe", "turn", _loop.LOOP_WRITHE, 0.5, 1.5,
+            "end_loop_writhe", "", _loop.LOOP_WRITHE, 0.5, 1.5,
             "turns of linking absorbed as writhe by the plectoneme end loop",
             "one closed loop, docs/theory/end-loop.md#2-loop (the package's estimate)"),
     }
@@ -71,15 +72,14 @@ class Marko2007(DNAModel):
         super().__init__(**values)
         object.__setattr__(self, "end_loop", bool(end_loop))
 
-    def __setattr__(self, key, value):
-        raise AttributeError(f"{type(self).__name__} is immutable; use replace()")
-
     def __reduce__(self):
         return (_rebuild, (self.end_loop, dict(self.values)))
 
     def __repr__(self):
         P = self.values["plectoneme_twist_persistence"] * 1e9
-        return f"Marko2007(plectoneme_twist_persistence={P:.6g} nm, end_loop={self.end_loop})"
+        w = self.values["end_loop_writhe"]
+        return (f"Marko2007(plectoneme_twist_persistence={P:.6g} nm, end_loop_writhe={w:g}, "
+                f"end_loop={self.end_loop})")
 
     def __eq__(self, other):
         return (type(other) is type(self) and other.end_loop == self.end_loop
