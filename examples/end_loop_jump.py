@@ -71,17 +71,16 @@ def main(argv=None):
     sc.write_csv(df, out / "end_loop_jump.csv")
     print(df.drop(columns=["loop_radius"]).to_string(index=False, float_format="%.4g"))
 
-    si = _dna(*SETS["seed"]).si
+    dna = _dna(*SETS["seed"])
     turns = np.linspace(0, 40, 161 if args.quick else 2001)
     fig, axes = plt.subplots(2, 2, figsize=(12, 8.5), constrained_layout=True)
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for k, f in enumerate(FORCES):
-        F = np.full(turns.shape, f * 1e-12)
-        for model, style in ((Marko2007(end_loop=True), "-"), (Marko2007(), "--")):
-            pt = model.points(turns, F, si, True)
+    for model, style in ((Marko2007(end_loop=True), "-"), (Marko2007(), "--")):
+        curves = sc.hat_curve(dna, FORCES * sc.ureg.pN, turns, model=model)
+        for k, (f, g) in enumerate(curves.groupby("force", sort=True)):
             label = f"{f:g} pN" + (" end loop" if model.end_loop else " no loop")
-            axes[0, 0].plot(turns, pt.extension * 1e9, style, color=colors[k], label=label)
-            axes[0, 1].plot(turns, pt.torque * 1e21, style, color=colors[k])
+            axes[0, 0].plot(g["turns"], g["extension"], style, color=colors[k], label=label)
+            axes[0, 1].plot(g["turns"], g["torque"], style, color=colors[k])
     for name, marker in (("seed", "o"), ("A50-C100", "s")):
         g = df[df["set"] == name]
         axes[1, 0].plot(g["force"], g["extension_jump"], marker + "-", label=name)
