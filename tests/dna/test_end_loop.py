@@ -8,6 +8,8 @@ L^(-1/2) scaling of the torque overshoot.
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 import supercoil
@@ -137,10 +139,19 @@ def test_fully_coiled_with_loop_is_continuous():
 def test_loop_failures_are_named():
     with pytest.raises(ValidityError, match="too short"):
         Marko2007(end_loop=True).parameters_at(np.array([1e-12]), _dna(L=60.0), True)
-    # P > A: the loop's excess free energy 2 pi M_b (sqrt(A/P) - 1) is negative
-    with pytest.raises(ValidityError, match="not positive"):
-        Marko2007(end_loop=True, plectoneme_twist_persistence=60e-9).parameters_at(
-            np.array([2e-12]), _dna(A=48.0, C=120.0), True)
+    # seed set, P = 24 nm, 1 pN: L_min = 290.8 nm (docs/theory/end-loop.md#3-jump)
+    with pytest.raises(ValidityError, match=r"curl.*L >= 290.8 nm"):
+        Marko2007(end_loop=True).parameters_at(np.array([1e-12]), _dna(L=280.0), True)
+    Marko2007(end_loop=True).parameters_at(np.array([1e-12]), _dna(L=300.0), True)
+    # eps* = 2 pi M_b (sqrt(A/P - A/C) - 1) <= 0 once P >= 1/(1/A + 1/C) = 30.81 nm (seed)
+    with pytest.raises(ValidityError, match=r"needs P < 1/\(w\^2/A \+ 1/C\) = 30.81 nm"):
+        Marko2007(end_loop=True, plectoneme_twist_persistence=31e-9).parameters_at(
+            np.array([2e-12]), _dna(), True)
+    # just below the limit eps* is small and the jump needs a long molecule (L_min ~ 1/eps*)
+    Marko2007(end_loop=True, plectoneme_twist_persistence=30.7e-9).parameters_at(
+        np.array([2e-12]), _dna(L=1e5), True)
+    with pytest.raises(ValidityError, match="not positive"):  # the shared kernel's own check
+        el.loop_excess_free_energy(1e-12, 30e-21, 48e-9 * 4.14e-21)
     with pytest.raises(ValidityError, match="gamma"):
         el.loop_radius(-1.0, 1e-28)
 
@@ -152,3 +163,28 @@ def test_excess_free_energy_ratio_is_force_independent(thermal):
     par = Marko2007(end_loop=True).parameters_at(np.array([1, 2, 3, 4]) * 1e-12, dna, thermal)
     np.testing.assert_allclose(par.loop_excess / (TWO_PI * par.torque),
                                np.sqrt(48.0 / 24.0 - 48.0 / 86.0) - 1.0, rtol=1e-12)
+
+
+@given(f=st.floats(0.5, 6.0), P=st.floats(15.0, 30.0), L=st.floats(200.0, 5000.0))
+def test_jump_property(f, P, L):
+    """Across forces, P and L: z and M drop by the documented amounts, G stays continuous."""
+    dna = _dna(L=L)
+    m = Marko2007(end_loop=True, plectoneme_twist_persistence=P * 1e-9)
+    F = f * 1e-12
+    # minimum length for a plectoneme at the jump (docs: L >= c (2 pi (w+t) - W_s l)^2/(2 eps))
+    ref = m.parameters_at(np.array([F]), _dna(L=1e5), True)  # loop and eps do not depend on L
+    c = ref.twist_stiffness[0] * dna.kT
+    Lmin = c * (TWO_PI * ref.loop_linking[0] - ref.omega_stretched[0] * ref.loop_length[0]) ** 2 \
+        / (2 * ref.loop_excess[0])
+    if L * 1e-9 < Lmin:
+        with pytest.raises(ValidityError, match="curl"):
+            m.parameters_at(np.array([F]), dna, True)
+        return
+    par = m.parameters_at(np.array([F]), dna, True)
+    d = 1e-9
+    pt = m.points(par.jump_turns[0] + np.array([-d, d]), np.full(2, F), dna, True)
+    assert list(pt.phase) == [0, 1]
+    np.testing.assert_allclose(pt.extension[0] - pt.extension[1], par.extension_jump[0],
+                               rtol=1e-5)
+    np.testing.assert_allclose(pt.torque[0] - pt.torque[1], par.torque_overshoot[0], rtol=1e-5)
+    assert abs(pt.free_energy[1] - pt.free_energy[0]) <= 2 * d * TWO_PI * pt.torque[0] * 1.01

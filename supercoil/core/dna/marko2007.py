@@ -174,6 +174,11 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
         return MarkoParameters(force, g, gp, cs, csp, M, Mp, om_s, om_p, zhat, gamma, Nb,
                                slope, zero, zero, zero, zero, zero, Nb, zero, zero)
     C = Ct * kT  # bare twist rigidity of the tightly bent loop
+    # eps* / (2 pi M_b) = sqrt(A/P - A/C) - w > 0  <=>  P < 1 / (w^2/A + 1/C)
+    Pmax = 1.0 / (loop_writhe**2 / A + 1.0 / Ct)
+    _check(np.full(force.shape, not P < Pmax), force, "the end loop would not delay "
+           f"buckling (its excess free energy is not positive): needs P < 1/(w^2/A + 1/C) = "
+           f"{Pmax * 1e9:.4g} nm, got P = {P * 1e9:.4g} nm [end-loop.md#2-loop]")
     gl = _loop.loop_tension(gamma, M, C)
     R = _loop.loop_radius(gl, B)
     ell = _TWO_PI * R
@@ -186,8 +191,11 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     Ls = (om_p * (length - ell) - _TWO_PI * (Nstar - link)) / (om_p - om_s)
     _check(~(Ls > 0.0), force, "with the end loop the molecule is too short: the stretched "
            "state would jump straight to a fully coiled one")
-    _check(~(Ls < length - ell), force, "with the end loop the molecule is too short: "
-           "the plectoneme at the buckling jump would have negative length")
+    # plectoneme length at N* >= 0  <=>  L >= c (2 pi (w + t) - Omega_s l)^2 / (2 eps)
+    Lmin = cs * kT * (_TWO_PI * link - om_s * ell) ** 2 / (2.0 * eps)
+    _check(~(Ls < length - ell), force, "with the end loop the molecule is too short: the "
+           "jump would go into a curl (a loop without plectoneme), which is not modelled; "
+           f"needs L >= {np.max(Lmin) * 1e9:.4g} nm [end-loop.md#3-jump]")
     w = np.full_like(force, loop_writhe)
     # [end-loop.md#3-jump]: stretched z at N* minus the looped coexistence's L_s zhat_s
     om_star = _TWO_PI * Nstar / length
