@@ -215,6 +215,8 @@ def test_model_object():
     assert m == Marko2007()
     assert pickle.loads(pickle.dumps(Marko2007(end_loop=True))) == Marko2007(end_loop=True)
     assert m.replace(end_loop=True).end_loop and not m.end_loop
+    assert m.replace(end_loop=True).options() == {"end_loop": True}
+    assert m.replace(end_loop=True) != m
     assert m.has_free_energy(True) and m.has_free_energy(False)
     assert Marko2007.name == "marko2007" and not Marko2007.uses_interaction
     with pytest.raises(TypeError, match="end_loop"):

@@ -88,6 +88,10 @@ class Marko2007(DNAModel):
     def __hash__(self):
         return hash((self.name, self.end_loop, tuple(sorted(self.values.items()))))
 
+    def options(self) -> dict:
+        """Non-fitted options of this instance (for provenance): ``{"end_loop": bool}``."""
+        return {"end_loop": self.end_loop}
+
     def replace(self, **values):
         """A copy with some parameters (or ``end_loop``) changed."""
         end_loop = values.pop("end_loop", self.end_loop)
