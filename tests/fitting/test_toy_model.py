@@ -123,30 +123,45 @@ def test_fit_command_with_the_toy_model(tmp_path, base):
     assert params.attrs["units"]["width"] == ""
 
 
-def _compare(data, base):
+#: what each model fits in the comparison (a model registered later: C_t and its own parameters)
+COMPARE_VARY = {"li-zhao": ["twist_persistence", "radius"],
+                "free-energy": ["twist_persistence", "radius"],
+                "marko2007": ["twist_persistence", "plectoneme_twist_persistence"],
+                "toy-rod": ["length", "width"]}
+
+
+def _vary():
+    from supercoil.dna.models import get_model
+
+    return {m: COMPARE_VARY.get(m, ["twist_persistence", *get_model(m).parameters])
+            for m in sc.available_models()}
+
+
+def _compare(data, base, models=None):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        table = sc.compare_models(data, base, ["li-zhao", "toy-rod"],
-                                  vary={"li-zhao": ["twist_persistence", "radius"],
-                                        "toy-rod": ["length"]})
+        table = sc.compare_models(data, base, models or ["li-zhao", "toy-rod"], vary=_vary())
     return table, [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
 
 
-def test_compare_models_prefers_the_model_that_made_the_data(base, true_dna):
+@pytest.mark.parametrize("truth", sc.available_models())
+def test_compare_models_prefers_the_model_that_made_the_data(base, true_dna, truth):
+    """Every registered model (li-zhao, free-energy, marko2007 on main, the toy): data made
+    by model X (5 nm noise, 180 points) are best described by X, by AIC and BIC."""
     u = sc.ureg
-    hat = sc.simulate_rotation_curves(true_dna, FORCES * u.pN, points_per_force=60,
-                                      noise=5 * u.nm, seed=2)
-    table, fit_warnings = _compare(hat, base)
-    assert list(table["model"]) == ["li-zhao", "toy-rod"]
-    assert table["success"].all()
-    assert table.loc[1, "delta_aic"] > 10 and table.loc[0, "delta_aic"] == 0
-    assert table.loc[1, "delta_bic"] > 10
-    # the wrong model leaves structured residuals, and says so
-    assert any(m.startswith("model toy-rod: goodness of fit") for m in fit_warnings)
-    assert not any(m.startswith("model li-zhao: goodness") for m in fit_warnings)
-    toy = toy_data(base, seed=5)
-    table, _ = _compare(toy, base)
-    assert table.loc[0, "model"] == "toy-rod" and table.loc[1, "delta_aic"] > 10
+    if truth == "toy-rod":
+        data = toy_data(base, seed=5)
+    else:
+        data = sc.simulate_rotation_curves(true_dna, FORCES * u.pN, points_per_force=60,
+                                           noise=5 * u.nm, seed=2, model=truth)
+    table, fit_warnings = _compare(data, base, sc.available_models())
+    assert table["success"].all(), table["error"]
+    assert table.loc[0, "model"] == truth
+    assert (table["delta_aic"].iloc[1:] > 10).all() and (table["delta_bic"].iloc[1:] > 10).all()
+    # the true model passes the runs test; the worst one fails it and says so
+    assert not any(m.startswith(f"model {truth}: goodness") for m in fit_warnings)
+    worst = table["model"].iloc[-1]
+    assert any(m.startswith(f"model {worst}: goodness of fit") for m in fit_warnings)
 
 
 def test_compare_table_statistics_are_lmfits(base, true_dna):

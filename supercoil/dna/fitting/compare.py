@@ -37,9 +37,9 @@ def information_criteria(chi2, ndata, nvarys):
     return core + 2 * nvarys, core + math.log(ndata) * nvarys
 
 
-def _fit_one(data, dna, model, vary, kw):
+def _fit_one(data, dna, model, vary, own, kw):
     m = get_model(model)
-    names = [v for v in vary if v not in m.parameters] + list(m.parameters)
+    names = list(vary) + [k for k in m.parameters if own and k not in vary]
     interaction = kw["interaction"] if m.uses_interaction else None
     spec = prepare(data, dna, vary=names, model=m, **dict(kw, interaction=interaction))
     core = run_fit(spec)
@@ -104,8 +104,10 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     max_nfev, tol
         As for :func:`fit_hat_curves`.
     vary : sequence of str, or dict of model name -> sequence of str
-        DNA fields fitted (for every model, or per model); each model's own
-        parameters (``model.parameters``) are varied as well.
+        A sequence: the DNA fields fitted for every model, each model's own
+        parameters (``model.parameters``) varied as well. A dict: exactly the
+        parameters varied per model (DNA fields and model parameters; a model
+        missing from it gets the default ``("twist_persistence", "radius")``).
     models : sequence of str or DNAModel
         The models (registered names or instances), at least one.
     interaction : str or Interaction
@@ -140,11 +142,11 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     for spec in models:
         label = get_model(spec).name
         names = vary.get(label, DEFAULT_VARY) if isinstance(vary, dict) else vary
+        names = [names] if isinstance(names, str) else list(names)
         result, error = None, ""
         try:
             with warnings.catch_warnings(record=True):  # re-issued below with the model name
-                result = _fit_one(data, dna, spec, [names] if isinstance(names, str)
-                                  else list(names), kw)
+                result = _fit_one(data, dna, spec, names, not isinstance(vary, dict), kw)
         except SupercoilError as exc:
             error = f"{type(exc).__name__}: {exc}"
         if result is not None:

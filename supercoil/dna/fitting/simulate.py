@@ -123,7 +123,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     n0, z0 = _offsets(turns_offset, extension_offset, len(labels))
     if turns is None:
         nmax = valid_turns_range(dna, quantity(F, U.N), thermal=thermal, model=m,
-                                 interaction=inter)
+                                 interaction=interaction)
         grids = [np.linspace(-x, x, points_per_force) for x in nmax]
     else:
         grids = [np.asarray(as_turns(turns, "turns"), dtype=float)] * len(F)
