@@ -321,7 +321,11 @@ def _many_report(table, args):
         f"[[Per-molecule fits]] {len(table)} molecules, {int(table['success'].sum())} fitted, "
         f"{int((~table['success']).sum())} failed; varied: {', '.join(args.vary)}",
     ]
-    head = f"    {'molecule':<12}{'red.chi2':>10}"
+    # issue 15: with unit weights the reduced chi-square is the residual variance in nm^2;
+    # show its root, the noise estimate in nm (the errors are scaled by it)
+    unit_weights = table.attrs.get("provenance", {}).get("weighting", "unit") == "unit"
+    stat_head = "noise [nm]" if unit_weights else "red.chi2"
+    head = f"    {'molecule':<12}{stat_head:>10}"
     for p in params:
         head += f"{p + ' [' + units[p] + ']':>30}"
     lines.append(head)
@@ -329,7 +333,8 @@ def _many_report(table, args):
         if not row["success"]:
             lines.append(f"    {row['molecule']!s:<12}  FAILED: {_cli_text(row['error'])}")
             continue
-        text = f"    {row['molecule']!s:<12}{row['reduced_chi_square']:>10.4g}"
+        stat = np.sqrt(row["reduced_chi_square"]) if unit_weights else row["reduced_chi_square"]
+        text = f"    {row['molecule']!s:<12}{stat:>10.4g}"
         for p in params:
             err = row[p + "_stderr"]
             cell = (f"{row[p]:.5g} (not determined)" if np.isinf(err)

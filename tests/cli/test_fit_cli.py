@@ -72,7 +72,13 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     assert list(table["success"]) == [True, False, True]
     assert "no plectoneme equilibrium" in table["error"].iloc[1]
     assert np.isfinite(table["radius"].iloc[[0, 2]]).all()
-    assert "FAILED" in (out / "fit_report.txt").read_text()
+    report = (out / "fit_report.txt").read_text()
+    assert "FAILED" in report
+    # issue 15: unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
+    assert "noise [nm]" in report and "red.chi2" not in report
+    row = next(line for line in report.splitlines() if line.strip().startswith("m1 "))
+    assert float(row.split()[1]) == pytest.approx(np.sqrt(table["reduced_chi_square"].iloc[0]),
+                                                  rel=1e-3)
     assert (out / "fit_molecules.png").exists()
     # --global: one fit, shared parameters, offsets per molecule
     ok = df[df["molecule"] != "m2"].reset_index(drop=True)

@@ -194,3 +194,20 @@ def test_fit_command_compares_models(tmp_path, true_dna):
     assert (out / "fit_comparison.png").stat().st_size > 0
     report = (out / "fit_report.txt").read_text()
     assert "[[Model comparison]]" in report and "==== model toy-rod ====" in report
+
+
+def test_fit_many_with_the_toy_model(base):
+    u = sc.ureg
+    df = sc.simulate_rotation_curves(base, FORCES * u.pN, turns=TURNS, noise=3 * u.nm,
+                                     molecules=2, seed=8, model=ToyRod(width=WIDTH))
+    table = sc.fit_many(df, base, vary=["width", "length"], model="toy-rod")
+    assert table["success"].all() and table.attrs["provenance"]["model"] == "toy-rod"
+    assert (abs(table["width"] - WIDTH) < 4 * table["width_stderr"]).all()
+
+
+def test_fit_command_names_unknown_models_and_interactions(tmp_path, base, capsys):
+    path = sc.write_csv(toy_data(base, seed=4), tmp_path / "toy.csv")
+    assert main(["fit", str(path), "--model", "nope", "--out", str(tmp_path / "o")]) == 2
+    assert "--model 'nope' is not a registered model" in capsys.readouterr().err
+    assert main(["fit", str(path), "--interaction", "nope", "--out", str(tmp_path / "o")]) == 2
+    assert "--interaction 'nope' is not a registered interaction" in capsys.readouterr().err
