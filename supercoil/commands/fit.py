@@ -94,8 +94,9 @@ def register(sub):
     p.add_argument("--params", default="dna", help="DNA parameter set (start values and fixed "
                    "values; default: dna)")
     p.add_argument("--vary", nargs="+", default=["twist_persistence", "radius"],
-                   metavar="NAME", help="DNA fields to fit: length, bending_persistence, "
-                   "twist_persistence, radius (default: twist_persistence radius)")
+                   metavar="NAME", help="parameters to fit: DNA fields (length, "
+                   "bending_persistence, twist_persistence, radius) and the parameters the "
+                   "model and the interaction declare (default: twist_persistence radius)")
     p.add_argument("--fix", action="append", type=_assignment, default=[], metavar="NAME=VALUE",
                    help="hold a parameter fixed, e.g. --fix length=760nm or --fix turns_offset=0")
     p.add_argument("--start", action="append", type=_assignment, default=[],

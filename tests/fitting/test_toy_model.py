@@ -211,3 +211,29 @@ def test_fit_command_names_unknown_models_and_interactions(tmp_path, base, capsy
     assert "--model 'nope' is not a registered model" in capsys.readouterr().err
     assert main(["fit", str(path), "--interaction", "nope", "--out", str(tmp_path / "o")]) == 2
     assert "--interaction 'nope' is not a registered interaction" in capsys.readouterr().err
+
+
+def test_jacobian_columns_of_a_model_parameter(base):
+    from supercoil.dna.fitting import fit as fitting
+    from supercoil.dna.fitting.model import HatCurveModel
+
+    spec = fitting.prepare(toy_data(base, seed=3), base, vary=["width", "length"],
+                           model="toy-rod", start={"turns_offset": 0.2})
+    prob = HatCurveModel(spec.data, spec.params, spec.dna, spec.model, spec.interaction,
+                         spec.thermal)
+    u = spec.params.vector()
+    u[0] = WIDTH / spec.params["width"].scale  # near the truth, where the curve bends
+    J = prob.jacobian(u)
+    for j in range(len(u)):
+        up, um = u.copy(), u.copy()
+        up[j] += 1e-5
+        um[j] -= 1e-5
+        ref = (prob.residual(up) - prob.residual(um)) / 2e-5
+        np.testing.assert_allclose(J[:, j], ref, rtol=0, atol=1e-4 * np.abs(ref).max(),
+                                   err_msg=prob.names[j])
+    # closed form of the width column: dz/dw = 2 L N^2 / (w^3 (1 + (N/w)^2)^2)
+    N = spec.data.turns - spec.params["turns_offset"].value
+    w, L = WIDTH, base.length.m_as("m")
+    dz = 2 * L * N**2 / (w**3 * (1 + (N / w) ** 2) ** 2)
+    np.testing.assert_allclose(J[:, 0], dz * spec.params["width"].scale / spec.data.sigma,
+                               rtol=1e-4, atol=1e-6 * np.abs(J[:, 0]).max())
