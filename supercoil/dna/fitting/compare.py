@@ -21,6 +21,7 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import check_flag
 from supercoil.dna.fitting.fit import DEFAULT_VARY, emit, prepare, run_fit
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION
@@ -132,6 +133,7 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     -----
     The warnings of each fit, prefixed by the model name.
     """
+    return_results = check_flag(return_results, "return_results")
     models = list(models) if not isinstance(models, str) else [models]
     if not models:
         raise ValueError("compare_models needs at least one model")
