@@ -157,3 +157,25 @@ def test_fits_give_the_numbers_of_the_code_before_the_split(base, true_dna):
         for name, (v, e) in BEFORE[key].items():
             assert r.parameters[name].m == pytest.approx(v, rel=1e-9), name
             assert r.stderr[name].m == pytest.approx(e, rel=1e-9), name
+
+
+def test_per_force_jacobian_columns_act_on_their_force_only(base):
+    u = sc.ureg
+    df = simulate_rotation_curves(base, FORCES * u.pN, points_per_force=30, seed=5,
+                                  turns_offset=0.2)
+    params = sc.fit_parameters(df, base, vary=["twist_persistence", "radius"],
+                               start={"turns_offset": 0.1})
+    names = params.split_per_force("twist_persistence", FORCES * u.pN)
+    spec = fitting.prepare(df, base, params=params)
+    prob = HatCurveModel(spec.data, spec.params, spec.dna, spec.model, spec.interaction,
+                         spec.thermal)
+    uu = spec.params.vector() * 1.02
+    J = prob.jacobian(uu)
+    for j, name in enumerate(prob.names):
+        ref = _central(prob, uu, j, 1e-4 if "turns" in name else 1e-5)
+        np.testing.assert_allclose(J[:, j], ref, rtol=0, atol=2e-3 * np.abs(ref).max(),
+                                   err_msg=name)
+    for j, f in enumerate(FORCES):
+        assert prob.names[j] == names[j]
+        other = ~np.isclose(spec.data.force, f * 1e-12)
+        assert np.all(J[other, j] == 0) and np.any(J[~other, j] != 0)

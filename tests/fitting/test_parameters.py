@@ -8,7 +8,7 @@ from fitting_helpers import simulate
 
 import supercoil as sc
 from supercoil.dna.fitting import DNA_FIELDS, PLAUSIBLE, FitParameter, FitParameters
-from supercoil.exceptions import FitError
+from supercoil.exceptions import FitError, FitWarning
 
 
 def test_vector_round_trip_uses_the_scales():
@@ -90,8 +90,8 @@ def test_editing_params_equals_fixed_and_bounds(true_dna, base):
 
 def test_params_with_unsupported_sharing_or_names_fail(data, base):
     params = sc.fit_parameters(data, base)
-    params["radius"].shared = "per-force"
-    with pytest.raises(FitError, match="shared='per-force' is not supported"):
+    params["turns_offset"].shared = "global"
+    with pytest.raises(FitError, match="shared='global' is not supported for offset"):
         sc.fit_hat_curves(data, base, params=params)
     params = sc.fit_parameters(data, base)
     params.add(FitParameter("pitch", 1e-9, "nm"))
@@ -105,3 +105,40 @@ def test_params_with_unsupported_sharing_or_names_fail(data, base):
 def test_boolean_flags_are_checked(data, base, flag):
     with pytest.raises(TypeError, match=f"{flag} must be True or False, got 'no'"):
         sc.fit_hat_curves(data, base, **{flag: "no"})
+
+
+def test_per_force_parameter_recovers_a_force_dependent_value(base):
+    """Each force's curve made with its own C_t; one shared radius and offsets."""
+    import pandas as pd
+
+    u = sc.ureg
+    forces, twist = [0.3, 0.5, 0.7], [80.0, 95.0, 110.0]
+    parts = [sc.simulate_rotation_curves(base.replace(twist_persistence=c * u.nm), [f] * u.pN,
+                                         points_per_force=70, noise=4 * u.nm, turns_offset=0.2,
+                                         seed=i)
+             for i, (f, c) in enumerate(zip(forces, twist, strict=True))]
+    df = pd.concat(parts, ignore_index=True)
+    df.attrs = dict(parts[0].attrs)
+    params = sc.fit_parameters(df, base, vary=["twist_persistence", "radius"])
+    names = params.split_per_force("twist_persistence", forces * u.pN)
+    assert names == ["twist_persistence[0.3 pN]", "twist_persistence[0.5 pN]",
+                     "twist_persistence[0.7 pN]"]
+    assert list(params)[:3] == names and params[names[0]].shared == "per-force"
+    r = sc.fit_hat_curves(df, base, params=params)
+    for name, c in zip(names, twist, strict=True):
+        assert abs(r.parameters[name].m - c) < 4 * r.stderr[name].m, (name, r.parameters[name])
+    assert abs(r.parameters["radius"].m - base.radius.m_as("nm")) < 4 * r.stderr["radius"].m
+    assert "twist_persistence" not in r.fixed
+    # the same data with one global C_t: the misfit shows in the runs test
+    with pytest.warns(FitWarning, match="runs test"):
+        sc.fit_hat_curves(df, base)
+    fig = r.plot()  # each force's curve drawn with its own C_t
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    bad = sc.fit_parameters(df, base)
+    bad.split_per_force("radius", [0.4] * u.pN)
+    with pytest.raises(FitError, match="its force is not one of the data's forces"):
+        sc.fit_hat_curves(df, base, params=bad)
+    with pytest.raises(ValueError, match="only a global parameter"):
+        bad.split_per_force("turns_offset", [0.3] * u.pN)

@@ -100,7 +100,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
             raise FitError("give either params= or vary/fixed/bounds/start, not both")
         params, si = params.copy(), dna.si
         _check_params(params, rot, m, inter)
-    vary = [p.name for p in params.free_params() if p.owner != "offset"]
+    vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
     return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal, max_nfev,
                    float(tol), vary)
 
@@ -109,11 +109,16 @@ def _check_params(params, rot, model, inter):
     allowed = {"dna": ("length", "bending_persistence", "twist_persistence", "radius"),
                "model": tuple(model.parameters), "interaction": tuple(inter.parameters),
                "offset": ("turns_offset", "extension_offset")}
+    forces = np.unique(rot.force)
     for p in params.values():
-        want = "per-molecule" if p.owner == "offset" else "global"
-        if p.shared != want:  # per-force parameters: declared, not implemented yet
+        want = ("per-molecule",) if p.owner == "offset" else ("global", "per-force")
+        if p.shared not in want:
             raise FitError(f"parameter {p.name!r}: shared={p.shared!r} is not supported for "
-                           f"{p.owner} parameters (only {want!r})")
+                           f"{p.owner} parameters (only {' or '.join(map(repr, want))})")
+        if p.shared == "per-force" and not (p.force is not None and np.isclose(
+                forces, p.force, rtol=1e-9, atol=0).any()):
+            raise FitError(f"per-force parameter {p.name!r}: its force is not one of the "
+                           "data's forces")
         if p.kind not in allowed.get(p.owner, ()):
             raise FitError(f"parameter {p.name!r}: {p.owner} parameter {p.kind!r} is not one "
                            f"of {list(allowed.get(p.owner, ()))}")
@@ -228,6 +233,7 @@ def run_fit(spec: FitSpec) -> dict:
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
         "interaction_obj": getattr(inter, "_inter", inter), "n0": n0, "z0": z0, "model": best,
+        "states": prob.states(u) if prob._per_force else None,
         "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
         "torque": np.asarray(pts.torque, dtype=float),
         "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),

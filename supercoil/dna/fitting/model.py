@@ -30,11 +30,13 @@ M/C`` and the twist energy depend (:mod:`supercoil.core.dna.plectoneme`).
 
 from __future__ import annotations
 
+import math
 from collections import OrderedDict
 
 import numpy as np
 
 from supercoil.dna.interactions.hard_core import HardCore
+from supercoil.dna.models.base import HatPoints
 from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 from supercoil.units import BOLTZMANN
 
@@ -117,10 +119,15 @@ class HatCurveModel:
         self._jac = None
         # the kernel does not depend on the extension offsets: leave them out of the cache key
         self._kernel_mask = np.array([p.kind != "extension_offset" for p in self.free], bool)
+        self._per_force = any(p.shared == "per-force" for p in params.values())
 
     # ---- parameters -> kernel arguments ----
-    def unpack(self, u):
-        """``(dna SI, model, interaction, n0 per molecule, z0 per molecule)`` at ``u``."""
+    def unpack(self, u, force=None):
+        """``(dna SI, model, interaction, n0 per molecule, z0 per molecule)`` at ``u``.
+
+        Per-force parameters count only at their own ``force`` (N); with
+        ``force=None`` they keep the values of the molecule and model given.
+        """
         groups = {"dna": {}, "model": {}, "interaction": {}}
         n_mol = self.data.n_molecules
         n0, z0 = np.zeros(n_mol), np.zeros(n_mol)
@@ -130,6 +137,9 @@ class HatCurveModel:
             values[p.name] = p.scale * x
         for p in self.params.values():
             v = values[p.name]
+            if p.shared == "per-force" and (force is None or not math.isclose(
+                    p.force, force, rel_tol=1e-9)):
+                continue
             if p.owner == "offset":
                 target = offsets[p.kind]
                 if p.molecule is None:
@@ -149,16 +159,37 @@ class HatCurveModel:
         self.n_kernel_calls += 1
         return evaluate(model, turns, force, dna, self.thermal, inter)
 
+    def kernel_at(self, turns, force, u):
+        """Kernel points at ``u``: one call, or one per force with per-force parameters."""
+        if not self._per_force:
+            dna, model, inter = self.unpack(u)[:3]
+            return self.kernel(turns, force, dna, model, inter)
+        out = None
+        for f in np.unique(force):
+            sel = force == f
+            pts = self.kernel(turns[sel], force[sel], *self.unpack(u, f)[:3])
+            if out is None:
+                out = [None if a is None else np.empty(len(turns), np.asarray(a).dtype)
+                       for a in pts]
+            for arr, a in zip(out, pts, strict=True):
+                if arr is not None:
+                    arr[sel] = a
+        return HatPoints(*out)
+
+    def states(self, u):
+        """``{force: (dna, model, interaction)}`` at ``u`` for every force of the data."""
+        return {float(f): self.unpack(u, f)[:3] for f in np.unique(self.data.force)}
+
     # ---- model, residual ----
     def points(self, u):
         """``(HatPoints, z0 per point)`` at ``u`` (raises the kernel's errors); cached."""
         u = np.asarray(u, dtype=float)
         key = u[self._kernel_mask].tobytes()
-        dna, model, inter, n0, z0 = self.unpack(u)
+        n0, z0 = self.unpack(u)[3:]
         mol = self.data.mol_index
         pts = self._points.get(key)
         if pts is None:
-            pts = self.kernel(self.data.turns - n0[mol], self.data.force, dna, model, inter)
+            pts = self.kernel_at(self.data.turns - n0[mol], self.data.force, u)
             self._points[key] = pts
             if len(self._points) > _CACHE_SIZE:
                 self._points.popitem(last=False)
@@ -230,12 +261,12 @@ class HatCurveModel:
     def dz_dturns(self, u):
         """dz/dN at every point: one kernel call at N -/+ h (central difference)."""
         h = 1e-4
-        dna, model, inter, n0, _ = self.unpack(u)
+        n0 = self.unpack(u)[3]
         n_eff = self.data.turns - n0[self.data.mol_index]
         force = self.data.force
         try:
-            pts = self.kernel(np.concatenate([n_eff - h, n_eff + h]),
-                              np.concatenate([force, force]), dna, model, inter)
+            pts = self.kernel_at(np.concatenate([n_eff - h, n_eff + h]),
+                                 np.concatenate([force, force]), u)
             z = np.asarray(pts.extension, dtype=float)
             return (z[len(n_eff):] - z[: len(n_eff)]) / (2 * h)
         except _KERNEL_ERRORS:
@@ -243,7 +274,7 @@ class HatCurveModel:
         base = np.asarray(self.points(u)[0].extension, dtype=float)
         for sgn in (1.0, -1.0):
             try:
-                z = np.asarray(self.kernel(n_eff + sgn * h, force, dna, model, inter).extension)
+                z = np.asarray(self.kernel_at(n_eff + sgn * h, force, u).extension)
                 return (z - base) / (sgn * h)
             except _KERNEL_ERRORS:
                 continue

@@ -93,6 +93,8 @@ class FitParameter:
         Which points share it: all, the points of one force, one molecule's.
     molecule : int or None
         Index of the molecule of a per-molecule parameter.
+    force : float or None
+        The force (N) of a per-force parameter (its points share it).
     kind : str
         Base name (``"turns_offset"`` for ``"turns_offset[m1]"``).
     owner : {"dna", "model", "interaction", "offset"}
@@ -116,6 +118,7 @@ class FitParameter:
     stderr: float | None = None
     shared: str = "global"
     molecule: int | None = None
+    force: float | None = None
     kind: str = ""
     owner: str = "dna"
     plausible: tuple = (-_INF, _INF)
@@ -201,6 +204,27 @@ class FitParameters(MutableMapping):
             raise ValueError(f"fit parameter {param.name!r} already exists")
         self._p[param.name] = param
         return param
+
+    def split_per_force(self, name, forces):
+        """Replace the global parameter ``name`` by one per force, named ``name[0.3 pN]``.
+
+        ``forces`` (Quantity [force], e.g. the data's distinct forces): each new
+        parameter starts from the global one's value, bounds and limits and
+        is shared by the points at its force only. Returns the new names.
+        """
+        from supercoil.units import U, magnitude
+
+        p = self[name]
+        if p.owner == "offset" or p.shared != "global":
+            raise ValueError(f"only a global parameter can be split per force, not {name!r}")
+        f_si = np.atleast_1d(np.asarray(magnitude(forces, U.N, "forces"), dtype=float))
+        new = [dataclasses.replace(p, name=f"{p.kind}[{f * 1e12:.6g} pN]", shared="per-force",
+                                   force=float(f)) for f in np.unique(f_si)]
+        items = []
+        for key, q in self._p.items():
+            items.extend(new if key == name else [q])
+        self._p = {q.name: q for q in items}
+        return [q.name for q in new]
 
     def copy(self) -> FitParameters:
         """A deep copy (the fit never changes the caller's parameters)."""

@@ -15,8 +15,10 @@ _MARKERS = "osd^v<>p*hX"
 def _curve(result, force, grid):
     """The fitted hat curve (offset-free, nm) on ``grid`` turns at ``force`` (N)."""
     c = result._core
-    pts = c["model_obj"].points(grid, np.full_like(grid, force), c["dna"], result.thermal,
-                                c["interaction_obj"], None)
+    dna, model, inter = c["dna"], c["model_obj"], c["interaction_obj"]
+    if c.get("states"):  # per-force parameters: the molecule and model at this force
+        dna, model, inter = c["states"][float(force)]
+    pts = model.points(grid, np.full_like(grid, force), dna, result.thermal, inter, None)
     return np.asarray(pts.extension) * 1e9
 
 

@@ -79,7 +79,7 @@ class FitResult:
     residuals, best_fit : pint.Quantity
         ``data - model`` and the model extensions at the data points (nm).
     dna : DNA
-        The input DNA with the fitted fields replaced by their estimates.
+        The input DNA with the fitted (global) fields replaced by their estimates.
     model, interaction
         The model and interaction instances with the fitted parameters.
     data : pandas.DataFrame
