@@ -237,3 +237,13 @@ def test_jacobian_columns_of_a_model_parameter(base):
     dz = 2 * L * N**2 / (w**3 * (1 + (N / w) ** 2) ** 2)
     np.testing.assert_allclose(J[:, 0], dz * spec.params["width"].scale / spec.data.sigma,
                                rtol=1e-4, atol=1e-6 * np.abs(J[:, 0]).max())
+
+
+def test_a_fixed_model_parameter_in_params_is_used(base):
+    df = toy_data(base, seed=3)
+    params = sc.fit_parameters(df, base, vary=["width", "length"], model="toy-rod")
+    params["width"].vary = False
+    params["width"].value = WIDTH
+    r = sc.fit_hat_curves(df, base, params=params, model="toy-rod")  # instance default: 20
+    ref = sc.fit_hat_curves(df, base, vary=["length"], model=ToyRod(width=WIDTH))
+    assert r.parameters["length"].m == pytest.approx(ref.parameters["length"].m, rel=1e-9)

@@ -146,7 +146,7 @@ class HatCurveModel:
                     target[:] = v
                 else:
                     target[p.molecule] = v
-            elif p.owner in groups and (p.vary or p.owner == "dna"):
+            elif p.owner in groups:  # fixed ones too: a params= set may hold them
                 groups[p.owner][p.kind] = v
         dna = dna_si(self.base_dna, groups["dna"], self.xi_is_bending)
         model = self.model.replace(**groups["model"]) if groups["model"] else self.model

@@ -94,7 +94,8 @@ def fit_report(result, min_correlation=0.1) -> str:
         f"    z = hat(N - turns_offset) + extension_offset, model {result.model.name!r}{inter}, "
         + ("thermal" if result.thermal else "athermal"),
         "[[Fit statistics]]",
-        f"    fitting method     = least_squares (trf), {result.nfev} model evaluations, "
+        f"    fitting method     = least_squares (trf), {result.nfev} model evaluations "
+        f"({result._core['kernel_calls']} kernel calls with the Jacobians), "
         f"{result.seconds:.3g} s",
         f"    data points        = {result.ndata} ({len(forces)} forces: {force_text} pN; "
         f"{len(d.labels)} molecule{'s' if len(d.labels) > 1 else ''})",
