@@ -185,5 +185,6 @@ def run(args) -> int:
     print(f"{'force [pN]':>10} {'N_b':>8} {'plectoneme torque [pN nm]':>26} "
           f"{'dz/dN [nm/turn]':>16}")
     for f, n, m, s in zip(force.magnitude, nb, torque_p, slope, strict=True):
-        print(f"{f:10.4g} {n:8.4g} {m:26.4g} {s:16.4g}")
+        torque = f"{m:26.4g}" if np.isfinite(m) else f"{'- (no plectoneme helix)':>26}"
+        print(f"{f:10.4g} {n:8.4g} {torque} {s:16.4g}")
     return 0
