@@ -67,23 +67,21 @@ def _read_text(path, min_cols, what):
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise DataError(f"no such CALISTO {what} file: {path}") from None
-    lines = [i for i, ln in enumerate(text.splitlines(), start=1)
-             if ln.strip() and not ln.lstrip().startswith("#")]
-    if not lines:
+    # comment lines are removed here, not by pandas: its comment="#" would cut the NaN
+    # token -1.#IND000 in the middle of a line
+    kept = [(i, ln) for i, ln in enumerate(text.splitlines(), start=1)
+            if ln.strip() and not ln.lstrip().startswith("#")]
+    if not kept:
         raise DataError(f"{path}: no data rows (expected whitespace-separated numbers)")
-    try:
-        df = pd.read_csv(io.StringIO(text), sep=r"\s+", header=None, na_values=_NA,
-                         comment="#", engine="python")
-    except pd.errors.ParserError as exc:
-        raise DataError(f"{path}: rows with different numbers of columns ({exc}); expected "
-                        f"the same number of columns on every line") from None
-    ncol = df.shape[1]
-    counts = [len(ln.split()) for ln in text.splitlines()
-              if ln.strip() and not ln.lstrip().startswith("#")]
+    lines = [i for i, _ in kept]
+    counts = [len(ln.split()) for _, ln in kept]
+    ncol = counts[0]
     bad = [i for i, c in enumerate(counts) if c != ncol]
     if bad:
-        raise DataError(f"{path}, line {lines[bad[0]]}: {counts[bad[0]]} columns, the other "
-                        f"lines have {ncol}; expected the same number on every line")
+        raise DataError(f"{path}, line {lines[bad[0]]}: {counts[bad[0]]} columns, the first "
+                        f"data line has {ncol}; expected the same number on every line")
+    df = pd.read_csv(io.StringIO("\n".join(ln for _, ln in kept)), sep=r"\s+", header=None,
+                     na_values=_NA, engine="c")
     if ncol < min_cols:
         raise DataError(f"{path}, line {lines[0]}: {ncol} columns, expected at least {min_cols} "
                         f"for a CALISTO {what} file")

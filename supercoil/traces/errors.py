@@ -103,9 +103,11 @@ def blocking_error(x) -> BlockingResult:
 
     Notes
     -----
-    For uncorrelated frames the result equals ``std(ddof=1)/sqrt(n)`` (block
-    size 1). For an AR(1) series with lag-1 correlation ``phi`` it tends to
-    ``naive * sqrt((1 + phi) / (1 - phi))`` (tested in tests/traces).
+    For uncorrelated frames the criterion picks ``B`` just above
+    ``(2 n)**(1/3)`` and the result agrees with ``std(ddof=1)/sqrt(n)`` within
+    its own statistical error ``~ error / sqrt(2 n / B)``. For an AR(1) series
+    with lag-1 correlation ``phi`` it tends to ``naive * sqrt((1 + phi) / (1 - phi))``
+    (both tested in tests/traces).
     """
     x = np.asarray(x, dtype=float)
     sizes, se, _ = blocking_levels(x)

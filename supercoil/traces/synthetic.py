@@ -98,7 +98,7 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
                        reference=1, points_per_force=9, dwell=5.0 * ureg.s,
                        move=0.5 * ureg.s, frame_rate=60.0 * ureg.Hz,
                        settle_tau=0.3 * ureg.s, brownian=10.0 * ureg.nm,
-                       correlation_time=0.03 * ureg.s, tracking_noise=2.0 * ureg.nm,
+                       correlation_time=0.02 * ureg.s, tracking_noise=2.0 * ureg.nm,
                        drift_rate=1.0 * ureg.nm / ureg.s, drift_amplitude=20.0 * ureg.nm,
                        drift_period=60.0 * ureg.s, turns_offsets=None, surfaces=None,
                        seed=0) -> SyntheticRecording:
