@@ -227,7 +227,8 @@ def _plateau_mean(values, bead, p, source):
 
 def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
                     calibration=None, molecules=None, turns_tolerance=1e-3,
-                    height_tolerance=1e-4 * ureg.mm, min_frames=16, check_settled=True):
+                    height_tolerance=1e-4 * ureg.mm, min_frames=16, check_settled=True,
+                    errors="plateau"):
     """Rotation curves (one point per bead and plateau) from a recording's trace.
 
     Parameters
@@ -254,6 +255,13 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
     check_settled : bool
         Raise DataError when a plateau's kept frames still drift (first half
         against second half beyond 6 standard errors).
+    errors : {"plateau", "pooled"}
+        ``"plateau"``: every plateau's own blocking error (no assumption).
+        ``"pooled"``: the naive error of each plateau times the square root of
+        the statistical inefficiency pooled over all plateaus of that bead at
+        that magnet height; assumes the bead's correlation time is the same at
+        all of them, and is far less noisy for short plateaus
+        (docs/theory/recordings.md#error).
 
     Returns
     -------
@@ -280,6 +288,8 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
     """
     source = trace.attrs.get("provenance", {}).get("source", "trace") \
         if isinstance(trace, pd.DataFrame) else "trace"
+    if errors not in ("plateau", "pooled"):
+        raise ValueError(f"errors must be 'plateau' or 'pooled', got {errors!r}")
     plateaus = find_plateaus(trace, settle, turns_tolerance=turns_tolerance,
                              height_tolerance=height_tolerance, min_frames=min_frames,
                              source=source)
@@ -302,24 +312,33 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
                         f"(beads: {list(z.columns)}, reference: {refs})")
     zc = z.to_numpy() - drift[:, None]
     cols = _points(zc, list(z.columns), beads, plateaus, force, surface, min_frames,
-                   check_settled, source)
+                   check_settled, source, errors == "pooled")
     units = {"molecule": "", "force": "pN", "turns": "", "extension": "nm", "sigma": "nm"}
     prov = provenance(
         source=str(source), settle=f"{float(magnitude(settle, U.s, 'settle')):g} s",
         reference_beads=refs, surface=_jsonable_surface(surface),
         force="calibration" if calibration is not None else "force column",
         error="blocking (Flyvbjerg & Petersen, J. Chem. Phys. 91, 461 (1989)); block size "
-              "by Lee et al., Phys. Rev. E 83, 066706 (2011), Eq. 14",
+              "by Lee et al., Phys. Rev. E 83, 066706 (2011), Eq. 14; "
+              + ("inefficiency pooled per bead and magnet height" if errors == "pooled"
+                 else "per plateau"),
         plateaus=len(plateaus))
     table = make_table({k: np.asarray(v, dtype=object if k == "molecule" else float)
                         for k, v in cols.items()}, units, prov)
     return check_tweezers_frame(table, source=str(source))
 
 
-def _points(zc, labels, beads, plateaus, force, surface, min_frames, check_settled, source):
-    """Mean and blocking error of every (bead, plateau): the rotation-curve columns."""
+def _points(zc, labels, beads, plateaus, force, surface, min_frames, check_settled, source,
+            pool):
+    """Mean and blocking error of every (bead, plateau): the rotation-curve columns.
+
+    ``pool=True``: the statistical inefficiency ``(error / naive)**2`` of all
+    plateaus of one bead at one magnet height is averaged (weighted by the
+    blocks of each estimate) and every plateau's error is its naive error times
+    the square root of the pooled value (recordings.md#error).
+    """
     cols = {"molecule": [], "force": [], "turns": [], "extension": [], "sigma": []}
-    skipped, unconverged = [], 0
+    skipped, unconverged, groups = [], 0, {}
     for j, bead in enumerate(labels):
         if bead not in beads:
             continue
@@ -332,14 +351,21 @@ def _points(zc, labels, beads, plateaus, force, surface, min_frames, check_settl
                 continue
             res = _plateau_mean(v, bead, p, source) if check_settled else blocking_error(v)
             unconverged += not res.converged
+            groups.setdefault((bead, round(p.height, 9)), []).append(
+                (len(cols["sigma"]), res, v.size))
             for key, val in (("molecule", bead), ("force", f), ("turns", p.turns),
                              ("extension", res.mean - offset), ("sigma", res.error)):
                 cols[key].append(val)
-    _warn(source, skipped, unconverged, len(cols["sigma"]))
+    if pool:
+        for members in groups.values():
+            w = np.array([n / r.block_size - 1.0 for _, r, n in members])
+            g = float(np.sum(w * [r.inefficiency for _, r, _ in members]) / np.sum(w))
+            for i, r, _ in members:
+                cols["sigma"][i] = r.naive_error * np.sqrt(g)
+    _warn(source, skipped, 0 if pool else unconverged, len(cols["sigma"]))
     if not cols["sigma"]:
         raise DataError(f"{source}: no plateau has {min_frames} tracked frames for any bead")
     return cols
-
 
 def _jsonable_surface(surface):
     if isinstance(surface, dict):

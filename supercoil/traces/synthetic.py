@@ -97,7 +97,7 @@ def _ou(rng, n, sd, phi):
 def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, molecules=2,
                        reference=1, points_per_force=9, dwell=5.0 * ureg.s,
                        move=0.5 * ureg.s, frame_rate=60.0 * ureg.Hz,
-                       settle_tau=0.3 * ureg.s, brownian=10.0 * ureg.nm,
+                       settle_tau=0.15 * ureg.s, brownian=10.0 * ureg.nm,
                        correlation_time=0.02 * ureg.s, tracking_noise=2.0 * ureg.nm,
                        drift_rate=1.0 * ureg.nm / ureg.s, drift_amplitude=20.0 * ureg.nm,
                        drift_period=60.0 * ureg.s, turns_offsets=None, surfaces=None,
