@@ -23,9 +23,9 @@ import warnings
 import numpy as np
 import pandas as pd
 
+from ..dna.tweezers import check_tweezers_frame
 from ..exceptions import DataError, DataWarning
 from ..tables import make_table, provenance
-from ..tweezers_data import check_tweezers_frame
 from ..units import U, as_turns, magnitude, ureg
 from .errors import blocking_error
 from .trace import check_trace

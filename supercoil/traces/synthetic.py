@@ -112,14 +112,14 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
         One rotation sweep per force (magnet heights from the synthetic calibration).
     turns : array-like, optional
         Turns of every sweep; default ``points_per_force`` values evenly over
-        +-0.9 x :func:`supercoil.fitting.valid_turns_range` at each force.
+        +-0.9 x :func:`supercoil.dna.fitting.fit.valid_turns_range` at each force.
     molecules, reference : int
         Numbers of tethered and of reference beads.
     turns_offsets, surfaces : sequence, optional
         Per molecule: turns offset (turns) and surface z (Quantity [length]);
         default: random in +-0.5 turn and 50-150 nm.
     """
-    from ..fitting import valid_turns_range
+    from ..dna.fitting.fit import valid_turns_range
     from ..parameters import load_parameters
 
     rng = np.random.default_rng(seed)
@@ -161,7 +161,7 @@ def _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecu
     """Bead positions (frames x beads x 3, nm) and the true plateau extensions."""
     from scipy.signal import lfilter
 
-    from ..hat import hat_curve
+    from ..dna.hat import hat_curve
 
     sd_b, sd_t, phi, a = noise
     n_fr = time.size

@@ -73,7 +73,7 @@ def test_all_formats_give_the_same_rotation_curves(written, recording):
         np.testing.assert_allclose(other["force"], a["force"], rtol=1e-5)
         # the plateaus' edges differ by at most one frame between hold and interpolation:
         # means agree to far below their error, blocking errors to their own precision
-        assert np.all(np.abs(other["extension"] - a["extension"]) < 0.3 * a["sigma"])
+        assert np.all(np.abs(other["extension"] - a["extension"]) < 0.5 * a["sigma"])
         np.testing.assert_allclose(other["sigma"], a["sigma"], rtol=0.5)
 
 
