@@ -62,7 +62,8 @@ def _runs(turns, height, tol_n, tol_h):
 
 
 def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
-                  height_tolerance=1e-4 * ureg.mm, min_frames=16, source=None):
+                  height_tolerance=1e-4 * ureg.mm, min_frames=16, guard=0.05 * ureg.s,
+                  source=None):
     """Plateaus of constant magnet rotation and height in a trace.
 
     Parameters
@@ -77,13 +78,17 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
         Largest change of the magnet height within a plateau.
     min_frames : int
         Frames a plateau must keep after ``settle`` (at least 4).
+    guard : Quantity [time]
+        Frames this close to the end of a run are dropped too: a motor log
+        that is sampled (MagScope's Zaber managers poll every 50 ms) reports a
+        move up to one sampling interval late (default 0.05 s).
 
     Returns
     -------
     pandas.DataFrame
         One row per plateau in time order: ``plateau`` (index), ``start``,
-        ``used_from``, ``end`` [s] (first frame, first frame kept after
-        settling, last frame), ``turns``, ``height`` [mm], ``frames``,
+        ``used_from``, ``used_to``, ``end`` [s] (first frame, first and last
+        frame kept, last frame), ``turns``, ``height`` [mm], ``frames``,
         ``frames_used``, and ``force`` [pN] (mean) if the trace has a force
         column. ``attrs["moves"]``: the number of shorter runs skipped.
 
@@ -96,9 +101,11 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
     source = source or trace.attrs.get("provenance", {}).get("source", "trace")
     check_trace(trace, source)
     t_settle = float(magnitude(settle, U.s, "settle"))
+    t_guard = float(magnitude(guard, U.s, "guard"))
     tol_n = float(as_turns(turns_tolerance, "turns_tolerance"))
     tol_h = float(magnitude(height_tolerance, U.mm, "height_tolerance"))
-    if not (t_settle >= 0 and tol_n >= 0 and tol_h >= 0 and int(min_frames) >= 4):
+    if not (t_settle >= 0 and t_guard >= 0 and tol_n >= 0 and tol_h >= 0
+            and int(min_frames) >= 4):
         raise ValueError("settle and the tolerances must be >= 0 and min_frames >= 4, got "
                          f"settle={settle}, turns_tolerance={turns_tolerance}, "
                          f"height_tolerance={height_tolerance}, min_frames={min_frames}")
@@ -107,13 +114,13 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
     starts, stops = _runs(frames["turns"].to_numpy(), frames["height"].to_numpy(), tol_n, tol_h)
     rows, moves, longest = [], 0, (0.0, 0)
     for a, b in zip(starts, stops, strict=True):
-        used = np.flatnonzero(t[a:b] >= t[a] + t_settle) + a
+        used = np.flatnonzero((t[a:b] >= t[a] + t_settle) & (t[a:b] <= t[b - 1] - t_guard)) + a
         if t[b - 1] - t[a] > longest[0]:
             longest = (t[b - 1] - t[a], a)
         if used.size < min_frames:
             moves += 1
             continue
-        row = {"start": t[a], "used_from": t[used[0]], "end": t[b - 1],
+        row = {"start": t[a], "used_from": t[used[0]], "used_to": t[used[-1]], "end": t[b - 1],
                "turns": float(frames["turns"].iloc[used].mean()),
                "height": float(frames["height"].iloc[used].mean()),
                "frames": int(b - a), "frames_used": int(used.size),
@@ -130,13 +137,15 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
             f"{frames['turns'].iloc[a]:g} turns)")
     table = pd.DataFrame(rows)
     table.insert(0, "plateau", np.arange(len(table)))
-    units = {"plateau": "", "start": "s", "used_from": "s", "end": "s", "turns": "",
+    units = {"plateau": "", "start": "s", "used_from": "s", "used_to": "s", "end": "s",
+             "turns": "",
              "height": "mm", "frames": "", "frames_used": "", "first": "", "stop": "",
              "force": "pN"}
     out = make_table({c: table[c].to_numpy() for c in table.columns},
                      {c: units[c] for c in table.columns},
                      provenance(source=str(source), settle=f"{t_settle:g} s",
-                                turns_tolerance=tol_n, height_tolerance=f"{tol_h:g} mm",
+                                guard=f"{t_guard:g} s", turns_tolerance=tol_n,
+                                height_tolerance=f"{tol_h:g} mm",
                                 min_frames=int(min_frames)))
     out.attrs["moves"] = moves
     return out
@@ -227,8 +236,8 @@ def _plateau_mean(values, bead, p, source):
 
 def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
                     calibration=None, molecules=None, turns_tolerance=1e-3,
-                    height_tolerance=1e-4 * ureg.mm, min_frames=16, check_settled=True,
-                    errors="plateau"):
+                    height_tolerance=1e-4 * ureg.mm, min_frames=16, guard=0.05 * ureg.s,
+                    check_settled=True, errors="plateau"):
     """Rotation curves (one point per bead and plateau) from a recording's trace.
 
     Parameters
@@ -250,7 +259,7 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
         trace must have a ``force`` column. There is no default calibration.
     molecules : sequence of str, optional
         Beads to turn into curves (default: all but the reference beads).
-    turns_tolerance, height_tolerance, min_frames
+    turns_tolerance, height_tolerance, min_frames, guard
         As for :func:`find_plateaus`.
     check_settled : bool
         Raise DataError when a plateau's kept frames still drift (first half
@@ -292,7 +301,7 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
         raise ValueError(f"errors must be 'plateau' or 'pooled', got {errors!r}")
     plateaus = find_plateaus(trace, settle, turns_tolerance=turns_tolerance,
                              height_tolerance=height_tolerance, min_frames=min_frames,
-                             source=source)
+                             guard=guard, source=source)
     _, z = _frames(trace)
     if calibration is not None:
         force = force_from_height(calibration, plateaus["height"].to_numpy())

@@ -44,7 +44,7 @@ def plot_plateaus(trace, plateaus, beads=None, path=None, max_points=20000):
     axes[2].plot(frames["time"].to_numpy()[::step], frames["height"].to_numpy()[::step], "k",
                  lw=0.8)
     for ax in axes:
-        for a, b in zip(plateaus["used_from"], plateaus["end"], strict=True):
+        for a, b in zip(plateaus["used_from"], plateaus["used_to"], strict=True):
             ax.axvspan(a, b, color="tab:green", alpha=0.12, lw=0)
     axes[0].set_ylabel("z [nm]")
     axes[0].legend(fontsize="small", loc="upper right", ncol=2)
