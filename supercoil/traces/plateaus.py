@@ -43,7 +43,8 @@ def _frames(trace):
     frames = first[cols].reset_index(drop=True)
     z = trace.pivot_table(index="time", columns="bead", values="z", aggfunc="first",
                           sort=True)
-    return frames, z.reindex(frames["time"].to_numpy())
+    labels = list(dict.fromkeys(trace["bead"]))  # the recording's order, not string order
+    return frames, z.reindex(index=frames["time"].to_numpy(), columns=labels)
 
 
 def _runs(turns, height, tol_n, tol_h):

@@ -148,7 +148,9 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
     beads = [str(i) for i in range(molecules + reference)]
     xyz, truth = _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecules,
                                  len(beads))
-    log_t = np.unique(np.concatenate([kt, np.arange(0.0, kt[-1], 0.05)]))
+    # the motor is polled every 50 ms (MagScope's Zaber managers), at a random phase: a move
+    # or an arrival is logged up to 50 ms late; the state at t = 0 is written at connect
+    log_t = np.concatenate([[0.0], rng.uniform(0.0, 0.05) + np.arange(0.0, kt[-1], 0.05)])
     return SyntheticRecording(
         time=time, beads=beads, reference_beads=beads[molecules:], xyz=xyz, log_time=log_t,
         log_turns=np.interp(log_t, kt, kn), log_height=np.interp(log_t, kt, kh),

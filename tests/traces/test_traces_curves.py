@@ -43,9 +43,10 @@ def _pulls(curves, rec):
 
 @pytest.mark.parametrize("fmt", ["magscope", "calisto-hdf5", "calisto-text"])
 def test_plateaus_found_at_the_true_schedule(written, recording, fmt):
-    """18 plateaus, each starting within one frame after the magnet arrives and ending
-    within one motor-log interval (50 ms) plus a frame after the next move starts (the log
-    reports it late), the kept frames ending before it; turns exact, force to 1e-4."""
+    """18 plateaus, each starting and ending within one motor poll (50 ms) plus one frame of
+    the magnet's arrival and next departure (the polled log reports both late, or the
+    interpolated CALISTO stage early), the kept frames ending before the departure; turns
+    exact, force from the calibration to 1e-4."""
     rec = written[fmt]
     trace = (read_magscope(rec.path, reference_beads=["2"]) if fmt == "magscope"
              else read_calisto(rec.path, rec.motor_path))
@@ -54,10 +55,10 @@ def test_plateaus_found_at_the_true_schedule(written, recording, fmt):
     assert len(pl) == len(truth) == 18
     k = np.arange(18)
     start = np.where(k == 0, 0.0, k * (DWELL + MOVE))
+    late = 0.05 + FRAME + 1e-6  # one motor poll (50 ms) and one frame
     assert np.all(pl["start"] - start >= -1e-6)
-    assert np.all(pl["start"] - start <= FRAME + 1e-6)
-    assert np.all(pl["end"] - (start + DWELL) <= 0.05 + FRAME + 1e-6)
-    assert np.all(pl["end"] - (start + DWELL) >= -FRAME - 1e-6)
+    assert np.all(pl["start"] - start <= late)
+    assert np.all(np.abs(pl["end"] - (start + DWELL)) <= late)
     assert np.all(pl["used_to"] <= start + DWELL + 1e-6)
     assert np.all(pl["used_from"] - pl["start"] >= 1.0)
     np.testing.assert_allclose(pl["turns"], truth["turns"], atol=1e-9)
@@ -156,7 +157,7 @@ def test_a_bead_that_never_settles():
                                         r"and second half .* standard errors"):
         rotation_curves(trace, 1 * u.s, calibration=synthetic_calibration())
     with pytest.raises(DataError, match=r"the magnet never settles: .* settle=12 s; the "
-                                        r"longest lasts 5 s"):
+                                        r"longest lasts (4\.9\d|5) s"):
         find_plateaus(trace, 12 * u.s)
 
 
