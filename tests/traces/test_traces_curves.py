@@ -94,7 +94,7 @@ def test_drift_removal():
 
 def test_sigma_is_the_scatter_of_plateau_means():
     """Over 4 recordings (216 points) the pulls have unit spread (measured on 1080 points:
-    1.13 per plateau, where the error of each sigma widens the tails; 1.07 pooled)."""
+    1.14 per plateau, where the error of each sigma widens the tails; 1.06 pooled)."""
     pulls = {"plateau": [], "pooled": []}
     for seed in range(4):
         rec = simulate_recording(molecules=3, reference=1, seed=100 + seed)
