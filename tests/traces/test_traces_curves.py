@@ -5,6 +5,8 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import supercoil as sc
 from supercoil import DataError
@@ -179,3 +181,34 @@ def test_arguments_are_checked(recording):
         rotation_curves(trace, 1 * u.nm, calibration=synthetic_calibration())
     with pytest.raises(DataError, match="missing column 'height'"):
         find_plateaus(trace.drop(columns="height"))
+
+
+@given(st.lists(st.tuples(st.integers(-30, 30), st.floats(1.0, 4.0)), min_size=1, max_size=8),
+       st.integers(20, 90))
+@settings(max_examples=30)
+def test_plateaus_of_any_step_schedule(steps, rate):
+    """A magnet that steps through arbitrary turns and dwell times: exactly the steps that
+    keep min_frames frames between settle after their first frame and guard before their
+    last one are found, with their turns."""
+    runs = []  # (turns, duration), equal neighbours merged
+    for n, d in steps:
+        if runs and runs[-1][0] == n / 2:
+            runs[-1] = (n / 2, runs[-1][1] + d)
+        else:
+            runs.append((n / 2, d))
+    edges = np.cumsum([0.0] + [d for _, d in runs])
+    t = np.arange(0.0, edges[-1], 1.0 / rate)
+    which = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, len(runs) - 1)
+    turns = np.array([v for v, _ in runs])[which]
+    xyz = np.random.default_rng(0).normal(size=(t.size, 1, 3))
+    trace = build_trace(t, ["0"], xyz, turns, np.full(t.size, 2.0), source="steps", fmt="sim")
+    expected = []
+    for k, (v, _) in enumerate(runs):
+        tt = t[which == k]
+        if tt.size and np.sum((tt >= tt[0] + 1.0) & (tt <= tt[-1] - 0.05)) >= 16:
+            expected.append(v)
+    if not expected:
+        with pytest.raises(DataError, match="never settles"):
+            find_plateaus(trace, 1 * u.s)
+        return
+    assert list(find_plateaus(trace, 1 * u.s)["turns"]) == expected

@@ -220,3 +220,16 @@ def test_missing_h5py_names_the_extra(written, monkeypatch):
         read_magscope(written["magscope"].path)
     with pytest.raises(ImportError, match=r"supercoil\[hdf5\]"):
         read_calisto(written["calisto-hdf5"].path)
+
+
+def test_magscope_bead_with_no_frames(written, tmp_path):
+    """A bead whose z is NaN in every record (no Z-LUT for it) is named."""
+    path = _copy_magscope(written, tmp_path)
+    with h5py.File(path, "a") as fh:
+        ids = fh["tracking/bead_ids"][()]
+        pos = fh["tracking/positions_nm"]
+        z = pos[:, 2]
+        z[ids == 1] = np.nan
+        pos[:, 2] = z
+    with pytest.raises(DataError, match=r"bead '1' has no frames \(no finite z value\)"):
+        read_magscope(path)
