@@ -15,7 +15,8 @@ Phys. Rev. E 83, 066706 (2011), Eq. 14, in the form used by pyblock (J. Spencer,
 ``pyblock.blocking.find_optimal_block``, read there): the smallest block size
 ``B = 2**k`` with ``B**3 > 2 n (SE_k / SE_0)**4``. See docs/theory/recordings.md#error.
 
-This module is float-only (numpy); it does not know units.
+The analysis is float-only (numpy); a pint quantity is analysed on its
+magnitude and the results carry its unit.
 """
 
 from __future__ import annotations
@@ -88,8 +89,9 @@ def blocking_error(x) -> BlockingResult:
 
     Parameters
     ----------
-    x : array_like, 1-D
-        The frames of one plateau (at least 2 finite values).
+    x : array_like or Quantity, 1-D
+        The frames of one plateau (at least 2 finite values). For a quantity,
+        ``mean``, ``error`` and ``naive_error`` carry its unit.
 
     Returns
     -------
@@ -109,6 +111,11 @@ def blocking_error(x) -> BlockingResult:
     with lag-1 correlation ``phi`` it tends to ``naive * sqrt((1 + phi) / (1 - phi))``
     (both tested in tests/traces).
     """
+    unit = getattr(x, "units", None)
+    if unit is not None:  # a pint quantity: the same analysis on the magnitude, in its unit
+        r = blocking_error(np.asarray(x.magnitude, dtype=float))
+        return r._replace(mean=r.mean * unit, error=r.error * unit,
+                          naive_error=r.naive_error * unit)
     x = np.asarray(x, dtype=float)
     sizes, se, _ = blocking_levels(x)
     n = x.size

@@ -111,6 +111,34 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
                          f"settle={settle}, turns_tolerance={turns_tolerance}, "
                          f"height_tolerance={height_tolerance}, min_frames={min_frames}")
     frames, _ = _frames(trace)
+    rows, moves, longest = _scan(frames, t_settle, t_guard, tol_n, tol_h, int(min_frames))
+    t = frames["time"].to_numpy()
+    if not rows:
+        dur, a = longest
+        raise DataError(
+            f"{source}: the magnet never settles: no stretch of constant rotation (within "
+            f"{tol_n:g} turn) and height (within {tol_h:g} mm) keeps {min_frames} frames after "
+            f"settle={t_settle:g} s; the longest lasts {dur:.3g} s (from t = {t[a]:.4g} s, "
+            f"{frames['turns'].iloc[a]:g} turns)")
+    table = pd.DataFrame(rows)
+    table.insert(0, "plateau", np.arange(len(table)))
+    out = make_table({c: table[c].to_numpy() for c in table.columns},
+                     {c: _PLATEAU_UNITS[c] for c in table.columns},
+                     provenance(source=str(source), settle=f"{t_settle:g} s",
+                                guard=f"{t_guard:g} s", turns_tolerance=tol_n,
+                                height_tolerance=f"{tol_h:g} mm",
+                                min_frames=int(min_frames)))
+    out.attrs["moves"] = moves
+    return out
+
+
+_PLATEAU_UNITS = {"plateau": "", "start": "s", "used_from": "s", "used_to": "s", "end": "s",
+                  "turns": "", "height": "mm", "frames": "", "frames_used": "", "first": "",
+                  "stop": "", "force": "pN"}
+
+
+def _scan(frames, t_settle, t_guard, tol_n, tol_h, min_frames):
+    """Plateau rows, number of skipped runs (moves) and the longest run (duration, start)."""
     t = frames["time"].to_numpy()
     starts, stops = _runs(frames["turns"].to_numpy(), frames["height"].to_numpy(), tol_n, tol_h)
     rows, moves, longest = [], 0, (0.0, 0)
@@ -129,27 +157,7 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
         if "force" in frames.columns:
             row["force"] = float(frames["force"].iloc[used].mean())
         rows.append(row)
-    if not rows:
-        dur, a = longest
-        raise DataError(
-            f"{source}: the magnet never settles: no stretch of constant rotation (within "
-            f"{tol_n:g} turn) and height (within {tol_h:g} mm) keeps {min_frames} frames after "
-            f"settle={t_settle:g} s; the longest lasts {dur:.3g} s (from t = {t[a]:.4g} s, "
-            f"{frames['turns'].iloc[a]:g} turns)")
-    table = pd.DataFrame(rows)
-    table.insert(0, "plateau", np.arange(len(table)))
-    units = {"plateau": "", "start": "s", "used_from": "s", "used_to": "s", "end": "s",
-             "turns": "",
-             "height": "mm", "frames": "", "frames_used": "", "first": "", "stop": "",
-             "force": "pN"}
-    out = make_table({c: table[c].to_numpy() for c in table.columns},
-                     {c: units[c] for c in table.columns},
-                     provenance(source=str(source), settle=f"{t_settle:g} s",
-                                guard=f"{t_guard:g} s", turns_tolerance=tol_n,
-                                height_tolerance=f"{tol_h:g} mm",
-                                min_frames=int(min_frames)))
-    out.attrs["moves"] = moves
-    return out
+    return rows, moves, longest
 
 
 def force_from_height(calibration, height_mm, source="calibration"):
@@ -303,6 +311,29 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
     plateaus = find_plateaus(trace, settle, turns_tolerance=turns_tolerance,
                              height_tolerance=height_tolerance, min_frames=min_frames,
                              guard=guard, source=source)
+    z, force, refs, beads = _inputs(trace, plateaus, calibration, reference, molecules, source)
+    zc = z.to_numpy() - _reference_signal(z, refs, source)[:, None]
+    cols = _points(zc, list(z.columns), beads, plateaus, force, surface, min_frames,
+                   check_settled, source, errors == "pooled")
+    prov = provenance(
+        source=str(source), settle=f"{float(magnitude(settle, U.s, 'settle')):g} s",
+        reference_beads=refs, surface=_jsonable_surface(surface),
+        force="calibration" if calibration is not None else "force column",
+        error=_ERROR_METHOD + ("inefficiency pooled per bead and magnet height"
+                               if errors == "pooled" else "per plateau"),
+        plateaus=len(plateaus))
+    table = make_table({k: np.asarray(v, dtype=object if k == "molecule" else float)
+                        for k, v in cols.items()}, _CURVE_UNITS, prov)
+    return check_tweezers_frame(table, source=str(source))
+
+
+_CURVE_UNITS = {"molecule": "", "force": "pN", "turns": "", "extension": "nm", "sigma": "nm"}
+_ERROR_METHOD = ("blocking (Flyvbjerg & Petersen, J. Chem. Phys. 91, 461 (1989)); block size by "
+                 "Lee et al., Phys. Rev. E 83, 066706 (2011), Eq. 14; ")
+
+
+def _inputs(trace, plateaus, calibration, reference, molecules, source):
+    """z matrix (frames x beads), force per plateau, reference beads, molecules."""
     _, z = _frames(trace)
     if calibration is not None:
         force = force_from_height(calibration, plateaus["height"].to_numpy())
@@ -313,29 +344,13 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
                         "trace with a force column; supercoil has no default calibration")
     refs = trace.attrs.get("reference_beads", []) if reference is None else (
         [reference] if isinstance(reference, str) else [str(r) for r in reference])
-    drift = _reference_signal(z, refs, source)
     beads = [b for b in z.columns if b not in refs] if molecules is None else \
         [str(m) for m in molecules]
     unknown = [b for b in beads if b not in z.columns]
     if unknown or not beads:
         raise DataError(f"{source}: molecule(s) {unknown or beads} not in the trace "
                         f"(beads: {list(z.columns)}, reference: {refs})")
-    zc = z.to_numpy() - drift[:, None]
-    cols = _points(zc, list(z.columns), beads, plateaus, force, surface, min_frames,
-                   check_settled, source, errors == "pooled")
-    units = {"molecule": "", "force": "pN", "turns": "", "extension": "nm", "sigma": "nm"}
-    prov = provenance(
-        source=str(source), settle=f"{float(magnitude(settle, U.s, 'settle')):g} s",
-        reference_beads=refs, surface=_jsonable_surface(surface),
-        force="calibration" if calibration is not None else "force column",
-        error="blocking (Flyvbjerg & Petersen, J. Chem. Phys. 91, 461 (1989)); block size "
-              "by Lee et al., Phys. Rev. E 83, 066706 (2011), Eq. 14; "
-              + ("inefficiency pooled per bead and magnet height" if errors == "pooled"
-                 else "per plateau"),
-        plateaus=len(plateaus))
-    table = make_table({k: np.asarray(v, dtype=object if k == "molecule" else float)
-                        for k, v in cols.items()}, units, prov)
-    return check_tweezers_frame(table, source=str(source))
+    return z, force, refs, beads
 
 
 def _points(zc, labels, beads, plateaus, force, surface, min_frames, check_settled, source,

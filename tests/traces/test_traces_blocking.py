@@ -83,3 +83,14 @@ def test_affine_invariance(scale, shift, seed):
     assert b.block_size == a.block_size
     assert b.error == pytest.approx(scale * a.error, rel=1e-9)
     assert b.mean == pytest.approx(scale * a.mean + shift, rel=1e-9, abs=1e-9 * abs(shift))
+
+
+def test_quantity_in_quantity_out():
+    import supercoil as sc
+
+    x = _ar1(np.random.default_rng(4), 1024, 0.5, 1)[0]
+    q = blocking_error(x * sc.ureg.nm)
+    r = blocking_error(x)
+    assert q.error.m_as("nm") == pytest.approx(r.error, rel=1e-12)
+    assert q.mean.to("um").m == pytest.approx(r.mean * 1e-3, rel=1e-12)
+    assert q.block_size == r.block_size
