@@ -294,15 +294,13 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
     Raises
     ------
     DataError
-        No plateau (the magnet never settles); no force (neither calibration
-        nor force column); heights outside the calibration; unknown reference
-        or molecule; a plateau that has not settled; a constant bead.
+        No plateau (the magnet never settles); no force; heights outside the
+        calibration; unknown bead; a plateau not settled; a constant bead.
 
     Warns
     -----
     DataWarning
-        Plateaus skipped for a bead (too few tracked frames) and plateaus whose
-        blocking did not converge (too short for their correlation time).
+        Plateaus skipped (too few tracked frames) or too short for blocking.
     """
     source = trace.attrs.get("provenance", {}).get("source", "trace") \
         if isinstance(trace, pd.DataFrame) else "trace"
