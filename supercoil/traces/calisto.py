@@ -1,7 +1,7 @@
 """Reader of CALISTO recordings (Lipfert lab, github.com/lipfertlab/calisto).
 
-What was verified, and where (CALISTO repository, read 2026-12-01): README.md
-("Input File Formats"), ``src/CALISTO/engines/landing_engine.py`` and
+What was verified, and where (CALISTO repository, read 2026-12-01 at commits
+2efb2d0 and 0b79d75): README.md ("Input File Formats"), ``src/CALISTO/engines/landing_engine.py`` and
 ``src/CALISTO/engines/offset_engine.py`` (the loaders, including the rotation
 loaders ``load_rot_hdfdatafile``, ``load_rot_datafile``,
 ``load_rot_motor_datafile`` and ``verify_rot_data_consistency``),
