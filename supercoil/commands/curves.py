@@ -3,7 +3,7 @@
 Example::
 
     supercoil curves "Tracking Data 2025-12-01 00-00-00.000000.h5" --reference 20 \\
-        --calibration force_calibration.csv --settle 1s --out DIR
+        --calibration force_calibration.csv --settle 1s [--errors pooled] --out DIR
 
 ``RECORDING`` is a MagScope tracking file (or its acquisition folder; the motor
 logs ``ZaberNmsMotor.txt``/``ZaberLsqMotor.txt`` beside it) or a CALISTO
@@ -68,6 +68,9 @@ def add_parser(sub):
                    help="MagScope: motor log of the rotation in turns (default ZaberNmsMotor.txt)")
     p.add_argument("--height-log", default="ZaberLsqMotor.txt",
                    help="MagScope: motor log of the height in mm (default ZaberLsqMotor.txt)")
+    p.add_argument("--errors", choices=("plateau", "pooled"), default="plateau",
+                   help="sigma of each plateau mean: its own blocking error (default), or the "
+                   "naive error times the inefficiency pooled per bead and magnet height")
     p.add_argument("--out", default="curves_out", help="output folder (default: curves_out)")
     p.add_argument("--no-plot", action="store_true", help="do not write the figure")
     p.set_defaults(func=run)
@@ -121,7 +124,8 @@ def run(args) -> int:
         trace = _read(args)
         calibration = read_csv(args.calibration) if args.calibration else None
         plateaus = traces.find_plateaus(trace, settle)
-        curves = traces.rotation_curves(trace, settle, calibration=calibration)
+        curves = traces.rotation_curves(trace, settle, calibration=calibration,
+                                        errors=args.errors)
     for w in caught:
         print(f"supercoil curves: warning: {w.message}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)

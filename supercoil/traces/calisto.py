@@ -1,11 +1,11 @@
 """Reader of CALISTO recordings (Lipfert lab, github.com/lipfertlab/calisto).
 
 What was verified, and where (CALISTO repository, read 2026-12-01 at commits
-2efb2d0 and 0b79d75): README.md ("Input File Formats"), ``src/CALISTO/engines/landing_engine.py`` and
-``src/CALISTO/engines/offset_engine.py`` (the loaders, including the rotation
-loaders ``load_rot_hdfdatafile``, ``load_rot_datafile``,
-``load_rot_motor_datafile`` and ``verify_rot_data_consistency``),
-``src/CALISTO/config.yaml`` (unit factors).
+2efb2d0 and 0b79d75): README.md ("Input File Formats"),
+``src/CALISTO/engines/landing_engine.py`` and ``src/CALISTO/engines/offset_engine.py``
+(the loaders, including the rotation loaders ``load_rot_hdfdatafile``,
+``load_rot_datafile``, ``load_rot_motor_datafile`` and
+``verify_rot_data_consistency``), ``src/CALISTO/config.yaml`` (unit factors).
 
 HDF5 (``.h5``): root dataset ``timestamp`` (frame times, float64); group
 ``stage`` with ``t_s`` (motor times), ``mag_pos_mm`` (magnet position) and, for

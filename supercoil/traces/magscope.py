@@ -130,15 +130,32 @@ def _read_tracking(path):
     return ts, off, ids, pos
 
 
+def _tracking_files(path):
+    """The tracking file(s): one file, a list of files, or all of a folder's."""
+    if isinstance(path, list | tuple):
+        paths = [Path(p) for p in path]
+    elif Path(path).is_dir():
+        paths = sorted(Path(path).glob("Tracking Data *.h5"))
+        if not paths:
+            raise DataError(f"{path}: no 'Tracking Data <timestamp>.h5' file in this folder")
+    else:
+        paths = [Path(path)]
+    if not paths:
+        raise DataError("read_magscope: no tracking file given")
+    return paths
+
+
 def read_magscope(path, *, rotation_log="ZaberNmsMotor.txt", rotation_column=1,
                   height_log="ZaberLsqMotor.txt", height_column=1, reference_beads=()):
     """Read a MagScope recording into the trace table of :mod:`supercoil.traces.trace`.
 
     Parameters
     ----------
-    path : str or Path
-        The ``Tracking Data <timestamp>.h5`` file, or the acquisition folder
-        holding exactly one such file.
+    path : str, Path or list of them
+        A ``Tracking Data <timestamp>.h5`` file, several (MagScope starts a new
+        file every hour by default, user guide "Tracking Data Saving"), or the
+        acquisition folder (all its tracking files). The frames of all files
+        are merged in time order; a frame time present twice is an error.
     rotation_log, height_log : str or Path
         Motor logs of the magnet rotation (in turns) and height (in mm);
         relative paths are taken in the tracking file's folder. Defaults: the
@@ -163,18 +180,19 @@ def read_magscope(path, *, rotation_log="ZaberNmsMotor.txt", rotation_column=1,
     ImportError
         h5py is not installed (``pip install 'supercoil[hdf5]'``).
     """
-    path = Path(path)
-    if path.is_dir():
-        found = sorted(path.glob("Tracking Data *.h5"))
-        if len(found) != 1:
-            raise DataError(f"{path}: expected exactly one 'Tracking Data <timestamp>.h5' file, "
-                            f"found {len(found)}; pass the file")
-        path = found[0]
-    ts, off, ids, pos = _read_tracking(path)
+    paths = _tracking_files(path)
+    path = paths[0]
+    parts = [_read_tracking(p) for p in paths]
+    ts = np.concatenate([q[0] for q in parts])
+    shift = np.cumsum([0] + [q[2].size for q in parts[:-1]])
+    off = np.concatenate([[0]] + [q[1][1:] + k for q, k in zip(parts, shift, strict=True)])
+    ids = np.concatenate([q[2] for q in parts])
+    pos = np.concatenate([q[3] for q in parts])
     order = np.argsort(ts, kind="stable")
     ts_sorted = ts[order]
     t_rel = (ts_sorted - ts_sorted[0]).astype(np.int64) / 1e9
-    _check_increasing(t_rel, f"{path}, dataset '/tracking/frame_timestamps_ns' (sorted)",
+    where = path if len(paths) == 1 else f"{len(paths)} tracking files ({path.name}, ...)"
+    _check_increasing(t_rel, f"{where}, dataset '/tracking/frame_timestamps_ns' (sorted)",
                       "frame time")
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)
@@ -195,7 +213,9 @@ def read_magscope(path, *, rotation_log="ZaberNmsMotor.txt", rotation_column=1,
     t_h, h = read_motor_log(folder / height_log, height_column, "height (mm)")
     turns = hold_previous(t_rot - origin, rot, t_rel)
     height = hold_previous(t_h - origin, h, t_rel)
-    return build_trace(t_rel, beads, xyz, turns, height, source=path, fmt="magscope",
+    source = path if len(paths) == 1 else path.parent
+    return build_trace(t_rel, beads, xyz, turns, height, source=source, fmt="magscope",
                        reference_beads=refs, time_origin=origin,
-                       extra={"rotation_log": str(folder / rotation_log),
+                       extra={"files": [str(p) for p in paths],
+                              "rotation_log": str(folder / rotation_log),
                               "height_log": str(folder / height_log)})

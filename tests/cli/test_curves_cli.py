@@ -45,9 +45,11 @@ def test_curves_command_calisto_text(tmp_path, capsys, rec):
     w = write_synthetic_calisto(tmp_path / "rot.txt", rec, text=True)
     rc = main(["curves", str(w.path), "--motor", str(w.motor_path), "--reference", "2",
                "--calibration", str(tmp_path / "force_calibration.csv"), "--no-plot",
-               "--out", str(tmp_path / "out")])
+               "--errors", "pooled", "--out", str(tmp_path / "out")])
     assert rc == 0
-    assert len(sc.read_tweezers_csv(tmp_path / "out" / "rotation_curves.csv")) == 20
+    curves = sc.read_tweezers_csv(tmp_path / "out" / "rotation_curves.csv")
+    assert len(curves) == 20
+    assert "pooled" in curves.attrs["provenance"]["error"]
 
 
 def test_curves_command_errors_name_the_file(tmp_path, capsys, rec):

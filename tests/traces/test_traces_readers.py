@@ -233,3 +233,43 @@ def test_magscope_bead_with_no_frames(written, tmp_path):
         pos[:, 2] = z
     with pytest.raises(DataError, match=r"bead '1' has no frames \(no finite z value\)"):
         read_magscope(path)
+
+
+def test_magscope_recording_split_over_two_files(written, recording, tmp_path):
+    """MagScope rotates tracking files (hourly by default): a folder with two files reads as
+    the one file did; the same frame in both files is an error."""
+    src = written["magscope"].path
+    dst = tmp_path / "split"
+    shutil.copytree(src.parent, dst)
+    (dst / src.name).unlink()
+    with h5py.File(src) as fh:
+        g = fh["tracking"]
+        ts, pos, ids = g["frame_timestamps_ns"][()], g["positions_nm"][()], g["bead_ids"][()]
+    n_b = 3
+    half = ts.size // 2
+    for name, sl in (("Tracking Data A.h5", slice(0, half)), ("Tracking Data B.h5",
+                                                             slice(half - 1, None))):
+        rows = slice(sl.start * n_b, None if sl.stop is None else sl.stop * n_b)
+        with h5py.File(dst / name, "w") as fh:
+            g = fh.create_group("tracking")
+            g.attrs["schema_version"] = 1
+            g["frame_timestamps_ns"] = ts[sl]
+            g["frame_offsets"] = np.arange(0, (ts[sl].size + 1) * n_b, n_b, dtype=np.uint64)
+            g["bead_ids"] = ids[rows]
+            g["positions_nm"] = pos[rows]
+    with pytest.raises(DataError, match=r"2 tracking files .*not strictly increasing"):
+        read_magscope(dst)  # frame half - 1 is in both
+    with h5py.File(dst / "Tracking Data B.h5", "a") as fh:
+        g = fh["tracking"]
+        data = {k: g[k][()] for k in ("frame_timestamps_ns", "bead_ids", "positions_nm")}
+        for k in list(g):
+            del g[k]
+        g["frame_timestamps_ns"] = data["frame_timestamps_ns"][1:]
+        g["frame_offsets"] = np.arange(0, data["frame_timestamps_ns"].size * n_b, n_b,
+                                       dtype=np.uint64)
+        g["bead_ids"] = data["bead_ids"][n_b:]
+        g["positions_nm"] = data["positions_nm"][n_b:]
+    a = read_magscope(dst, reference_beads=["2"])
+    b = _magscope(written, recording)
+    np.testing.assert_array_equal(a["z"].to_numpy(), b["z"].to_numpy())
+    assert len(a.attrs["provenance"]["files"]) == 2
