@@ -229,7 +229,7 @@ def _plateau_mean(values, bead, p, source):
     res = blocking_error(values)
     if res.error <= 0:
         raise DataError(f"{source}: bead {bead!r}, plateau {int(p.plateau)} "
-                        f"(t = {p.used_from:.4g} to {p.end:.4g} s): z is constant; expected "
+                        f"(t = {p.used_from:.4g} to {p.used_to:.4g} s): z is constant; expected "
                         "a fluctuating tracked bead")
     # the halves' mean difference against its error from the quadratically detrended frames:
     # naive errors of the halves times the blocking inefficiency of the residual (a trend must
@@ -239,16 +239,16 @@ def _plateau_mean(values, bead, p, source):
     i = np.arange(values.size)
     resid = values - np.polyval(np.polyfit(i, values, 2), i)
     g = blocking_error(resid).inefficiency
-    a, b = blocking_error(values[:half]), blocking_error(values[half:])
+    diff = abs(np.mean(values[:half]) - np.mean(values[half:]))
     err = np.sqrt(g) * np.hypot(np.std(resid[:half], ddof=1) / np.sqrt(half),
                                 np.std(resid[half:], ddof=1) / np.sqrt(values.size - half))
-    if abs(a.mean - b.mean) > SETTLED_SIGMAS * err:
+    if diff > SETTLED_SIGMAS * err:
         raise DataError(
             f"{source}: bead {bead!r}, plateau {int(p.plateau)} ({p.turns:g} turns, "
-            f"{p.height:g} mm, t = {p.used_from:.4g} to {p.end:.4g} s) has not settled: the "
-            f"first and second half of the kept frames differ by {abs(a.mean - b.mean):.3g} nm "
-            f"= {abs(a.mean - b.mean) / err:.1f} standard errors (limit {SETTLED_SIGMAS:g}); "
-            "increase settle, or check_settled=False")
+            f"{p.height:g} mm, kept t = {p.used_from:.4g} to {p.used_to:.4g} s) has not "
+            f"settled: the first and second half of the kept frames differ by {diff:.3g} nm "
+            f"= {diff / err:.1f} standard errors (limit {SETTLED_SIGMAS:g}); increase settle, "
+            "or check_settled=False")
     return res
 
 
