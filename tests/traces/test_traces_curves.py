@@ -170,7 +170,8 @@ def test_rotating_magnet_never_settles():
     trace = build_trace(t, rec.beads, rec.xyz, 0.5 * t, np.full(t.size, 3.0), source="spin",
                         fmt="sim")
     with pytest.raises(DataError, match="spin: the magnet never settles"):
-        rotation_curves(trace, calibration=synthetic_calibration())
+        rotation_curves(trace, calibration=synthetic_calibration(), reference=[],
+                        molecules=["1"])
 
 
 def test_arguments_are_checked(recording):
@@ -212,3 +213,17 @@ def test_plateaus_of_any_step_schedule(steps, rate):
             find_plateaus(trace, 1 * u.s)
         return
     assert list(find_plateaus(trace, 1 * u.s)["turns"]) == expected
+
+
+def test_a_constant_bead_is_an_error(recording):
+    """A bead whose z never changes (a stuck tracker) cannot have an error bar (without the
+    drift correction, which would move it)."""
+    xyz = recording.xyz.copy()
+    xyz[:, 1, 2] = 500.0
+    trace = build_trace(recording.time, recording.beads, xyz,
+                        np.interp(recording.time, recording.log_time, recording.log_turns),
+                        np.interp(recording.time, recording.log_time, recording.log_height),
+                        source="stuck", fmt="sim", reference_beads=["2"])
+    with pytest.raises(DataError, match=r"stuck: bead '1', plateau 0 .* z is constant"):
+        rotation_curves(trace, calibration=synthetic_calibration(), reference=[],
+                        molecules=["1"])
