@@ -170,8 +170,7 @@ def test_rotating_magnet_never_settles():
     trace = build_trace(t, rec.beads, rec.xyz, 0.5 * t, np.full(t.size, 3.0), source="spin",
                         fmt="sim")
     with pytest.raises(DataError, match="spin: the magnet never settles"):
-        rotation_curves(trace, calibration=synthetic_calibration(), reference=[],
-                        molecules=["1"])
+        rotation_curves(trace, calibration=synthetic_calibration())
 
 
 def test_arguments_are_checked(recording):
