@@ -101,7 +101,7 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
                        correlation_time=0.02 * ureg.s, tracking_noise=2.0 * ureg.nm,
                        drift_rate=1.0 * ureg.nm / ureg.s, drift_amplitude=20.0 * ureg.nm,
                        drift_period=60.0 * ureg.s, turns_offsets=None, surfaces=None,
-                       seed=0) -> SyntheticRecording:
+                       seed=0, model="li-zhao") -> SyntheticRecording:
     """Simulate a rotation-curve recording (see the module docstring).
 
     Parameters
@@ -118,6 +118,8 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
     turns_offsets, surfaces : sequence, optional
         Per molecule: turns offset (turns) and surface z (Quantity [length]);
         default: random in +-0.5 turn and 50-150 nm.
+    model : str or DNAModel
+        The hat-curve model the beads follow (:func:`supercoil.hat_curve`'s ``model``).
     """
     from ..dna.fitting.fit import valid_turns_range
     from ..parameters import load_parameters
@@ -146,8 +148,8 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
              + float(magnitude(drift_amplitude, U.nm, "drift_amplitude"))
              * np.sin(2 * np.pi * time / float(magnitude(drift_period, U.s, "drift_period"))))
     beads = [str(i) for i in range(molecules + reference)]
-    xyz, truth = _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecules,
-                                 len(beads))
+    xyz, truth = _simulate_beads(rng, (dna, model), time, plateaus, f_pn, n0, zs, drift, noise,
+                                 molecules, len(beads))
     # the motor is polled every 50 ms (MagScope's Zaber managers), at a random phase: a move
     # or an arrival is logged up to 50 ms late; the state at t = 0 is written at connect
     log_t = np.concatenate([[0.0], rng.uniform(0.0, 0.05) + np.arange(0.0, kt[-1], 0.05)])
@@ -166,6 +168,7 @@ def _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecu
     from ..dna.hat import hat_curve
 
     sd_b, sd_t, phi, a = noise
+    dna, model = dna
     n_fr = time.size
     xyz = np.empty((n_fr, n_beads, 3))
     truth = {"molecule": [], "plateau": [], "force": [], "turns": [], "extension": []}
@@ -175,7 +178,8 @@ def _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecu
         ext = np.empty(len(plateaus))
         for f in f_pn:
             idx = [k for k, p in enumerate(plateaus) if p[2] == f]
-            hc = hat_curve(dna, f * ureg.pN, np.array([plateaus[k][3] for k in idx]) - n0[m])
+            hc = hat_curve(dna, f * ureg.pN, np.array([plateaus[k][3] for k in idx]) - n0[m],
+                           model=model)
             ext[idx] = hc["extension"].to_numpy()
         for k, p in enumerate(plateaus):
             for key, v in (("molecule", str(m)), ("plateau", k), ("force", p[2]),
