@@ -86,12 +86,30 @@ def _schedule(forces_pn, turns_grid, dwell, move):
     return plateaus, np.array(knots_t), np.array(knots_n), np.array(knots_h)
 
 
-def _ou(rng, n, sd, phi):
-    from scipy.signal import lfilter
+def _first_order(x, c, y0=0.0, block=64):
+    """The recursion ``y_i = c y_(i-1) + x_i`` (``y_(-1) = y0``), exactly, in blocks.
 
+    Within a block it is a product with the lower-triangular matrix ``c**(i-j)``; the last
+    value is carried to the next block (numpy only: scipy.signal costs ~1 s to import).
+    """
+    k = np.arange(block)
+    tri = np.tril(c ** np.maximum(k[:, None] - k[None, :], 0).astype(float))
+    pw = c ** (k + 1.0)
+    y = np.empty(x.size)
+    carry = y0
+    for a in range(0, x.size, block):
+        seg = x[a:a + block]
+        out = tri[: seg.size, : seg.size] @ seg + pw[: seg.size] * carry
+        y[a:a + block] = out
+        carry = out[-1]
+    return y
+
+
+def _ou(rng, n, sd, phi):
+    """Stationary AR(1) (an exactly sampled Ornstein-Uhlenbeck process) of std ``sd``."""
     e = rng.normal(0.0, sd * np.sqrt(1.0 - phi**2), n)
     e[0] = rng.normal(0.0, sd)
-    return lfilter([1.0], [1.0, -phi], e)
+    return _first_order(e, phi)
 
 
 def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, molecules=2,
@@ -163,8 +181,6 @@ def simulate_recording(dna=None, forces=(0.4, 0.7) * ureg.pN, turns=None, *, mol
 
 def _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecules, n_beads):
     """Bead positions (frames x beads x 3, nm) and the true plateau extensions."""
-    from scipy.signal import lfilter
-
     from ..dna.hat import hat_curve
 
     sd_b, sd_t, phi, a = noise
@@ -187,7 +203,7 @@ def _simulate_beads(rng, dna, time, plateaus, f_pn, n0, zs, drift, noise, molecu
                 truth[key].append(v)
         target = ext[which]
         # first-order settling towards the plateau's extension: y_i = y_(i-1) + a (x_i - y_(i-1))
-        y = lfilter([a], [1.0, a - 1.0], target, zi=[(1.0 - a) * target[0]])[0]
+        y = _first_order(a * target, 1.0 - a, y0=target[0])
         xyz[:, m, 2] = zs[m] + y + drift + _ou(rng, n_fr, sd_b, phi) + rng.normal(0, sd_t, n_fr)
         for c in (0, 1):
             xyz[:, m, c] = rng.uniform(-2e4, 2e4) + drift + _ou(rng, n_fr, 3 * sd_b, phi)
