@@ -48,6 +48,7 @@ class DNASI(NamedTuple):
     kT: float
     bending_rigidity: float
     torsional_rigidity: float
+    salt: float | None = None  # monovalent ionic strength, mol/m^3 (= mM); None if unset
 
 
 def _scalar(value, unit, name, owner):
@@ -198,6 +199,10 @@ class DNA(_Material):
         supercoiling axis ``eta = 2 pi N xi_T / L``. In the WLC model it is the
         bending persistence length, which is the default; the paper's seed set
         uses 52 nm from a force-extension fit beside A = 48 nm.
+    salt : Quantity [concentration], optional
+        Monovalent ionic strength of the buffer, a molar concentration
+        (``150 * ureg.mM``); needed by the screened interaction, ignored by the
+        paper's hard-core one. ``None`` (default) if unknown.
 
     Attributes
     ----------
@@ -215,6 +220,7 @@ class DNA(_Material):
     radius: object
     temperature: object
     wlc_persistence: object = None
+    salt: object = None
 
     def __post_init__(self):
         L = _scalar(self.length, U.m, "length", "DNA")
@@ -226,8 +232,9 @@ class DNA(_Material):
             xi = A
         else:
             xi = _scalar(self.wlc_persistence, U.m, "wlc_persistence", "DNA")
+        salt = None if self.salt is None else _scalar(self.salt, U.mol_per_m3, "salt", "DNA")
         kT = BOLTZMANN * t
-        object.__setattr__(self, "si", DNASI(L, A, Ct, r0, t, xi, kT, A * kT, Ct * kT))
+        object.__setattr__(self, "si", DNASI(L, A, Ct, r0, t, xi, kT, A * kT, Ct * kT, salt))
 
     @property
     def kT(self):
@@ -240,7 +247,7 @@ class DNA(_Material):
             f"bending_persistence={_fmt(self.bending_persistence)}, "
             f"twist_persistence={_fmt(self.twist_persistence)}, "
             f"radius={_fmt(self.radius)}, temperature={_fmt(self.temperature)}, "
-            f"wlc_persistence={_fmt_opt(self.wlc_persistence)})"
+            f"wlc_persistence={_fmt_opt(self.wlc_persistence)}, salt={_fmt_opt(self.salt)})"
         )
 
 

@@ -78,6 +78,9 @@ class U:
     N_per_mm = ureg.newton / ureg.millimeter
     deg = ureg.degree
     MPa = ureg.megapascal
+    # salt concentration (SI mol/m^3 = mM) and its display unit
+    mol_per_m3 = ureg.mole / ureg.meter**3
+    mM = ureg.millimolar
 
 
 # (source UnitsContainer, target UnitsContainer) -> multiplicative factor

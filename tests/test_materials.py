@@ -36,7 +36,10 @@ def test_unit_invariance_of_materials(ureg):
     a = sc.DNA(0.75 * ureg.um, 48 * ureg.nm, 86 * ureg.nm, 1.75 * ureg.nm, 300 * ureg.K)
     b = sc.DNA(750e-9 * ureg.m, 4.8e-8 * ureg.m, 0.086 * ureg.um, 17.5 * ureg.angstrom,
                ureg.Quantity(26.85, "degC"))
-    np.testing.assert_allclose(a.si, b.si, rtol=1e-12)
+    np.testing.assert_allclose(a.si[:9], b.si[:9], rtol=1e-12)
+    assert a.si.salt is None and b.si.salt is None
+    c = a.replace(salt=0.15 * ureg.molar)
+    assert c.si.salt == pytest.approx(b.replace(salt=150 * ureg.mM).si.salt, rel=1e-12)
 
 
 def test_materials_are_immutable(rubber_rod):

@@ -43,7 +43,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 from scipy.special import k0e, k1e
 
-from ...exceptions import ValidityError
+from supercoil.exceptions import ValidityError
 
 __all__ = [
     "AVOGADRO",

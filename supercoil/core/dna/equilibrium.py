@@ -42,9 +42,10 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize.elementwise import find_minimum, find_root
 
-from ...exceptions import NoEquilibriumError
+from supercoil.exceptions import NoEquilibriumError
 
 __all__ = [
+    "T_FLOOR",
     "Branch",
     "branch_table",
     "equilibrium_residuals",
@@ -58,6 +59,8 @@ __all__ = [
 _ALPHA_LO = 1e-9
 _ALPHA_HI = 0.25 * np.pi
 _TABLE_POINTS = 241
+#: smallest tabulated tension (N) of a branch on which T only tends to zero
+T_FLOOR = 1e-15
 
 
 class Branch(NamedTuple):
@@ -136,13 +139,15 @@ def _peak(B, partials, u):
     return R, a, float(tension(a, R, B, partials))
 
 
-def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS):
+def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOOR):
     """Tabulate the stable branch ``T(R)`` between ``r_min`` and ``r_max`` (module doc).
 
     The branch starts at ``r_min`` if T decreases there, else at the first maximum of
     T (a fold: closer in, T rises with R and the state is unstable; above that
     maximum no plectoneme state exists). It ends where T stops decreasing, falls to
-    zero, or (GE2) has no root any more.
+    zero, or (GE2) has no root any more; where T only tends to zero as R grows (no
+    confinement) the table stops below ``t_floor`` (N, default 1 fN: far below any
+    tweezers force, where the screened repulsion has died out numerically).
 
     Raises
     ------
@@ -166,6 +171,9 @@ def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS):
     if ends_at_zero:  # keep the first point with T <= 0 as the bracket's end
         k += 1
     R, alpha, T = R[j:k], alpha[j:k], T[j:k]
+    if not ends_at_zero and T[-1] < t_floor:
+        keep = max(int(np.argmax(T < t_floor)) + 1, 2)
+        R, alpha, T = R[:keep], alpha[:keep], T[:keep]
     fold = j > 0
     if fold:  # replace the first point by the refined maximum of T
         u = np.log([r_min if j == 1 else R[0] / (R[1] / R[0]), R[0], R[1]])
