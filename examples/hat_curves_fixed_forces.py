@@ -24,7 +24,7 @@ import numpy as np
 
 import supercoil as sc
 from supercoil.cli import example_arguments
-from supercoil.hat import buckling_turns, post_buckling_slope
+from supercoil.dna.hat import buckling_turns, post_buckling_slope
 
 
 def main(argv=None):

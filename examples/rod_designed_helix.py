@@ -18,7 +18,7 @@ import numpy as np
 
 import supercoil as sc
 from supercoil.cli import example_arguments
-from supercoil.design import sinusoidal_pitch
+from supercoil.rod.design import sinusoidal_pitch
 
 u = sc.ureg
 

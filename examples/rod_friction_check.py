@@ -5,7 +5,7 @@
 rubber E = 4.20 MPa, G = 1.51 MPa, mu = 0.5. Required: ``C |d omega/ds|``;
 available: ``mu r cos(alpha) F`` with ``F = B (1 - cos 2a)^2 / (4 r^3 cos 2a)``
 ([eq friction] and [eq normal reaction] corrected: dimension and a factor 2,
-see supercoil.core.self_contact). The dashed curve is the paper's printed
+see supercoil.core.rod.contact). The dashed curve is the paper's printed
 [eq friction] evaluated in SI units, for comparison.
 
     python examples/rod_friction_check.py --out OUT [--quick]
@@ -20,7 +20,7 @@ import numpy as np
 
 import supercoil as sc
 from supercoil.cli import example_arguments
-from supercoil.design import sinusoidal_pitch
+from supercoil.rod.design import sinusoidal_pitch
 
 u = sc.ureg
 E, G, MU = 4.20 * u.MPa, 1.51 * u.MPa, 0.5

@@ -2,7 +2,7 @@
 
 Rod r = 1.0 mm, L = 56.7 cm, N = 40, silicone rubber E = 4.20 MPa,
 G = 1.51 MPa. T' = 0 is the twist-slacking helix (beta = pi/2, [eq ini]).
-Stationarity equations derived in supercoil.core.twist_spinning.
+Stationarity equations derived in supercoil.core.rod.spinning.
 
     python examples/rod_twist_spinning.py --out OUT [--quick]
 """

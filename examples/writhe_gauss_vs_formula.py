@@ -19,7 +19,7 @@ import numpy as np
 import supercoil as sc
 from supercoil.cli import example_arguments
 from supercoil.core import gauss_writhe as gw
-from supercoil.core import helix_geometry as g
+from supercoil.core import geometry as g
 from supercoil.tables import make_table, provenance
 
 

@@ -1,8 +1,10 @@
 """supercoil: mechanics and thermodynamics of twisted filaments that coil into double helices.
 
-The model is that of Li, Zhao et al., "Formation of Non-uniform Double Helices
-for Elastic Rods under Torsion", restated in MODEL.md. Build quantities with
-the package's single unit registry :data:`supercoil.ureg`::
+Rods (:mod:`supercoil.rod`) follow Li, Zhao et al., "Formation of Non-uniform
+Double Helices for Elastic Rods under Torsion"; DNA (:mod:`supercoil.dna`) is a
+family of models on one interface (:mod:`supercoil.dna.models`). The physics is
+documented in the repository's docs/theory/. Build quantities with the
+package's single unit registry :data:`supercoil.ureg`::
 
     import supercoil as sc
     u = sc.ureg
@@ -11,14 +13,27 @@ the package's single unit registry :data:`supercoil.ureg`::
 
 __version__ = "0.1.0"
 
-from . import geometry
-from .design import design_twist_schedule
-from .exceptions import (
+from supercoil import geometry
+from supercoil.dna.fitting.fit import (
+    FitResult,
+    fit_hat_curves,
+    fit_many,
+    simulate_rotation_curves,
+)
+from supercoil.dna.hat import buckling_turns, free_energy, hat_curve, post_buckling_slope
+from supercoil.dna.interactions import available_interactions, register_interaction
+from supercoil.dna.material import DNA
+from supercoil.dna.models import DNAModel, available_models, register_model
+from supercoil.dna.moroz_nelson import effective_twist_rigidity, extension_factor
+from supercoil.dna.plectoneme import plectoneme_equilibrium
+from supercoil.dna.tweezers import read_tweezers_csv
+from supercoil.exceptions import (
     BoundWarning,
     DataError,
     DataWarning,
     FitError,
     FitWarning,
+    ModelError,
     NoEquilibriumError,
     NoHelixError,
     NoSolutionError,
@@ -29,31 +44,26 @@ from .exceptions import (
     ValidityError,
     ValidityWarning,
 )
-from .fitting import FitResult, fit_hat_curves, fit_many, simulate_rotation_curves
-from .hat import buckling_turns, hat_curve, post_buckling_slope
-from .materials import DNA, ElasticRod
-from .parameters import available_parameter_sets, load_parameters
-from .plectoneme import (
-    effective_twist_rigidity,
-    extension_factor,
-    plectoneme_equilibrium,
-)
-from .rough import rough_helix
-from .smooth import smooth_helix
-from .spinning import twist_spinning
-from .tables import read_csv, write_csv
-from .tweezers_data import read_tweezers_csv
-from .units import ureg
+from supercoil.parameters import available_parameter_sets, load_parameters
+from supercoil.rod.design import design_twist_schedule
+from supercoil.rod.material import ElasticRod
+from supercoil.rod.rough import rough_helix
+from supercoil.rod.smooth import smooth_helix
+from supercoil.rod.spinning import twist_spinning
+from supercoil.tables import read_csv, write_csv
+from supercoil.units import ureg
 
 __all__ = [
     "DNA",
     "BoundWarning",
+    "DNAModel",
     "DataError",
     "DataWarning",
     "ElasticRod",
     "FitError",
     "FitResult",
     "FitWarning",
+    "ModelError",
     "NoEquilibriumError",
     "NoHelixError",
     "NoSolutionError",
@@ -64,6 +74,8 @@ __all__ = [
     "ValidityError",
     "ValidityWarning",
     "__version__",
+    "available_interactions",
+    "available_models",
     "available_parameter_sets",
     "buckling_turns",
     "design_twist_schedule",
@@ -71,6 +83,7 @@ __all__ = [
     "extension_factor",
     "fit_hat_curves",
     "fit_many",
+    "free_energy",
     "geometry",
     "hat_curve",
     "load_parameters",
@@ -78,6 +91,8 @@ __all__ = [
     "post_buckling_slope",
     "read_csv",
     "read_tweezers_csv",
+    "register_interaction",
+    "register_model",
     "rough_helix",
     "simulate_rotation_curves",
     "smooth_helix",

@@ -11,7 +11,7 @@ import argparse
 import importlib
 import sys
 
-from . import __version__
+from supercoil import __version__
 
 #: subcommand modules, in the order ``--help`` lists them
 COMMANDS = ("params", "rod", "hat", "fit", "bench")
@@ -42,7 +42,7 @@ def main(argv=None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
-    from .exceptions import SupercoilError
+    from supercoil.exceptions import SupercoilError
 
     try:
         return int(args.func(args) or 0)

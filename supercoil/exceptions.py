@@ -34,6 +34,7 @@ __all__ = [
     "DataWarning",
     "FitError",
     "FitWarning",
+    "ModelError",
     "NoEquilibriumError",
     "NoHelixError",
     "NoSolutionError",
@@ -72,6 +73,15 @@ class ValidityError(SupercoilError):
 
 class ParameterError(SupercoilError):
     """A parameter set is malformed: missing key, unknown unit, wrong dimension."""
+
+
+class ModelError(SupercoilError):
+    """A DNA model or interaction was asked for something it does not provide.
+
+    For example the free energy of the thermal ``"li-zhao"`` construction (it
+    is not derived from one), an unknown model name, or an interaction given
+    to a model without a plectoneme helix state.
+    """
 
 
 class DataError(SupercoilError):

@@ -1,4 +1,4 @@
-"""Helix geometry with units: thin wrappers over :mod:`supercoil.core.helix_geometry`.
+"""Helix geometry with units: thin wrappers over :mod:`supercoil.core.geometry`.
 
 MODEL.md section 1. Every function checks dimensions at the boundary (a wrong
 dimension raises :class:`pint.DimensionalityError` naming the argument) and
@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .core import helix_geometry as _g
-from .exceptions import SingularityError
-from .units import U, magnitude, quantity
+from supercoil.core import geometry as _g
+from supercoil.exceptions import SingularityError
+from supercoil.units import U, magnitude, quantity
 
 __all__ = [
     "curvature",

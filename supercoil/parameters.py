@@ -27,9 +27,10 @@ from pathlib import Path
 
 import pint
 
-from .exceptions import ParameterError
-from .materials import DNA, ElasticRod
-from .units import ureg
+from supercoil.dna.material import DNA
+from supercoil.exceptions import ParameterError
+from supercoil.rod.material import ElasticRod
+from supercoil.units import ureg
 
 __all__ = ["ParameterSet", "available_parameter_sets", "load_parameters", "read_parameter_set"]
 

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .exceptions import DataError
+from supercoil.exceptions import DataError
 
 __all__ = ["column_quantity", "make_table", "provenance", "read_csv", "write_csv"]
 
@@ -37,7 +37,7 @@ def provenance(parameters=None, **extra):
     None. Values in ``extra`` must be JSON-serialisable (quantities are
     written as strings).
     """
-    from . import __version__
+    from supercoil import __version__
 
     if parameters is not None and hasattr(parameters, "as_dict"):
         parameters = parameters.as_dict()
@@ -88,7 +88,7 @@ def make_table(columns, units, provenance_dict=None) -> pd.DataFrame:
 
 def column_quantity(df, column):
     """Column ``column`` of a convention table as a pint quantity of :data:`supercoil.ureg`."""
-    from .units import ureg
+    from supercoil.units import ureg
 
     unit = df.attrs.get("units", {}).get(column)
     if unit is None:

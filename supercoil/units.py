@@ -78,8 +78,7 @@ class U:
     N_per_mm = ureg.newton / ureg.millimeter
     deg = ureg.degree
     MPa = ureg.megapascal
-    # salt concentration (SI mol/m^3 = mM) and its display unit
-    mol_per_m3 = ureg.mole / ureg.meter**3
+    mol_per_m3 = ureg.mol / ureg.meter**3  # concentration (SI; 1 mol/m^3 = 1 mM)
     mM = ureg.millimolar
 
 
@@ -243,7 +242,7 @@ class QuantityRecord:
     """Immutable record of named quantities, each built on first access.
 
     Result objects of the public API (e.g.
-    :class:`supercoil.plectoneme.PlectonemeEquilibrium`) hold the kernel's SI
+    :class:`supercoil.dna.plectoneme.PlectonemeEquilibrium`) hold the kernel's SI
     arrays and attach units only to the fields that are read: a scene pays for
     no quantity it does not use (building one costs ~3 us). Subclasses declare
     ``FIELDS = {name: (unit, factor)}`` (display unit and SI-to-display factor,

@@ -17,13 +17,13 @@ from __future__ import annotations
 import numpy as np
 from scipy import optimize
 
-from .timing import best_time
-from .work_precision import measure
+from supercoil.benchmark.timing import best_time
+from supercoil.benchmark.work_precision import measure
 
 
 def _reference_equilibrium(forces, B, C, kT, r0, start_alpha, start_R):
-    from supercoil.core import helix_geometry as g
-    from supercoil.core import marko_siggia as ms
+    from supercoil.core import geometry as g
+    from supercoil.core.dna import marko_siggia as ms
 
     out = []
     for F, a0, R0 in zip(forces, start_alpha, start_R, strict=True):
@@ -51,7 +51,7 @@ def _reference_equilibrium(forces, B, C, kT, r0, start_alpha, start_R):
 def equilibrium_work_precision(dna=None, n_forces=200, tolerances=None, repeat=3):
     """Work-precision rows for the plectoneme equilibrium (dict of lists)."""
     import supercoil as sc
-    from supercoil.core import plectoneme as pl
+    from supercoil.core.dna import plectoneme as pl
 
     d = (dna or sc.load_parameters("dna")).si
     B, C, kT, r0 = d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
@@ -82,7 +82,7 @@ def equilibrium_work_precision(dna=None, n_forces=200, tolerances=None, repeat=3
 def hat_cost(dna=None, sizes=(100, 1_000, 10_000, 100_000, 1_000_000), force=1.2e-12):
     """Time per hat-curve point against the number of turns values, thermal and athermal."""
     import supercoil as sc
-    from supercoil.core.hat_curve import hat_curve_points
+    from supercoil.core.dna.hat import hat_curve_points
 
     d = (dna or sc.load_parameters("dna")).si
     args = (d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)

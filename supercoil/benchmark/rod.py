@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .work_precision import measure
+from supercoil.benchmark.work_precision import measure
 
 METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 TOLERANCES = tuple(10.0**-k for k in range(3, 13))
@@ -29,8 +29,8 @@ TOLERANCES = tuple(10.0**-k for k in range(3, 13))
 
 def _k0_scene(turns=40.0):
     import supercoil as sc
-    from supercoil.core import rough_helix as rh
-    from supercoil.core import self_contact as sco
+    from supercoil.core.rod import contact as sco
+    from supercoil.core.rod import rough as rh
 
     rod = sc.load_parameters("silicone_rubber_rod").si
     r, L, B, C = rod.radius, rod.length, rod.bending_rigidity, rod.torsional_rigidity
@@ -54,9 +54,9 @@ def _k0_scene(turns=40.0):
 
 def _designed_scene():
     import supercoil as sc
-    from supercoil.core import designed_helix as dh
-    from supercoil.core import rough_helix as rh
-    from supercoil.core import self_contact as sco
+    from supercoil.core.rod import contact as sco
+    from supercoil.core.rod import design as dh
+    from supercoil.core.rod import rough as rh
 
     base = sc.load_parameters("silicone_rubber_rod").si
     r, B, C = base.radius, base.bending_rigidity, base.torsional_rigidity

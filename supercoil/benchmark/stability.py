@@ -119,7 +119,7 @@ def _named(exc):
     """Exception class name if ``exc`` is a named error, else None."""
     import pint
 
-    from ..exceptions import SupercoilError
+    from supercoil.exceptions import SupercoilError
 
     if isinstance(exc, SupercoilError | pint.DimensionalityError):
         return type(exc).__name__
@@ -134,7 +134,7 @@ def _verdict(exc=None, warns=(), problems=(), flags=(), soft=()):
     ``soft`` problems (a number outside its physical range) make the cell WRONG only
     if the solver issued no :class:`~supercoil.exceptions.SupercoilWarning`.
     """
-    from ..exceptions import SupercoilWarning
+    from supercoil.exceptions import SupercoilWarning
 
     foreign = [w for w in warns if not issubclass(w.category, SupercoilWarning)]
     ours = [w for w in warns if issubclass(w.category, SupercoilWarning)]
@@ -203,7 +203,7 @@ def _end_fractions(quick):
 
 def _smooth(rod, quick):
     import supercoil as sc
-    from supercoil.core import self_contact as sco
+    from supercoil.core.rod import contact as sco
 
     u = sc.ureg
     si = rod.si
@@ -241,7 +241,7 @@ def _smooth(rod, quick):
 
 def _rough_reference(kind, alpha0, k, s, r, L, B, C):
     """Reference y(s) (0 beyond the reference's end)."""
-    from supercoil.core import rough_helix as rh
+    from supercoil.core.rod import rough as rh
 
     if kind == "closed_form":  # reference for the ODE at k = 0
         smax = float(rh.k0_s_max(alpha0, L, B, C))
@@ -267,8 +267,8 @@ def _rough_reference(kind, alpha0, k, s, r, L, B, C):
 
 def _rough(rod, method, k, quick):
     import supercoil as sc
-    from supercoil.core import rough_helix as rh
-    from supercoil.core import self_contact as sco
+    from supercoil.core.rod import contact as sco
+    from supercoil.core.rod import rough as rh
 
     u = sc.ureg
     si = rod.si
@@ -355,7 +355,7 @@ def _design_reference(P0, P1, kw, s_end, r, L, B, C):
     """Linking number N at slack 2 s_end of the analytic designed helix (quadrature)."""
     from scipy import integrate
 
-    from supercoil.core import self_contact as sco
+    from supercoil.core.rod import contact as sco
 
     def alpha(s):
         return np.arctan2(2 * np.pi * r, P0 + P1 * np.sin(kw * s))
@@ -376,7 +376,7 @@ def _design_reference(P0, P1, kw, s_end, r, L, B, C):
 
 def _design(rod, quick):
     import supercoil as sc
-    from supercoil.design import sinusoidal_pitch
+    from supercoil.rod.design import sinusoidal_pitch
 
     u = sc.ureg
     si = rod.si
@@ -477,7 +477,7 @@ def _spinning_checks(a, beta, a0, n, T, r, L, B, C):
 
 def _plectoneme(dna, quick):
     import supercoil as sc
-    from supercoil.core import plectoneme as pl
+    from supercoil.core.dna import plectoneme as pl
 
     u = sc.ureg
     forces = np.concatenate([[-1.0, 0.0], _log(1e-4, 1e6, 8 if quick else 36)])
@@ -548,7 +548,7 @@ def _extension(dna, quick):
 
 def _hat_turns(d, F, thermal):
     """17 turns from 0 to the point where the plectoneme holds half the molecule."""
-    from supercoil.core import hat_curve as hc
+    from supercoil.core.dna import hat as hc
 
     si = d.si
     args = (si.length, si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius, thermal)
@@ -570,8 +570,8 @@ def _hat_checks(df, d, F, thermal):
     Returns ``(problems, soft)``: points that do not match their phase, and
     unflagged points outside ``0 <= z <= L`` or with z growing with N.
     """
-    from supercoil.core import hat_curve as hc
-    from supercoil.core import moroz_nelson as mn
+    from supercoil.core.dna import hat as hc
+    from supercoil.core.dna import moroz_nelson as mn
 
     si = d.si
     L, B, C, kT = si.length, si.bending_rigidity, si.torsional_rigidity, si.kT

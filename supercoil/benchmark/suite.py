@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .timing import best_time, machine_description
+from supercoil.benchmark.timing import best_time, machine_description
 
 
 def _headline(wp, hat, ub, eq1000, machine):
@@ -78,10 +78,9 @@ def run(out, quick=False, log=print):
     import matplotlib.pyplot as plt
 
     import supercoil as sc
-    from supercoil.core import plectoneme as pl
+    from supercoil.benchmark import dna, rod, stability, unit_boundary, work_precision
+    from supercoil.core.dna import plectoneme as pl
     from supercoil.tables import make_table, provenance, write_csv
-
-    from . import dna, rod, stability, unit_boundary, work_precision
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .timing import paired_best_times
+from supercoil.benchmark.timing import paired_best_times
 
 SIZES = (1, 100, 10_000, 1_000_000)
 
@@ -21,7 +21,7 @@ SIZES = (1, 100, 10_000, 1_000_000)
 def _cases():
     """(name, public(n) -> callable, kernel(n) -> callable) for each wrapped function."""
     import supercoil as sc
-    from supercoil.core import helix_geometry as g
+    from supercoil.core import geometry as g
 
     u = sc.ureg
 
@@ -37,7 +37,7 @@ def _cases():
 
     cases = [("geometry.torsion", geom_public, geom_kernel)]
     try:  # DNA plectoneme equilibrium (issue 4)
-        from supercoil.core import plectoneme as pk
+        from supercoil.core.dna import plectoneme as pk
 
         dna = sc.load_parameters("dna")
         d = dna.si
@@ -54,7 +54,7 @@ def _cases():
 
         cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
 
-        from supercoil.core.hat_curve import hat_curve_points
+        from supercoil.core.dna.hat import hat_curve_points
 
         def hat_public(n, si=False):
             f = 1.2e-12 * u.N if si else 1.2 * u.pN

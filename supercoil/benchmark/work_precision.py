@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .timing import best_time
+from supercoil.benchmark.timing import best_time
 
 COLUMNS = ("scene", "method", "tolerance", "error", "time", "failed")
 UNITS = {"scene": "", "method": "", "tolerance": "", "error": "", "time": "s", "failed": ""}

@@ -18,7 +18,7 @@ def register(sub):
 
 
 def run(args) -> int:
-    from ..benchmark import suite
+    from supercoil.benchmark import suite
 
     suite.run(args.out, quick=args.quick, log=lambda msg: print(msg, file=sys.stderr))
     return 0

@@ -39,7 +39,7 @@ def _assignment(text):
 
 
 def _parse_quantity(text, what):
-    from ..units import ureg
+    from supercoil.units import ureg
 
     try:
         return ureg.Quantity(text)
@@ -136,12 +136,12 @@ def _bounds(items):
 def run(args) -> int:
     from pathlib import Path
 
-    from ..exceptions import FitError, ParameterError
-    from ..fitting import fit_hat_curves
-    from ..materials import DNA
-    from ..parameters import load_parameters
-    from ..tables import write_csv
-    from ..tweezers_data import read_tweezers_csv
+    from supercoil.dna.fitting.fit import fit_hat_curves
+    from supercoil.dna.material import DNA
+    from supercoil.dna.tweezers import read_tweezers_csv
+    from supercoil.exceptions import FitError, ParameterError
+    from supercoil.parameters import load_parameters
+    from supercoil.tables import write_csv
 
     try:
         fixed = {k: _parse_quantity(v, k) for k, v in args.fix}
@@ -208,7 +208,7 @@ def run(args) -> int:
 
 
 def _run_many(args, data, dna, fixed, bounds, start, options):
-    from ..fitting import fit_many
+    from supercoil.dna.fitting.fit import fit_many
 
     total_width = [0]
 

@@ -26,7 +26,7 @@ def _quantity(kind, unit_name):
     def parse(text):
         import pint
 
-        from ..units import U, magnitude, ureg
+        from supercoil.units import U, magnitude, ureg
 
         try:
             q = ureg.Quantity(text)
@@ -99,13 +99,13 @@ def register(sub):
 def run(args) -> int:
     from pathlib import Path
 
-    from ..exceptions import ParameterError
-    from ..hat import buckling_turns, hat_curve, plot_hat_curves, post_buckling_slope
-    from ..materials import DNA
-    from ..parameters import load_parameters
-    from ..plectoneme import plectoneme_equilibrium
-    from ..tables import write_csv
-    from ..units import ureg
+    from supercoil.dna.hat import buckling_turns, hat_curve, plot_hat_curves, post_buckling_slope
+    from supercoil.dna.material import DNA
+    from supercoil.dna.plectoneme import plectoneme_equilibrium
+    from supercoil.exceptions import ParameterError
+    from supercoil.parameters import load_parameters
+    from supercoil.tables import write_csv
+    from supercoil.units import ureg
 
     dna = load_parameters(args.params)
     if not isinstance(dna, DNA):

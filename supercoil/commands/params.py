@@ -11,7 +11,7 @@ def register(sub):
 
 
 def run(args) -> int:
-    from ..parameters import available_parameter_sets, read_parameter_set
+    from supercoil.parameters import available_parameter_sets, read_parameter_set
 
     if not args.name:
         print("\n".join(available_parameter_sets()))

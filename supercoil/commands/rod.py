@@ -50,7 +50,7 @@ def register(sub):
 def _quantity(text, what):
     import pint
 
-    from ..units import ureg
+    from supercoil.units import ureg
 
     try:
         return ureg.Quantity(text)
@@ -62,8 +62,8 @@ def _quantity(text, what):
 def run(args) -> int:
     import pint
 
-    from ..parameters import load_parameters
-    from ..units import as_turns
+    from supercoil.parameters import load_parameters
+    from supercoil.units import as_turns
 
     rod = load_parameters(args.params)
     if not hasattr(rod, "bending_rigidity") or not hasattr(rod.si, "friction_coefficient"):
@@ -86,7 +86,7 @@ def run(args) -> int:
 
 
 def _stack(quantities):
-    from ..units import U, magnitude, quantity
+    from supercoil.units import U, magnitude, quantity
 
     return quantity(np.array([magnitude(q, U.m, "--slack") for q in quantities]), U.m)
 
@@ -97,9 +97,9 @@ def _smooth(rod, turns, slack, args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..smooth import smooth_helix
-    from ..tables import write_csv
-    from ..units import U, quantity
+    from supercoil.rod.smooth import smooth_helix
+    from supercoil.tables import write_csv
+    from supercoil.units import U, quantity
 
     if slack is None:
         S = quantity(np.linspace(0.0, 0.98 * rod.si.length, args.points), U.m)
@@ -137,9 +137,9 @@ def _rough(rod, turns, slack, args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..rough import rough_helix
-    from ..tables import write_csv
-    from ..units import U
+    from supercoil.rod.rough import rough_helix
+    from supercoil.tables import write_csv
+    from supercoil.units import U
 
     slack_max = None
     if slack is not None:

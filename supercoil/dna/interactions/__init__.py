@@ -1,20 +1,38 @@
-"""Inter-strand interactions of a plectoneme (stand-in registry until the lead's lands)."""
+"""Inter-strand interactions of the DNA plectoneme (docs/theory/plectoneme.md).
 
-from .base import Interaction
-from .screened import Screened
+``get_interaction("hard-core")`` (the paper's Marko-Siggia ``w``, the default),
+``get_interaction("screened")`` (Debye-Hueckel electrostatics with salt,
+docs/theory/screened-interaction.md);
+further interactions register themselves with :func:`register_interaction`.
+"""
 
-_REGISTRY = {Screened.name: Screened}
+from supercoil.dna.interactions.base import Interaction
+from supercoil.dna.interactions.hard_core import HardCore
+from supercoil.dna.interactions.screened import Screened
+from supercoil.dna.registry import Registry
+
+__all__ = ["DEFAULT_INTERACTION", "HardCore", "Interaction", "Screened",
+           "available_interactions", "get_interaction", "register_interaction"]
+
+#: the interaction used when none is given (the paper's)
+DEFAULT_INTERACTION = "hard-core"
+_REGISTRY = Registry("interaction", Interaction)
 
 
-def get_interaction(name_or_instance, **values):
-    """An interaction by registry name, or the instance itself."""
-    if isinstance(name_or_instance, Interaction):
-        return name_or_instance.replace(**values) if values else name_or_instance
-    try:
-        return _REGISTRY[name_or_instance](**values)
-    except KeyError:
-        raise ValueError(f"unknown interaction {name_or_instance!r}; available: "
-                         f"{sorted(_REGISTRY)}") from None
+def register_interaction(cls, replace=False):
+    """Make an :class:`Interaction` subclass available by its ``name``."""
+    return _REGISTRY.register(cls, replace=replace)
 
 
-__all__ = ["Interaction", "Screened", "get_interaction"]
+def get_interaction(spec=DEFAULT_INTERACTION, **values):
+    """An interaction instance from a name or an instance."""
+    return _REGISTRY.get(spec, "interaction", **values)
+
+
+def available_interactions():
+    """Registered interaction names."""
+    return _REGISTRY.names()
+
+
+register_interaction(HardCore)
+register_interaction(Screened)

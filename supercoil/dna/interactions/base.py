@@ -1,63 +1,69 @@
-"""Stand-in for the lead's interaction interface (replaced by the lead's file at merge)."""
+"""The interaction interface: the energy w(alpha, R) between the two plectoneme strands.
+
+An :class:`Interaction` gives the interaction energy per unit strand length of
+a uniform double helix of tilt ``alpha`` and radius ``R`` and solves the
+uniform plectoneme at a given tension (docs/theory/plectoneme.md): (GE1),
+(GE2) and ``T = -(1/2) B kappa^2 + C omega tau - w``. The DNA models
+(:mod:`supercoil.dna.models`) that have a plectoneme helix state call
+:meth:`Interaction.equilibrium`; nothing else about the interaction is
+assumed. Implementations: ``"hard-core"`` (the paper's Marko-Siggia ``w``,
+:mod:`supercoil.dna.interactions.hard_core`, the default) and ``"screened"``
+(Debye-Hueckel electrostatics with salt).
+
+Adding an interaction: subclass :class:`Interaction`, declare ``name`` and
+``parameters`` (:class:`~supercoil.dna.parameters.ModelParameter`), implement
+:meth:`partials` and :meth:`equilibrium` on SI floats, and register it with
+:func:`supercoil.dna.interactions.register_interaction`.
+"""
 
 from __future__ import annotations
 
 from typing import ClassVar
 
-from ...units import ureg
-from ..models.base import ModelParameter
+from supercoil.dna.parameters import ModelParameter, Parametrised
 
-__all__ = ["Interaction", "ModelParameter"]
+__all__ = ["Interaction"]
 
 
-class Interaction:
-    """Inter-strand interaction of a plectoneme: immutable, picklable, SI values."""
+class Interaction(Parametrised):
+    """Base class of the inter-strand interactions (immutable, picklable).
 
-    name: ClassVar[str]
+    Attributes
+    ----------
+    name : str
+        Registry name.
+    parameters : dict[str, ModelParameter]
+        Its own parameters (SI defaults and bounds).
+    values : dict[str, float]
+        This instance's parameter values (SI).
+    """
+
+    name: ClassVar[str] = ""
+    summary: ClassVar[str] = ""
     parameters: ClassVar[dict[str, ModelParameter]] = {}
 
-    def __init__(self, **values):
-        unknown = set(values) - set(self.parameters)
-        if unknown:
-            raise TypeError(f"{self.name}: unknown parameter(s) {sorted(unknown)}; "
-                            f"takes {sorted(self.parameters)}")
-        si = {k: p.default for k, p in self.parameters.items()}
-        for key, v in values.items():
-            if hasattr(v, "units"):
-                unit = ureg.Quantity(1.0, self.parameters[key].unit).to_base_units().units
-                v = float(v.m_as(unit))
-            si[key] = float(v)
-        object.__setattr__(self, "values", si)
+    def energy(self, alpha, radius, dna):
+        """Interaction energy ``w`` per unit strand length (J/m) at tilt and radius (SI)."""
+        return self.partials(alpha, radius, dna)[0]
 
-    def __setattr__(self, key, value):
-        raise AttributeError(f"{type(self).__name__} is immutable; use replace()")
-
-    def __reduce__(self):
-        return (_rebuild, (type(self), dict(self.values)))
-
-    def __eq__(self, other):
-        return type(other) is type(self) and other.values == self.values
-
-    def __hash__(self):
-        return hash((type(self), tuple(sorted(self.values.items()))))
-
-    def __repr__(self):
-        args = ", ".join(f"{k}={v:.6g}" for k, v in self.values.items())
-        return f"{type(self).__name__}({args})"
-
-    def replace(self, **values):
-        """A copy with some parameters changed."""
-        return type(self)(**{**self.values, **values})
-
-    def energy(self, alpha, radius, dna):  # pragma: no cover - interface
+    def partials(self, alpha, radius, dna):
+        """``(w, dw/dalpha, dw/dR)`` in SI (J/m, J/m, J/m^2)."""
         raise NotImplementedError
 
-    def partials(self, alpha, radius, dna):  # pragma: no cover - interface
+    def equilibrium(self, tension, dna):
+        """Uniform plectoneme at ``tension`` (N, 1-D array) for the molecule ``dna`` (DNASI).
+
+        Returns
+        -------
+        supercoil.core.dna.plectoneme.PlectonemeState
+            SI arrays of the tension's shape.
+
+        Raises
+        ------
+        NoEquilibriumError
+            Naming the tension where no plectoneme state exists.
+        """
         raise NotImplementedError
 
-    def equilibrium(self, tension, dna):  # pragma: no cover - interface
-        raise NotImplementedError
-
-
-def _rebuild(cls, values):
-    return cls(**values)
+    def check(self, dna):
+        """Raise ParameterError if ``dna`` lacks something this interaction needs."""

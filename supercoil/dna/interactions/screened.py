@@ -25,13 +25,14 @@ from typing import ClassVar
 
 import numpy as np
 
-from ...core.dna import electrostatics as _el
-from ...core.dna import equilibrium as _eq
-from ...core.dna import screened as _sc
-from ...core.plectoneme import PlectonemeState
-from ...exceptions import ParameterError
-from ...units import U, quantity
-from .base import Interaction, ModelParameter
+from supercoil.core.dna import electrostatics as _el
+from supercoil.core.dna import equilibrium as _eq
+from supercoil.core.dna import screened as _sc
+from supercoil.core.dna.plectoneme import PlectonemeState
+from supercoil.dna.interactions.base import Interaction
+from supercoil.dna.parameters import ModelParameter
+from supercoil.exceptions import ParameterError
+from supercoil.units import U, quantity
 
 __all__ = ["Screened"]
 
@@ -116,20 +117,16 @@ class Screened(Interaction):
     }
 
     def __init__(self, **values):
-        super().__init__(**values)
-        v = self.values
-        if not 0.0 < v["charge_fraction"] <= 1.5:
-            raise ParameterError(
-                f"screened: charge_fraction must be in (0, 1.5], got {v['charge_fraction']:g}")
-        if not 0.0 < v["hard_core_radius"] < 1e-8:
-            raise ParameterError(
-                "screened: hard_core_radius must be positive and below 10 nm, got "
-                f"{v['hard_core_radius']:g} m")
-        if not 0.0 <= v["confinement"] <= 1.0:
-            raise ParameterError(
-                f"screened: confinement must be in [0, 1], got {v['confinement']:g}")
+        super().__init__(**values)  # bounds checked there (ValueError naming the parameter)
+        if self.values["charge_fraction"] <= 0.0:
+            raise ParameterError("screened.charge_fraction must be positive (bounds (0, 1.5]), "
+                                 f"got {self.values['charge_fraction']:g}")
 
     # ---- float level (SI) -------------------------------------------------
+    def check(self, dna):
+        """Raise :class:`ParameterError` naming ``salt`` if the DNA has none."""
+        _si(dna)
+
     def screening(self, dna):
         """``(lambda_D [m], l_B [m], nu [1/m], nu^2 kT l_B [J/m])`` for the DNA's buffer."""
         si = _si(dna)

@@ -1,1 +1,35 @@
-"""DNA models (stand-in until the lead's model interface lands on main)."""
+"""DNA models on one interface (docs/theory/models.md).
+
+``get_model("li-zhao")`` (the paper's construction, the default); further
+models register themselves with :func:`register_model`. The contract is in
+:mod:`supercoil.dna.models.base`.
+"""
+
+from supercoil.dna.models.base import Buckling, DNAModel, HatPoints, unique_forces
+from supercoil.dna.models.li_zhao import LiZhao
+from supercoil.dna.registry import Registry
+
+__all__ = ["DEFAULT_MODEL", "Buckling", "DNAModel", "HatPoints", "LiZhao", "available_models",
+           "get_model", "register_model", "unique_forces"]
+
+#: the model used when none is given (the paper's)
+DEFAULT_MODEL = "li-zhao"
+_REGISTRY = Registry("model", DNAModel)
+
+
+def register_model(cls, replace=False):
+    """Make a :class:`DNAModel` subclass available by its ``name`` (returns the class)."""
+    return _REGISTRY.register(cls, replace=replace)
+
+
+def get_model(spec=DEFAULT_MODEL, **values):
+    """A model instance from a registered name, a class or an instance."""
+    return _REGISTRY.get(spec, "model", **values)
+
+
+def available_models():
+    """Registered model names."""
+    return _REGISTRY.names()
+
+
+register_model(LiZhao)

@@ -1,0 +1,262 @@
+"""Hat curves of DNA in a magnetic tweezers (MODEL.md section 6). Float-only kernel.
+
+Extension z versus turns N at fixed force T, symmetric in N (denaturation
+ignored). With ``M_p = C omega`` the plectoneme torque at T (GE1), ``tau`` its
+torsion (:func:`supercoil.core.dna.plectoneme.equilibrium`) and ``C_eff`` the
+Moroz-Nelson rigidity (``C_eff = C`` when ``thermal=False``):
+
+* stretched phase, ``|N| <= N_b``: tail torque ``M_3 = C_eff 2 pi |N| / L``,
+  ``z = zeta(M_3, L) L``;
+* buckling at ``N_b = C omega L / (2 pi C_eff)`` (torques match);
+* plectoneme phase: torque ``M_p``; linking balance
+  ``2 pi |N| = (C/C_eff) omega (L - S) + (omega + tau) S``, i.e.
+  ``S = 2 pi (|N| - N_b) / D`` with ``D = tau - (C/C_eff - 1) omega``, and
+  ``z = zeta(M_p, L - S) (L - S)``;
+* fully coiled for ``S >= L``: ``z = 0`` and S reported as L (the torque is
+  kept at M_p: the model has nothing beyond that point).
+
+Post-buckling slope. In the plectoneme phase ``z(l) = zeta_inf l +
+B kT / (B T - M_p^2/4)`` is linear in the tail length ``l = L - S``
+(``zeta_inf = 1 - Q^(-1/2)/2``, Q the Moroz-Nelson bracket at M_p), and
+``dl/d|N| = -2 pi / D``, hence for N > N_b
+
+    dz/dN = -2 pi zeta_inf / D        (athermal: -2 pi / tau),
+
+and ``+2 pi zeta_inf / D`` for N < -N_b. It does not depend on L.
+
+Short tail. As ``l -> 0`` the finite-length term of zeta makes z tend to
+``B kT / (B T - M_p^2/4)`` (10-20 nm) instead of 0, and zeta may exceed 1:
+the Moroz-Nelson expansion needs ``l`` large compared with the bending
+persistence length A = B/kT. Points with ``l < short_tail_length`` (default
+``3 A``, 144 nm for the seed set; fully coiled points have l = 0) are computed
+as written and flagged ``short_tail``; nothing is smoothed.
+
+Signs: torque carries ``sign(N)``; extension, plectoneme length and phase are
+even in N.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.core.dna.plectoneme import EQUILIBRIUM_RTOL, equilibrium
+from supercoil.exceptions import ValidityError
+
+__all__ = [
+    "DENATURATION_FORCE",
+    "FULLY_COILED",
+    "OVERSTRETCHING_FORCE",
+    "PLECTONEME",
+    "SHORT_TAIL_PERSISTENCE_LENGTHS",
+    "STRETCHED",
+    "HatParameters",
+    "HatPoints",
+    "buckling_turns",
+    "hat_curve_points",
+    "hat_parameters",
+    "post_buckling_slope",
+]
+
+STRETCHED, PLECTONEME, FULLY_COILED = 0, 1, 2
+#: default short-tail threshold in bending persistence lengths A = B/kT
+SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
+#: above this force (N) negative supercoiling denatures real DNA [Salerno 2012]
+DENATURATION_FORCE = 0.8e-12
+#: above this force (N) B-DNA overstretches (Smith, Cui & Bustamante, Science 271,
+#: 795 (1996); Cluzel et al., Science 271, 792 (1996)); the model is inextensible
+OVERSTRETCHING_FORCE = 65e-12
+_TWO_PI = 2.0 * np.pi
+
+
+class HatPoints(NamedTuple):
+    """Hat-curve points, same-shape SI arrays."""
+
+    extension: np.ndarray  # m
+    torque: np.ndarray  # N m, sign of N
+    plectoneme_length: np.ndarray  # S, m (L when fully coiled)
+    phase: np.ndarray  # int8: 0 stretched, 1 plectoneme, 2 fully coiled
+    short_tail: np.ndarray  # bool: tail L - S shorter than short_tail_length
+    zeta: np.ndarray  # Moroz-Nelson extension factor (1 athermal, 0 fully coiled)
+    free_energy: np.ndarray | None = None  # G(N, F) in J, for models that have one
+
+
+class HatParameters(NamedTuple):
+    """Per-force constants of the hat curve (SI arrays of the force's shape)."""
+
+    force: np.ndarray  # N
+    torque: np.ndarray  # plectoneme torque M_p = C omega, N m
+    omega: np.ndarray  # 1/m
+    torsion: np.ndarray  # tau of the plectoneme, 1/m
+    twist_ratio: np.ndarray  # C / C_eff (1 athermal)
+    effective_twist_rigidity: np.ndarray  # C_eff, N m^2
+    buckling_turns: np.ndarray  # N_b
+    linking_rate: np.ndarray  # D = tau - (C/C_eff - 1) omega, 1/m
+    slope: np.ndarray  # dz/dN for N > N_b, m per turn
+
+
+def hat_parameters(force, length, B, C, kT, r0, thermal=True, rtol=EQUILIBRIUM_RTOL,
+                   check_zeta=True, equilibrium_state=None):
+    """Buckling turns, plectoneme torque and post-buckling slope at each force.
+
+    ``equilibrium_state`` (a :class:`~supercoil.core.dna.plectoneme.PlectonemeState`
+    at ``force``) replaces the hard-core equilibrium solve: any interaction's
+    plectoneme enters the construction through it (``r0`` and ``rtol`` are
+    then unused).
+
+    With ``check_zeta=False`` (used by :func:`hat_curve_points`, which checks
+    zeta point by point) the slope is NaN where zeta's bracket is not positive
+    at the plectoneme torque instead of raising.
+
+    Raises
+    ------
+    NoEquilibriumError
+        If a force has no plectoneme equilibrium.
+    ValidityError
+        (thermal) if zeta's bracket is not positive at the plectoneme torque, or
+        if ``D <= 0`` (the tail would store more linking per length than the
+        plectoneme).
+    """
+    force = np.asarray(force, dtype=float)
+    eq = equilibrium_state
+    if eq is None:
+        eq = equilibrium(force, B, C, kT, r0, rtol=rtol)
+    M, omega, tau = eq.torque, eq.omega, eq.torsion
+    if thermal:
+        ratio = _mn.twist_rigidity_ratio(force, B, C, kT)
+        D = tau - (ratio - 1.0) * omega
+        if np.any(D <= 0.0):
+            i = np.flatnonzero(D <= 0.0)[0]
+            raise ValidityError(
+                f"at force {force.flat[i] * 1e12:.6g} pN the fluctuating tail stores more "
+                "linking per length than the plectoneme (tau <= (C/C_eff - 1) omega)"
+            )
+        with np.errstate(invalid="ignore"):
+            zeta_inf = _mn.long_tail_factor(force, M, B, kT, check=check_zeta)
+        slope = -_TWO_PI * zeta_inf / D
+    else:
+        ratio = np.ones_like(force)
+        D = tau
+        slope = -_TWO_PI / tau
+    Nb = M * ratio * length / (_TWO_PI * C)
+    return HatParameters(force, M, omega, tau, ratio, C / ratio, Nb, D, slope)
+
+
+def buckling_turns(force, length, B, C, kT, r0, thermal=True):
+    """``N_b = C omega L / (2 pi C_eff)`` at each force."""
+    return hat_parameters(force, length, B, C, kT, r0, thermal, check_zeta=False).buckling_turns
+
+
+def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
+    """``dz/dN`` (m per turn) just past buckling, N > 0: ``-2 pi zeta_inf / D``."""
+    return hat_parameters(force, length, B, C, kT, r0, thermal).slope
+
+
+def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUILIBRIUM_RTOL,
+                     short_tail_length=None, equilibrium_solver=None):
+    """Hat-curve points: one (turns, force) pair per point, equilibrium once per force.
+
+    Parameters
+    ----------
+    turns : array
+        Applied turns N (the linking number), any sign.
+    force : array
+        Tension T (N), same shape as ``turns`` (or broadcastable to it).
+    length : float
+        Contour length L (m).
+    B, C : float
+        Bending and torsional rigidity (N m^2).
+    kT : float
+        Thermal energy (J).
+    r0 : float
+        Marko-Siggia hard-core radius (m).
+    thermal : bool
+        Moroz-Nelson corrections (C_eff, zeta). ``False``: ``C_eff = C``,
+        ``zeta = 1``, and no thermal term is computed.
+    rtol : float
+        Tolerance of the equilibrium solver.
+    short_tail_length : float, optional
+        Tail length (m) below which points are flagged ``short_tail``;
+        default ``3 B/kT``.
+    equilibrium_solver : callable, optional
+        ``tension -> PlectonemeState`` for another interaction (default: the
+        hard-core solver at ``r0``).
+
+    Returns
+    -------
+    HatPoints
+
+    Raises
+    ------
+    NoEquilibriumError
+        Naming the force, if a force has no plectoneme equilibrium.
+    ValidityError
+        (thermal) naming force and torque where zeta's bracket is not positive
+        at a point that is not fully coiled.
+    ValueError
+        For non-finite turns or forces, or a non-positive length.
+    """
+    turns = np.asarray(turns, dtype=float)
+    force = np.asarray(force, dtype=float)
+    if turns.shape != force.shape:
+        turns, force = np.broadcast_arrays(turns, force)
+    if not (np.isfinite(length) and length > 0):
+        raise ValueError(f"length must be positive and finite, got {length!r}")
+    if not np.all(np.isfinite(turns)):
+        raise ValueError("turns must be finite")
+    if not np.all(np.isfinite(force)):
+        raise ValueError("force must be finite")
+    if short_tail_length is None:
+        short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * B / kT
+    if turns.size == 0:
+        empty = np.empty(turns.shape)
+        return HatPoints(empty, empty, empty, empty.astype(np.int8), empty.astype(bool), empty)
+
+    fmin, fmax = force.min(), force.max()
+    if fmin == fmax:
+        uf = np.array([fmin])
+        eq = None if equilibrium_solver is None else equilibrium_solver(uf)
+        par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
+
+        def take(a):
+            return a[0]
+    else:
+        uf, inv = np.unique(force, return_inverse=True)
+        inv = inv.reshape(force.shape)
+        eq = None if equilibrium_solver is None else equilibrium_solver(uf)
+        par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
+
+        def take(a):
+            return a[inv]
+
+    Nb = take(par.buckling_turns)
+    Mp = take(par.torque)
+    n = np.abs(turns)
+    stretched = n <= Nb
+    S = np.maximum(n - Nb, 0.0) * (_TWO_PI / take(par.linking_rate))
+    coiled = S >= length
+    S = np.minimum(S, length)
+    tail = length - S
+    M = np.where(stretched, take(par.effective_twist_rigidity) * (_TWO_PI / length) * n, Mp)
+    if thermal:
+        Q = _mn.zeta_bracket(force, M, B, kT)
+        if not np.all((Q > 0.0) | coiled):
+            _mn.check_bracket(np.where(coiled, 1.0, Q), force, np.sign(turns) * M)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            zeta = 1.0 - 0.5 / np.sqrt(Q) + (B * kT) / (tail * (B * force - 0.25 * M * M))
+        zeta = np.where(coiled, 0.0, zeta)
+        extension = zeta * tail
+    else:
+        zeta = np.where(coiled, 0.0, 1.0)
+        extension = tail
+    phase = np.where(stretched, STRETCHED, np.where(coiled, FULLY_COILED, PLECTONEME))
+    return HatPoints(
+        extension=extension,
+        torque=np.copysign(M, turns),
+        plectoneme_length=S,
+        phase=phase.astype(np.int8),
+        short_tail=tail < short_tail_length,
+        zeta=zeta,
+    )

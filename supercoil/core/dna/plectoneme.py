@@ -1,0 +1,509 @@
+"""Plectoneme equilibrium of DNA at fixed force (MODEL.md sections 2 and 6). Float-only kernel.
+
+Equations
+---------
+For a uniform double helix of tilt alpha and radius R with the Marko-Siggia
+interaction ``w`` (:mod:`supercoil.core.dna.marko_siggia`), stationarity of the
+energy [Eq Ep1] gives (MODEL.md s.2)
+
+* (GE1) ``C omega = (B kappa kappa_alpha + w_alpha) / tau_alpha``  (the torque M_3),
+* (GE2) ``tau_R (B kappa kappa_alpha + w_alpha) - tau_alpha (B kappa kappa_R + w_R) = 0``,
+* tension ``T = -(1/2) B kappa^2 + C omega tau - w``.
+
+Eliminating ``C omega`` with (GE1) leaves two equations in (alpha, R) that do
+not contain C: the torque ``M_3 = C omega`` and the geometry at a given force
+are independent of C; only ``omega = M_3 / C`` depends on it.
+
+Reduced form
+------------
+With ``rho = R/r0``, ``b = B/(kT r0)``, ``beta = b^(-1/3)``, ``t = tan(alpha)/pi``,
+``s = sin alpha``, ``c2 = cos 2alpha``, and using ``(sin 2alpha / 2) t_alpha = t``,
+``-rho^4 x (GE2)`` simplifies to
+
+    h(alpha, rho) = b s^4 + 12 rho^-10 g2(alpha) + (2/3) beta rho^(4/3) g1(alpha) = 0,
+    g1 = 2 s^2 t^(2/3) - c2,   g2 = 2 s^2 t^12 - c2,
+
+(the bending terms collapse to ``b s^4``), and the tension (in kT/r0) to
+
+    T' = b s^4 (2 + c2) / (2 c2 rho^2) + rho^-12 q2 + beta rho^(-2/3) q1,
+    q2 = 12 t^12 / c2 - 1 - t^12,   q1 = (2/3) t^(2/3) / c2 - 1 - t^(2/3).
+
+The bending part of T' is the rough-surface tension [eq tension] at R = rho.
+The torque is ``M_3 / kT = (b s^2 sin 2alpha / rho + rho w'_alpha) / c2``.
+The reduced problem depends on the single number b, so its solution curve is
+computed once per b and cached.
+
+Branches and the physical solution
+----------------------------------
+``h`` is strictly increasing in alpha on (0, pi/4) (``s^4``, g1 and g2 all
+increase), negative at alpha -> 0 and positive at alpha = pi/4, and for
+alpha >= pi/4 every term is positive. Hence for **every** rho > 0 (GE2) has
+exactly one root ``alpha(rho)`` in (0, pi/4): the (GE2) solution set is one
+curve, parametrised by rho. Read as a function of alpha it has two branches
+(a hard-core branch rho ~ 1 and an entropic branch where rho grows without
+bound as alpha -> alpha_1 ~ 37 deg), which meet at a fold in alpha.
+
+Along the curve ``dT = tau dM_3`` (the equilibrium is a stationary point of
+``f = B kappa^2/2 + w - M_3 tau`` at fixed torque and ``T = -f``). Going out in
+rho, T' decreases monotonically from +infinity (rho -> 0, alpha -> pi/4) through
+zero at ``rho_0`` (1.65 for the seed set b = 27.4) to a minimum (a cusp where
+the torque M_3 turns, the stability limit of the minimum of f), and then rises
+towards 0 from below as rho -> infinity (``T' ~ -rho^(-2/3) / (6 s^2)``). So
+every positive force has exactly one solution, on the monotone part
+``rho < rho_0``, which is the minimum of f at its torque (the stable
+plectoneme); the entropic branch carries only negative tensions. The solver
+tabulates T'(rho) on ``[RHO_MIN, rho_0]`` once per b, brackets each force in
+that table, and solves ``T'(alpha(rho), rho) = T'`` for ``log rho`` by a
+safeguarded Newton iteration (Newton steps that leave the bracket are
+replaced by bisection), each step solving (GE2) for alpha by a safeguarded
+Newton iteration in the bracket (0, pi/4). No starting guess is needed.
+
+Limits: the force must be positive (no plectoneme is held at T <= 0), and the
+table stops at ``rho = RHO_MIN = 0.5`` (strands overlapping to half the
+hard-core radius, T above ~1e5 pN for the seed set): beyond that force
+:class:`~supercoil.exceptions.NoEquilibriumError` is raised.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import NamedTuple
+
+import numpy as np
+
+from supercoil.core import geometry as _g
+from supercoil.core.dna import marko_siggia as _ms
+from supercoil.exceptions import NoEquilibriumError
+
+__all__ = [
+    "EQUILIBRIUM_RTOL",
+    "RHO_MIN",
+    "PlectonemeState",
+    "branch_table",
+    "equilibrium",
+    "equilibrium_residuals",
+    "reduced_ge2",
+    "reduced_tension",
+    "reduced_torque",
+    "solve_tilt",
+]
+
+#: smallest reduced radius R/r0 of the tabulated branch (sets the largest force)
+RHO_MIN = 0.5
+#: Default step tolerance (on log R) of the equilibrium's Newton iteration. The
+#: iteration converges quadratically, so once a step is below 1e-8 the next
+#: error is at rounding level: the work-precision benchmark (supercoil bench)
+#: measures the same 4e-16 relative error in (alpha, R) at 1e-8 as at 1e-12
+#: against an independent MINPACK solve, for ~15 % less time.
+EQUILIBRIUM_RTOL = 1e-8
+_SCALAR_LOOP_MAX = 12
+_ALPHA_LO = 1e-12
+_ALPHA_HI = 0.25 * np.pi
+_TWO_THIRDS = 2.0 / 3.0
+
+
+class PlectonemeState(NamedTuple):
+    """Plectoneme equilibrium at given forces, SI floats (arrays of the force's shape)."""
+
+    force: np.ndarray  # N
+    alpha: np.ndarray  # rad
+    radius: np.ndarray  # m
+    pitch: np.ndarray  # m
+    omega: np.ndarray  # 1/m (twist density in the helix, = torque / C)
+    torque: np.ndarray  # N m (M_3 = C omega)
+    curvature: np.ndarray  # 1/m
+    torsion: np.ndarray  # 1/m
+    bending_energy: np.ndarray  # J/m per strand length: B kappa^2 / 2
+    twist_energy: np.ndarray  # J/m: C omega^2 / 2
+    interaction_energy: np.ndarray  # J/m: w
+
+
+# ---------------------------------------------------------------------------
+# reduced equations
+# ---------------------------------------------------------------------------
+
+
+def _trig(alpha):
+    s = np.sin(alpha)
+    c = np.cos(alpha)
+    tan = s / c
+    t = tan / np.pi
+    t_a = (1.0 + tan * tan) / np.pi
+    return s, c, t, t_a
+
+
+def reduced_ge2(alpha, rho, b, derivatives=False):
+    """``h = -rho^4 (GE2)`` in reduced units; with ``derivatives`` also ``(h_alpha, h_rho)``."""
+    beta = b ** (-1.0 / 3.0)
+    s, c, t, t_a = _trig(alpha)
+    s2 = s * s
+    c2 = c * c - s2
+    t13 = np.cbrt(t)
+    t23 = t13 * t13
+    t12 = t**12
+    g1 = 2.0 * s2 * t23 - c2
+    g2 = 2.0 * s2 * t12 - c2
+    r43 = np.cbrt(rho) * rho
+    rm10 = rho**-10
+    k1 = _TWO_THIRDS * beta
+    h = b * s2 * s2 + 12.0 * rm10 * g2 + k1 * r43 * g1
+    if not derivatives:
+        return h
+    sin2a = 2.0 * s * c
+    g1_a = 2.0 * sin2a * t23 + 2.0 * s2 * _TWO_THIRDS * t_a / t13 + 2.0 * sin2a
+    g2_a = 2.0 * sin2a * t12 + 24.0 * s2 * t12 / t * t_a + 2.0 * sin2a
+    h_a = 4.0 * b * s2 * s * c + 12.0 * rm10 * g2_a + k1 * r43 * g1_a
+    h_r = -120.0 * rm10 / rho * g2 + (4.0 / 3.0) * k1 * r43 / rho * g1
+    return h, h_a, h_r
+
+
+def reduced_tension(alpha, rho, b, derivatives=False):
+    """Reduced tension ``T' = T r0 / kT`` on the (GE1)-eliminated tension equation.
+
+    With ``derivatives`` also returns ``(T'_alpha, T'_rho)``.
+    """
+    beta = b ** (-1.0 / 3.0)
+    s, c, t, t_a = _trig(alpha)
+    s2 = s * s
+    s4 = s2 * s2
+    c2 = c * c - s2
+    t13 = np.cbrt(t)
+    t23 = t13 * t13
+    t12 = t**12
+    q2 = 12.0 * t12 / c2 - 1.0 - t12
+    q1 = _TWO_THIRDS * t23 / c2 - 1.0 - t23
+    rm2 = 1.0 / (rho * rho)
+    rm12 = rm2**6
+    rm23 = 1.0 / np.cbrt(rho * rho)
+    bend = b * s4 * (2.0 + c2) / (2.0 * c2) * rm2
+    T = bend + rm12 * q2 + beta * rm23 * q1
+    if not derivatives:
+        return T
+    sin2a = 2.0 * s * c
+    c2sq = c2 * c2
+    d_bend = 4.0 * s2 * s * c * (1.0 + 2.0 / c2) + 4.0 * s4 * sin2a / c2sq
+    q2_a = 144.0 * t12 / t * t_a / c2 + 24.0 * t12 * sin2a / c2sq - 12.0 * t12 / t * t_a
+    q1_a = ((4.0 / 9.0) * t_a / t13 / c2 + (4.0 / 3.0) * t23 * sin2a / c2sq
+            - _TWO_THIRDS * t_a / t13)
+    T_a = 0.5 * b * rm2 * d_bend + rm12 * q2_a + beta * rm23 * q1_a
+    T_r = (-2.0 * bend - 12.0 * rm12 * q2 - _TWO_THIRDS * beta * rm23 * q1) / rho
+    return T, T_a, T_r
+
+
+def reduced_torque(alpha, rho, b):
+    """Reduced torque ``M_3 / kT = (B kappa kappa_alpha + w_alpha) / (kT tau_alpha)`` (GE1)."""
+    beta = b ** (-1.0 / 3.0)
+    s, c, _, _ = _trig(alpha)
+    c2 = c * c - s * s
+    w_a, _ = _ms.reduced_interaction_partials(alpha, rho, beta)
+    return (b * s * s * 2.0 * s * c / rho + rho * w_a) / c2
+
+
+# ---------------------------------------------------------------------------
+# safeguarded Newton (vectorised)
+# ---------------------------------------------------------------------------
+
+
+def _safe_newton(fun, x, lo, hi, xtol, maxiter=100):
+    """Root of an increasing ``fun`` in ``[lo, hi]`` (``fun(lo) <= 0 <= fun(hi)``).
+
+    ``fun(x) -> (f, df)``. Newton steps that leave the current bracket, or are
+    not finite, are replaced by bisection; the bracket shrinks with every sign
+    evaluation, so the iteration cannot fail once bracketed.
+    """
+    x = np.array(x, dtype=float, copy=True)
+    lo = np.array(lo, dtype=float, copy=True)
+    hi = np.array(hi, dtype=float, copy=True)
+    for _ in range(maxiter):
+        f, df = fun(x)
+        neg = f < 0.0
+        lo = np.where(neg, x, lo)
+        hi = np.where(neg, hi, x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xn = x - f / df
+        ok = (xn >= lo) & (xn <= hi)
+        xn = np.where(ok, xn, 0.5 * (lo + hi))
+        xn = np.where(f == 0.0, x, xn)
+        dx = np.abs(xn - x)
+        x = xn
+        if np.all(dx <= xtol * (1.0 + np.abs(x))):
+            break
+    return x
+
+
+def solve_tilt(rho, b, alpha0=None, xtol=1e-15):
+    """The unique root alpha in (0, pi/4) of (GE2) at reduced radius ``rho``."""
+    rho = np.asarray(rho, dtype=float)
+    if alpha0 is None:
+        alpha0 = np.full(rho.shape, 0.5)
+
+    def fun(a):
+        h, h_a, _ = reduced_ge2(a, rho, b, derivatives=True)
+        return h, h_a
+
+    lo = np.full(rho.shape, _ALPHA_LO)
+    hi = np.full(rho.shape, _ALPHA_HI)
+    return _safe_newton(fun, alpha0, lo, hi, xtol)
+
+
+@lru_cache(maxsize=64)
+def branch_table(b):
+    """Tabulated physical branch ``(rho, alpha, T')`` for ``b = B/(kT r0)``.
+
+    ``rho`` runs from :data:`RHO_MIN` out to the first grid point with
+    ``T' <= 0``; ``T'`` is strictly decreasing on it (checked).
+    """
+    rho = np.geomspace(RHO_MIN, 1e4, 600)
+    alpha = solve_tilt(rho, b)
+    T = reduced_tension(alpha, rho, b)
+    nonpos = np.nonzero(T <= 0.0)[0]
+    if nonpos.size == 0 or nonpos[0] == 0:
+        raise NoEquilibriumError(
+            f"no plectoneme branch with positive tension for B/(kT r0) = {b:.6g}"
+        )
+    k = nonpos[0] + 1
+    rho, alpha, T = rho[:k], alpha[:k], T[:k]
+    if not np.all(np.diff(T) < 0):
+        raise NoEquilibriumError(
+            f"the plectoneme tension is not monotone in R for B/(kT r0) = {b:.6g}"
+        )
+    for arr in (rho, alpha, T):
+        arr.setflags(write=False)
+    return rho, alpha, T
+
+
+def _format_force(force):
+    return f"{force * 1e12:.6g} pN"
+
+
+def _scalar_ge2_tension(a, rho, b, beta):
+    """Pure-float ``(h, h_a, h_r, T, T_a, T_r)``: the formulas of :func:`reduced_ge2`
+    and :func:`reduced_tension` for one point (the scalar fast path; tested equal)."""
+    s = math.sin(a)
+    c = math.cos(a)
+    tan = s / c
+    t = tan / math.pi
+    t_a = (1.0 + tan * tan) / math.pi
+    s2 = s * s
+    s4 = s2 * s2
+    c2 = c * c - s2
+    sin2a = 2.0 * s * c
+    t13 = math.cbrt(t)
+    t23 = t13 * t13
+    t11 = t**11
+    t12 = t11 * t
+    # (GE2)
+    g1 = 2.0 * s2 * t23 - c2
+    g2 = 2.0 * s2 * t12 - c2
+    r13 = math.cbrt(rho)
+    r43 = r13 * rho
+    rm10 = rho**-10
+    k1 = _TWO_THIRDS * beta
+    h = b * s4 + 12.0 * rm10 * g2 + k1 * r43 * g1
+    g1_a = 2.0 * sin2a * t23 + 2.0 * s2 * _TWO_THIRDS * t_a / t13 + 2.0 * sin2a
+    g2_a = 2.0 * sin2a * t12 + 24.0 * s2 * t11 * t_a + 2.0 * sin2a
+    h_a = 4.0 * b * s2 * s * c + 12.0 * rm10 * g2_a + k1 * r43 * g1_a
+    h_r = -120.0 * rm10 / rho * g2 + (4.0 / 3.0) * k1 * r13 * g1
+    # tension
+    q2 = 12.0 * t12 / c2 - 1.0 - t12
+    q1 = _TWO_THIRDS * t23 / c2 - 1.0 - t23
+    rm2 = 1.0 / (rho * rho)
+    rm12 = rm2**6
+    rm23 = 1.0 / (r13 * r13)
+    bend = b * s4 * (2.0 + c2) / (2.0 * c2) * rm2
+    T = bend + rm12 * q2 + beta * rm23 * q1
+    c2sq = c2 * c2
+    d_bend = 4.0 * s2 * s * c * (1.0 + 2.0 / c2) + 4.0 * s4 * sin2a / c2sq
+    q2_a = 144.0 * t11 * t_a / c2 + 24.0 * t12 * sin2a / c2sq - 12.0 * t11 * t_a
+    q1_a = ((4.0 / 9.0) * t_a / t13 / c2 + (4.0 / 3.0) * t23 * sin2a / c2sq
+            - _TWO_THIRDS * t_a / t13)
+    T_a = 0.5 * b * rm2 * d_bend + rm12 * q2_a + beta * rm23 * q1_a
+    T_r = (-2.0 * bend - 12.0 * rm12 * q2 - _TWO_THIRDS * beta * rm23 * q1) / rho
+    return h, h_a, h_r, T, T_a, T_r
+
+
+def _scalar_tilt(a, rho, b, beta):
+    """(GE2) for alpha at reduced radius ``rho``: safeguarded Newton in (0, pi/4), floats."""
+    a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
+    for _ in range(200):
+        h, h_a = _scalar_ge2_tension(a, rho, b, beta)[:2]
+        if h == 0.0:
+            break
+        if h < 0.0:
+            a_lo = a
+        else:
+            a_hi = a
+        an = a - h / h_a
+        if not a_lo <= an <= a_hi:
+            an = 0.5 * (a_lo + a_hi)
+        da = abs(an - a)
+        a = an
+        if da <= 1e-15 * (1.0 + a):
+            break
+    return a
+
+
+def _solve_scalar(T_target, b, rtol=EQUILIBRIUM_RTOL):
+    """One reduced tension: the same safeguarded nested Newton as :func:`solve_reduced`,
+    on Python floats (about ten times faster for a single force)."""
+    rho_t, alpha_t, T_t = branch_table(b)
+    beta = b ** (-1.0 / 3.0)
+    k = int(np.searchsorted(-T_t, -T_target, side="left")) - 1
+    k = min(max(k, 0), rho_t.size - 2)
+    u_lo, u_hi = math.log(rho_t[k]), math.log(rho_t[k + 1])
+    frac = min(max((T_t[k] - T_target) / (T_t[k] - T_t[k + 1]), 0.0), 1.0)
+    u = u_lo + frac * (u_hi - u_lo)
+    a = float(alpha_t[k] + frac * (alpha_t[k + 1] - alpha_t[k]))
+    for _ in range(200):
+        rho = math.exp(u)
+        a = _scalar_tilt(a, rho, b, beta)
+        _, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
+        G = T_target - T
+        if G < 0.0:
+            u_lo = u
+        elif G > 0.0:
+            u_hi = u
+        else:
+            break
+        dG = -rho * (T_r - T_a * h_r / h_a)
+        un = u - G / dG
+        if not u_lo <= un <= u_hi:
+            un = 0.5 * (u_lo + u_hi)
+        du = abs(un - u)
+        u = un
+        if du <= rtol * (1.0 + abs(u)):
+            break
+    rho = math.exp(u)
+    a = _scalar_tilt(a, rho, b, beta)  # (GE2) at the final rho
+    return np.array([a]), np.array([rho])
+
+
+def solve_reduced(T_target, b, rtol=EQUILIBRIUM_RTOL):
+    """Solve the reduced equations at reduced tensions ``T_target > 0``: ``(alpha, rho)``."""
+    T_target = np.asarray(T_target, dtype=float)
+    rho_t, alpha_t, T_t = branch_table(float(b))
+    # T_t decreasing: index of the interval [k, k+1] with T_t[k] >= T > T_t[k+1]
+    k = np.searchsorted(-T_t, -T_target, side="left") - 1
+    k = np.clip(k, 0, rho_t.size - 2)
+    u_lo, u_hi = np.log(rho_t[k]), np.log(rho_t[k + 1])
+    T_lo, T_hi = T_t[k], T_t[k + 1]
+    frac = np.clip((T_lo - T_target) / (T_lo - T_hi), 0.0, 1.0)
+    u0 = u_lo + frac * (u_hi - u_lo)
+    state = {"alpha": alpha_t[k] + frac * (alpha_t[k + 1] - alpha_t[k])}
+
+    def fun(u):
+        rho = np.exp(u)
+        a = solve_tilt(rho, b, alpha0=state["alpha"])
+        state["alpha"] = a
+        T, T_a, T_r = reduced_tension(a, rho, b, derivatives=True)
+        _, h_a, h_r = reduced_ge2(a, rho, b, derivatives=True)
+        dT_drho = T_r - T_a * h_r / h_a
+        return T_target - T, -rho * dT_drho
+
+    u = _safe_newton(fun, u0, u_lo, u_hi, rtol)
+    rho = np.exp(u)
+    alpha = solve_tilt(rho, b, alpha0=state["alpha"])
+    return alpha, rho
+
+
+def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
+    """Plectoneme equilibrium at fixed force: solves (GE1), (GE2) and the tension equation.
+
+    Parameters
+    ----------
+    force : float or array
+        Tension T (N), positive, finite.
+    B, C : float
+        Bending and torsional rigidity (N m^2).
+    kT : float
+        Thermal energy (J).
+    r0 : float
+        Hard-core radius of the Marko-Siggia interaction (m).
+    rtol : float
+        Step tolerance on log R of the Newton iteration (default
+        :data:`EQUILIBRIUM_RTOL` = 1e-8; quadratic convergence leaves residuals
+        at ~1e-15).
+
+    Returns
+    -------
+    PlectonemeState
+        SI arrays of the shape of ``force``.
+
+    Raises
+    ------
+    NoEquilibriumError
+        Naming the force, if it is not positive or exceeds the largest
+        tabulated force (R < r0/2).
+    ValueError
+        If a force is not finite.
+    """
+    force = np.asarray(force, dtype=float)
+    if not np.all(np.isfinite(force)):
+        raise ValueError(f"force must be finite, got {force!r}")
+    b = B / (kT * r0)
+    Tr = force * (r0 / kT)
+    bad = Tr <= 0.0
+    if np.any(bad):
+        f = force[bad].flat[0]
+        raise NoEquilibriumError(
+            f"no plectoneme equilibrium at force {_format_force(f)}: "
+            "the tension must be positive"
+        )
+    _, _, T_t = branch_table(float(b))
+    if np.any(Tr > T_t[0]):
+        f = force[Tr > T_t[0]].flat[0]
+        raise NoEquilibriumError(
+            f"no plectoneme equilibrium at force {_format_force(f)}: above "
+            f"{_format_force(T_t[0] * kT / r0)} the superhelix radius would fall below "
+            f"r0/2 (alpha -> pi/4)"
+        )
+    if Tr.size <= _SCALAR_LOOP_MAX:  # a few forces: the pure-float path is faster
+        pairs = [_solve_scalar(t, float(b), rtol=rtol) for t in Tr.ravel().tolist()]
+        alpha = np.array([p[0][0] for p in pairs]).reshape(Tr.shape)
+        rho = np.array([p[1][0] for p in pairs]).reshape(Tr.shape)
+    else:
+        alpha, rho = solve_reduced(Tr, b, rtol=rtol)
+    M = reduced_torque(alpha, rho, b) * kT
+    R = rho * r0
+    kappa = _g.curvature(alpha, R)
+    tau = _g.torsion(alpha, R)
+    omega = M / C
+    w = _ms.interaction(alpha, R, B, kT, r0)
+    return PlectonemeState(
+        force=force,
+        alpha=alpha,
+        radius=R,
+        pitch=_g.pitch_from_tilt(alpha, R),
+        omega=omega,
+        torque=M,
+        curvature=kappa,
+        torsion=tau,
+        bending_energy=0.5 * B * kappa * kappa,
+        twist_energy=0.5 * C * omega * omega,
+        interaction_energy=w,
+    )
+
+
+def equilibrium_residuals(force, alpha, radius, omega, B, C, kT, r0):
+    """Relative residuals ``(GE1, GE2, tension)`` of a solution, from the general equations.
+
+    Uses the un-reduced forms of MODEL.md s.2 and s.3 (geometry partials of
+    :mod:`supercoil.core.geometry`, ``w`` and its partials of
+    :mod:`supercoil.core.dna.marko_siggia`), each divided by the sum of the
+    magnitudes of its terms. Independent of the reduced forms the solver uses.
+    """
+    kappa = _g.curvature(alpha, radius)
+    tau = _g.torsion(alpha, radius)
+    k_a, k_r = _g.curvature_partials(alpha, radius)
+    t_a, t_r = _g.torsion_partials(alpha, radius)
+    w = _ms.interaction(alpha, radius, B, kT, r0)
+    w_a, w_r = _ms.interaction_partials(alpha, radius, B, kT, r0)
+    X = B * kappa * k_a + w_a
+    Y = B * kappa * k_r + w_r
+    ge1 = (C * omega * t_a - X) / (np.abs(C * omega * t_a) + np.abs(B * kappa * k_a) + np.abs(w_a))
+    ge2 = (t_r * X - t_a * Y) / (np.abs(t_r * X) + np.abs(t_a * B * kappa * k_r)
+                                 + np.abs(t_a * w_r))
+    terms = (0.5 * B * kappa**2, C * omega * tau, w, force)
+    tension = (-terms[0] + terms[1] - terms[2] - force) / sum(np.abs(x) for x in terms)
+    return ge1, ge2, tension

@@ -1,0 +1,143 @@
+r"""Twist-spinning: a short smooth helix held by a head tension T'. Float-only kernel.
+
+MODEL.md section 5, paper Discussion and Appendix F [f1, 11, f4, f5].
+
+Set-up and what is held fixed
+-----------------------------
+A rod of length L, twisted by N turns (n = N / L), has both ends held a
+distance ``L - S`` apart (S, the slack, is fixed). A double helix of rod
+length S' (both strands; S' << L) forms at the head, where a tension T' pulls
+along the helix axis; the head may rotate freely. The two straight tails, of
+length ``(L - S')/2`` each, run from the ends to the helix and make the angle
+beta with the axis, so that (geometry of the isosceles V)
+
+    sin(beta) = (L - S) / (L - S')                                          [11]
+
+and the head sits at the height
+
+    h = (S'/2) cos(alpha) + ((L - S')/2) cos(beta)
+      = (S'/2) cos(alpha) + (L - S) / (2 tan(beta)).
+
+(MODEL.md and [f1] print the helix part as ``S'/cos(alpha)``; the height of a
+helix of strand length S'/2 and tilt alpha is ``(S'/2) cos(alpha)``, and only
+this form reproduces the paper's own [f4], see below.) The surface is smooth,
+so the twist density omega is uniform over the whole rod; the linking number
+``N = [omega L + tau S'] / 2 pi`` [Eq Lk=Tw+Wr] gives
+``omega = (2 pi N - tau S') / L``. Held fixed: L, N, S, T' and r (hard contact
+R = r). Free: alpha and S' (beta follows from [11]). The energy is
+
+    E_p(alpha, S') = (1/2) B kappa^2 S' + (1/2) C omega^2 L - T' h.
+
+Stationarity, derived
+---------------------
+With ``d omega/d alpha = -tau_alpha S'/L`` and ``d omega/dS' = -tau/L``:
+
+* dE_p/d alpha = S' [B kappa kappa_alpha - C omega tau_alpha] + T' (S'/2) sin(alpha) = 0;
+* dE_p/dS' = (1/2) B kappa^2 - C omega tau - T' dh/dS' = 0, where
+  ``d/dS' [((L - S')/2) cos beta] = d/dS' [(1/2) sqrt((L - S')^2 - (L - S)^2)]
+  = -1 / (2 cos beta)``, so ``dh/dS' = (cos(alpha) - sec(beta)) / 2``.
+
+In the limit S'/L -> 0, ``omega -> 2 pi n`` and these become the paper's
+
+    B kappa kappa_alpha - 2 pi C n tau_alpha + (1/2) T' sin(alpha) = 0        [f4]
+    B kappa^2 - 4 pi C n tau - T' (cos(alpha) - sec(beta)) = 0                [f5]
+
+(their F is T'). With kappa = sin^2(a)/r, tau = sin(a)cos(a)/r, [f4] is
+
+    G(alpha) = B sin^2(a) sin(2a) / r^2 + T' sin(a) / 2 - 2 pi C n cos(2a) / r = 0,
+
+which increases strictly on [0, pi/4] from ``-2 pi C n / r`` to a positive
+value: one root, found by bisection. Then [f5] gives beta explicitly,
+
+    sec(beta) = cos(alpha) + 2 T_s / T',   T_s = 2 pi C n tau - B kappa^2 / 2 > 0,
+
+(T_s is the smooth-helix tension formula of MODEL.md s.3 at omega = 2 pi n).
+An equilibrium with tails needs ``sec(beta) >= 1``, i.e.
+``2 T_s >= T' (1 - cos(alpha))``. This always holds: by [f4],
+``2 pi C n = (B kappa kappa_alpha + T' sin(a)/2) / tau_alpha``, so
+``2 T_s / T' >= sin^2(a) cos(a) / cos(2a)`` (the B terms are the positive
+hard-contact tension), and ``cos(a) / cos(2a) >= 1 / (1 + cos(a))`` because
+``1 + cos(a) - cos^2(a) >= 0``. Large T' only drives beta -> 0 and alpha -> 0
+(``alpha ~ 4 pi C n / (r T')``). Rounding and underflow (|N| ~ 1e-300) can
+still produce a tiny negative T_s or ``sec(beta) - 1``; :func:`spinning_state`
+clamps both at 0 on the strength of this proof.
+
+T' = 0 recovers the twist-slacking helix
+----------------------------------------
+At T' = 0, [f4] reads ``B kappa kappa_alpha = C (2 pi n) tau_alpha``, which is
+(GE1)/(HC) with the straight rod's twist ``omega = 2 pi N / L``: exactly [eq ini],
+the tilt alpha_0 of the first helix formed by twist-slacking (S -> 0). [f5]
+with T' -> 0+ gives ``sec(beta) = cos(alpha) + 2 T_s / T' -> infinity``:
+beta -> pi/2, the tails are collinear and the ends meet the helix as in the
+twist-slacking scene. For T' > 0 the term ``T' sin(alpha) / 2 > 0`` moves the
+root of [f4] to a smaller alpha: the pitch grows with T' (paper figure fbp).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from supercoil.core.rod import contact as sc
+from supercoil.exceptions import NoHelixError
+
+TWO_PI = 2.0 * np.pi
+
+
+def spinning_tilt(turns_abs, head_tension, r, L, B, C):
+    """Root alpha of [f4] (rad), broadcast over |N| and T' (N)."""
+    n, Tp = np.broadcast_arrays(np.asarray(turns_abs, float) / L, np.asarray(head_tension, float))
+    if np.any(~(n > 0)):
+        raise NoHelixError("turns N = 0: no twist, no helix (twist-spinning needs |N| > 0)")
+    if np.any(Tp < 0) or not np.all(np.isfinite(Tp)):
+        raise NoHelixError("head tension T' must be finite and >= 0 (a push buckles the head)")
+
+    def G(a):
+        return (B * np.sin(a) ** 2 * np.sin(2 * a) / r**2 + 0.5 * Tp * np.sin(a)
+                - TWO_PI * C * n * np.cos(2 * a) / r)
+
+    return sc.bisect_increasing(G, np.zeros(n.shape), np.full(n.shape, sc.QUARTER_PI))
+
+
+def spinning_state(turns_abs, head_tension, r, L, B, C):
+    """alpha, beta (rad), pitch (m), omega = 2 pi n (rad/m) and T_s (N); see module doc.
+
+    Raises
+    ------
+    NoHelixError
+        N = 0 or T' < 0. (``sec beta >= 1`` holds for every root, see the module
+        doc; rounding below it is clamped, so no input closes the tails.)
+    """
+    alpha = spinning_tilt(turns_abs, head_tension, r, L, B, C)
+    Tp = np.broadcast_to(np.asarray(head_tension, float), alpha.shape)
+    omega = TWO_PI * np.broadcast_to(np.asarray(turns_abs, float), alpha.shape) / L
+    kappa = np.sin(alpha) ** 2 / r
+    tau = np.sin(alpha) * np.cos(alpha) / r
+    # T_s > 0 and sec(beta) >= 1 for every root of [f4] (module doc); only rounding
+    # or underflow (|N| ~ 1e-300) can push them below, so clamp instead of failing
+    Ts = np.maximum(C * omega * tau - 0.5 * B * kappa**2, 0.0)
+    # x = sec(beta) - 1 = 2 T_s / T' - (1 - cos alpha), written without cancellation
+    # at small alpha; then 1 - cos(beta) = x / (1 + x) gives beta = 2 asin(sqrt(x/(2(1+x)))).
+    # T' -> 0+ (even 5e-324 N) overflows 2 T_s / T' to inf: beta = pi/2, the T' = 0 limit.
+    with np.errstate(divide="ignore", over="ignore"):
+        x = np.where(Tp > 0, 2.0 * Ts / np.where(Tp > 0, Tp, 1.0)
+                     - 2.0 * np.sin(0.5 * alpha) ** 2, np.inf)
+    x = np.maximum(x, 0.0)
+    with np.errstate(invalid="ignore"):
+        beta = np.where(np.isinf(x), 0.5 * np.pi,
+                        2.0 * np.arcsin(np.sqrt(x / (2.0 * (1.0 + x)))))
+    return {
+        "alpha": alpha,
+        "beta": beta,
+        "pitch": TWO_PI * r / np.tan(alpha),
+        "omega": omega,
+        "slacking_tension": Ts,
+    }
+
+
+def exact_energy(alpha, S_helix, turns_abs, head_tension, slack, r, L, B, C):
+    """E_p(alpha, S') of the module doc without the S'/L -> 0 limit (J); for checks."""
+    kappa = np.sin(alpha) ** 2 / r
+    tau = np.sin(alpha) * np.cos(alpha) / r
+    omega = (TWO_PI * turns_abs - tau * S_helix) / L
+    h = 0.5 * S_helix * np.cos(alpha) + 0.5 * np.sqrt((L - S_helix) ** 2 - (L - slack) ** 2)
+    return 0.5 * B * kappa**2 * S_helix + 0.5 * C * omega**2 * L - head_tension * h

@@ -1,0 +1,289 @@
+"""Hat curves of DNA in a magnetic tweezers: extension versus turns at fixed forces.
+
+docs/theory/li-zhao.md (the paper's Example III) and docs/theory/models.md.
+Unit wrappers over the DNA models (:mod:`supercoil.dna.models`): every
+function takes ``model=`` (a registered name such as ``"li-zhao"``, the
+default, or a :class:`~supercoil.dna.models.base.DNAModel` instance) and, for
+models with a plectoneme helix, ``interaction=`` (``"hard-core"``, the
+paper's, by default). The plectoneme equilibrium is solved once per force.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import pandas as pd
+
+from supercoil._checks import check_flag
+from supercoil.core.dna import hat as _hc
+from supercoil.dna import validity as _v
+from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
+from supercoil.dna.models import DEFAULT_MODEL, get_model
+from supercoil.dna.plot import plot_hat_curves
+from supercoil.tables import make_table, provenance
+from supercoil.units import U, as_turns, magnitude, quantity
+
+__all__ = [
+    "HELICAL_REPEAT",
+    "PHASES",
+    "buckling_turns",
+    "free_energy",
+    "hat_curve",
+    "plot_hat_curves",
+    "post_buckling_slope",
+    "resolve",
+]
+
+#: DNA helical repeat h (m per helical turn, 10.5 bp): Lk_0 = L / h
+HELICAL_REPEAT = 3.57e-9
+#: phase labels of the ``phase`` column, indexed by the kernel's phase code
+PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
+_PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
+
+_UNITS = {
+    "force": "pN",
+    "turns": "turn",
+    "extension": "nm",
+    "phase": "",
+    "torque": "pN nm",
+    "plectoneme_length": "nm",
+    "supercoiling_density": "",
+    "eta": "",
+    "short_tail": "",
+    "free_energy": "pN nm",
+}
+
+
+def resolve(dna, force, thermal, model, interaction):
+    """Checked ``(dna SI, forces (N, 1-D), model, recording interaction)`` of a public call."""
+    thermal = check_flag(thermal, "thermal")
+    si = _v.check_dna(dna)
+    f = _v.checked_forces(force)
+    m = get_model(model)
+    if interaction is None or interaction == DEFAULT_INTERACTION:
+        inter = get_interaction(DEFAULT_INTERACTION)
+    elif not m.uses_interaction:
+        from supercoil.exceptions import ModelError
+
+        raise ModelError(f"model {m.name!r} has no plectoneme helix state, so it takes no "
+                         f"interaction (got interaction={interaction!r})")
+    else:
+        inter = get_interaction(interaction)
+    inter.check(si)
+    return si, f, thermal, m, _v.StateRecorder(inter)
+
+
+def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION):
+    """Turns at buckling at each force (docs/theory/models.md#buckling).
+
+    For ``"li-zhao"``: ``N_b = C omega L / (2 pi C_eff)``, where the tail
+    torque reaches the plectoneme torque.
+
+    Returns
+    -------
+    Quantity [turn], number of turns (1-D, one per force). The hat
+    curve buckles at ``+N_b`` and ``-N_b``.
+
+    Warns
+    -----
+    ValidityWarning
+        The shared DNA limits (force above 65 pN; R below the hard-core
+        radius) as :func:`plectoneme_equilibrium` gives them.
+    """
+    si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
+    b = m.buckling(f, si, thermal, inter)
+    _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
+    return quantity(b.turns, U.turn)
+
+
+def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
+                        interaction=DEFAULT_INTERACTION):
+    """Post-buckling slope ``dz/dN`` for N > N_b, in nm per turn, at each force.
+
+    For ``"li-zhao"``: ``dz/dN = -2 pi zeta_inf / D`` with
+    ``D = tau - (C/C_eff - 1) omega`` and ``zeta_inf = 1 - Q^(-1/2)/2``
+    (athermal: ``-2 pi / tau``); derivation in docs/theory/li-zhao.md#slope.
+    The slope for N < -N_b is the opposite.
+
+    Returns
+    -------
+    Quantity [nm/turn] (negative), 1-D.
+
+    Warns
+    -----
+    ValidityWarning
+        The shared DNA limits, and (li-zhao, thermal) where zeta's long-tail
+        factor is <= 0 (the slope would be positive: 0.0954-0.1218 pN for the
+        seed set) or < 0.5 (the Moroz-Nelson expansion has not converged).
+    """
+    si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
+    b = m.buckling(f, si, thermal, inter)
+    msgs = _v.force_messages(f) + inter.messages(si)
+    if thermal and hasattr(m, "slope_validity"):
+        msgs += m.slope_validity(f, b.torque, si)
+    if not np.all(np.isfinite(b.slope)):
+        from supercoil.exceptions import ValidityError
+
+        i = np.flatnonzero(~np.isfinite(b.slope))[0]
+        raise ValidityError(f"the post-buckling slope is not defined at force "
+                            f"{f[i] * 1e12:.6g} pN (model {m.name!r})")
+    _v.warn(msgs, stacklevel=2)
+    return quantity(b.slope * 1e9, U.nm_per_turn)
+
+
+def _points(dna, force, turns, thermal, model, interaction, short_tail_length, stacklevel):
+    si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
+    n = np.atleast_1d(as_turns(turns, "turns"))
+    if n.ndim != 1:
+        raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
+    if short_tail_length is None:
+        short = None
+    else:
+        short = magnitude(short_tail_length, U.m, "short_tail_length")
+        if not (np.ndim(short) == 0 and short >= 0 and np.isfinite(short)):
+            raise ValueError(f"short_tail_length must be a non-negative finite scalar, "
+                             f"got {short_tail_length}")
+    F = np.repeat(f, n.size)
+    N = np.tile(n, f.size)
+    hp = m.points(N, F, si, thermal, inter, short)
+    msgs = (_v.force_messages(f) + _v.denaturation_messages(F, N) + inter.messages(si)
+            + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
+            + m.validity(N, F, hp, si, thermal))
+    _v.warn(msgs, stacklevel=stacklevel + 1)
+    return si, F, N, hp, m, inter.interaction, thermal, short
+
+
+def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
+                interaction=DEFAULT_INTERACTION):
+    """Total free energy ``G(N, F)`` at fixed force (pN nm), force-major like :func:`hat_curve`.
+
+    ``z = -dG/dF`` and ``M = (1/2 pi) dG/dN`` (docs/theory/free-energy.md).
+
+    Raises
+    ------
+    ModelError
+        For models without one free energy (the thermal ``"li-zhao"``
+        construction).
+    """
+    si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
+    n = np.atleast_1d(as_turns(turns, "turns"))
+    if n.ndim != 1:
+        raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
+    F = np.repeat(f, n.size)
+    N = np.tile(n, f.size)
+    g = m.free_energy(N, F, si, thermal, inter)
+    _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
+    return quantity(np.asarray(g) * 1e21, U.pN_nm)
+
+
+def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEFAULT_MODEL,
+              interaction=DEFAULT_INTERACTION):
+    """Hat curves: extension, torque and phase versus turns at fixed forces.
+
+    Built exactly as MODEL.md section 6: stretched phase (torque
+    ``C_eff 2 pi N / L``, ``z = zeta L``), buckling where the torques match,
+    plectoneme phase from the linking balance
+    ``2 pi |N| = (C/C_eff) omega (L - S) + (omega + tau) S`` with
+    ``z = zeta(C omega, L - S) (L - S)``, fully coiled (``z = 0``) for S >= L.
+
+    Parameters
+    ----------
+    dna : DNA
+    force : Quantity [force]
+        One force or a 1-D array of forces.
+    turns : array-like or Quantity
+        Turns N (plain numbers, dimensionless, or an angle unit), 1-D.
+    thermal : bool
+        Moroz-Nelson corrections; ``False`` gives ``C_eff = C``, ``zeta = 1``
+        and computes no thermal term.
+    short_tail_length : Quantity [length], optional
+        Tails shorter than this are flagged ``short_tail`` (default 3 bending
+        persistence lengths).
+    model : str or DNAModel
+        The construction (default ``"li-zhao"``, the paper's); see
+        :func:`supercoil.available_models`.
+    interaction : str or Interaction
+        The inter-strand interaction of the plectoneme (default
+        ``"hard-core"``, the paper's); models without a plectoneme helix
+        state take none.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (force, turns), force-major, with columns ``force`` [pN],
+        ``turns``, ``extension`` [nm], ``phase`` ("stretched", "plectoneme",
+        "fully coiled"), ``torque`` [pN nm] (sign of N), ``plectoneme_length``
+        [nm], ``supercoiling_density`` (``sigma = N h / L``, h = 3.57 nm),
+        ``eta`` (``2 pi N xi_T / L``) and ``short_tail`` (bool);
+        ``attrs["units"]`` and ``attrs["provenance"]``.
+
+    Raises
+    ------
+    NoEquilibriumError
+        Naming the force, where no plectoneme equilibrium exists.
+    ValidityError
+        (thermal) naming force and torque where zeta's bracket is not positive:
+        for the seed set in the plectoneme phase below 0.0954 pN, and above
+        43.95 pN, where the plectoneme torque exceeds what the fluctuating tail
+        can carry (``M_p^2/4 > B T - (kT)^2/32``); the athermal curve stays
+        defined there.
+
+    Warns
+    -----
+    ValidityWarning
+        For forces above 65 pN (B-DNA overstretches; the model is
+        inextensible); for negative turns above 0.8 pN (real DNA denatures
+        there; the model ignores it); where zeta leaves (0, 1] at a point whose tail is not
+        flagged short; and where zeta's long-tail factor ``1 - Q^(-1/2)/2`` is
+        not positive (the extension would grow with turns), or below 0.5 (the
+        Moroz-Nelson expansion in 1/sqrt(Q) has not converged: bracket Q < 1).
+        With the seed set and the default short-tail length: the bracket is
+        negative below 0.0954 pN (error), the long-tail factor is <= 0 below
+        0.1218 pN, zeta > 1 at a 3 A tail below 0.1354 pN, and Q < 1 in the
+        plectoneme phase below 0.201 pN; above 0.201 pN (and below 43.95 pN)
+        the thermal curve is valid.
+    """
+    si, F, N, hp, m, inter, thermal, short = _points(dna, force, turns, thermal, model,
+                                                     interaction, short_tail_length, 2)
+    L = si.length
+    if short is None:
+        short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
+    columns = {
+        "force": F * 1e12,
+        "turns": N,
+        "extension": hp.extension * 1e9,
+        "phase": pd.Categorical.from_codes(hp.phase, categories=_PHASE_CATEGORIES),
+        "torque": hp.torque * 1e21,
+        "plectoneme_length": hp.plectoneme_length * 1e9,
+        "supercoiling_density": N * (HELICAL_REPEAT / L),
+        "eta": N * (2.0 * np.pi * si.wlc_persistence / L),
+        "short_tail": hp.short_tail,
+    }
+    units = dict(_UNITS)
+    if m.has_free_energy(thermal):
+        g = hp.free_energy if hp.free_energy is not None else m.free_energy(N, F, si, thermal,
+                                                                             inter)
+        columns["free_energy"] = np.asarray(g) * 1e21
+    else:
+        units.pop("free_energy")
+    return make_table(
+        columns,
+        units,
+        provenance(
+            _parameters(dna),
+            scene="hat curve (docs/theory/models.md)",
+            model=m.name,
+            model_parameters={k: f"{q:.12g~}" for k, q in m.quantities().items()},
+            interaction=inter.name if m.uses_interaction else None,
+            thermal=bool(thermal),
+            short_tail_length=f"{short * 1e9:.6g} nm",
+            helical_repeat=f"{HELICAL_REPEAT * 1e9:.6g} nm",
+        ),
+    )
+
+
+@lru_cache(maxsize=32)
+def _parameters(dna):
+    """``dna.as_dict()`` once per molecule (formatting pint units costs ~50 us)."""
+    return dna.as_dict()

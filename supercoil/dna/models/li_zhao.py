@@ -1,0 +1,92 @@
+"""The paper's construction of the hat curve, ``model="li-zhao"``.
+
+Li, Zhao et al., Example III (docs/theory/li-zhao.md): the uniform plectoneme
+at the full force F (any interaction), the Moroz-Nelson effective twist
+rigidity ``C_eff`` of the fluctuating tail and its extension factor ``zeta``
+with the paper's finite-length term; buckling where the tail torque
+``C_eff 2 pi N / L`` reaches the plectoneme torque. Kernel:
+:mod:`supercoil.core.dna.hat`. ``thermal=False`` is the athermal construction
+(``C_eff = C``, ``zeta = 1``). The thermal construction is not derived from
+one free energy (its extension and torque violate the Maxwell relation,
+docs/theory/free-energy.md#maxwell), so :meth:`free_energy` raises
+:class:`~supercoil.exceptions.ModelError`; the athermal limit is
+``model="free-energy", thermal=False``.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from supercoil.core.dna import hat as _hc
+from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.dna.models.base import Buckling, DNAModel
+
+__all__ = ["CONVERGED_BRACKET", "LiZhao"]
+
+#: Below this Moroz-Nelson bracket Q the long-tail factor 1 - Q^(-1/2)/2 < 0.5: the
+#: expansion in 1/sqrt(Q) has not converged and the thermal extension is qualitative.
+CONVERGED_BRACKET = 1.0
+
+
+class LiZhao(DNAModel):
+    """The paper's plectoneme + Moroz-Nelson tail construction (no parameters of its own)."""
+
+    name = "li-zhao"
+    summary = "the paper's construction: plectoneme at the full force, Moroz-Nelson tail"
+    parameters: ClassVar[dict] = {}
+
+    def _args(self, dna):
+        return (dna.length, dna.bending_rigidity, dna.torsional_rigidity, dna.kT, dna.radius)
+
+    def buckling(self, force, dna, thermal, interaction):
+        force = np.asarray(force, dtype=float)
+        eq = interaction.equilibrium(force, dna)
+        par = _hc.hat_parameters(force, *self._args(dna), thermal=thermal, check_zeta=False,
+                                 equilibrium_state=eq)
+        return Buckling(par.buckling_turns, par.torque, par.slope)
+
+    def points(self, turns, force, dna, thermal, interaction, short_tail_length=None):
+        return _hc.hat_curve_points(
+            turns, force, *self._args(dna), thermal=thermal, short_tail_length=short_tail_length,
+            equilibrium_solver=lambda f: interaction.equilibrium(f, dna))
+
+    def slope_validity(self, force, torque, dna):
+        """Messages where the long-tail factor of zeta at the plectoneme torque fails."""
+        Q = _mn.zeta_bracket(force, torque, dna.bending_rigidity, dna.kT)
+        return long_tail_messages(force, Q, np.ones(np.shape(force), bool))
+
+    def validity(self, turns, force, points, dna, thermal):
+        if not thermal:
+            return []
+        zeta_bad = ~points.short_tail & ~((points.zeta > 0) & (points.zeta <= 1))
+        zeta_bad &= points.phase != _hc.FULLY_COILED
+        if np.any(zeta_bad):
+            i = np.flatnonzero(zeta_bad)[0]
+            return [f"Moroz-Nelson zeta = {points.zeta[i]:.4g} lies outside (0, 1] at force "
+                    f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
+                    "valid there"]
+        Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
+        return long_tail_messages(force, Q, points.phase != _hc.FULLY_COILED, turns)
+
+
+def long_tail_messages(F, Q, where, N=None):
+    """Messages where zeta's long-tail factor ``1 - Q^(-1/2)/2`` is <= 0 or < 0.5."""
+    def at(i):
+        return f"force {F[i] * 1e12:.6g} pN" + (f", turns {N[i]:.6g}" if N is not None else "")
+
+    bad = where & (Q <= 0.25)
+    if np.any(bad):
+        i = np.flatnonzero(bad)[0]
+        return [f"Moroz-Nelson zeta is not valid at {at(i)}: its long-tail factor "
+                f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q[i]):.4g} <= 0 (the extension would "
+                "grow with turns)"]
+    rough = where & (Q < CONVERGED_BRACKET)
+    if np.any(rough):
+        i = np.flatnonzero(rough)[0]
+        return [f"Moroz-Nelson expansion not converged at {at(i)}: the long-tail factor "
+                f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q[i]):.3g} < 0.5 (bracket Q < 1), so "
+                "the thermal extension and post-buckling slope are qualitative there "
+                "(below 0.201 pN in the plectoneme phase for the seed set)"]
+    return []

@@ -1,0 +1,50 @@
+"""Name registries for DNA models and interactions (one mechanism for both)."""
+
+from __future__ import annotations
+
+from supercoil.exceptions import ModelError
+
+__all__ = ["Registry"]
+
+
+class Registry:
+    """Maps registry names to classes; resolves a name or an instance to an instance."""
+
+    def __init__(self, kind, base):
+        self.kind = kind
+        self.base = base
+        self._classes = {}
+
+    def register(self, cls, replace=False):
+        """Register a subclass of the base (or an instance's class) under ``cls.name``."""
+        if isinstance(cls, self.base):
+            cls = type(cls)
+        if not (isinstance(cls, type) and issubclass(cls, self.base)):
+            raise TypeError(f"a {self.kind} must subclass {self.base.__module__}."
+                            f"{self.base.__name__}, got {cls!r}")
+        name = getattr(cls, "name", "")
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"{cls.__name__} needs a non-empty class attribute 'name'")
+        if name in self._classes and self._classes[name] is not cls and not replace:
+            raise ValueError(f"a {self.kind} named {name!r} is already registered "
+                             "(pass replace=True to override it)")
+        self._classes[name] = cls
+        return cls
+
+    def get(self, spec, argname, **values):
+        """An instance from a registered name or an instance (``values`` override parameters)."""
+        if isinstance(spec, self.base):
+            return spec.replace(**values) if values else spec
+        if isinstance(spec, type) and issubclass(spec, self.base):
+            return spec(**values)
+        if not isinstance(spec, str):
+            raise TypeError(f"{argname} must be a {self.kind} name ({', '.join(self.names())}) "
+                            f"or a {self.base.__name__} instance, got {type(spec).__name__}")
+        cls = self._classes.get(spec)
+        if cls is None:
+            raise ModelError(f"unknown {self.kind} {spec!r} for {argname}; available: "
+                             f"{', '.join(self.names())}")
+        return cls(**values)
+
+    def names(self):
+        return sorted(self._classes)

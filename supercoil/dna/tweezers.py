@@ -1,0 +1,311 @@
+"""Reading magnetic-tweezers rotation curves (extension versus turns at fixed forces).
+
+The data are a long-format table, one row per measured point::
+
+    # instrument: "MT-2"
+    molecule, force [pN], turns, extension [um]
+    m1, 0.5, -10, 0.41
+    m1, 0.5, -9.5, 0.44
+    ...
+
+with the columns
+
+* ``force`` (a force unit), ``turns`` (no unit or ``dimensionless``: turns; or an
+  angle unit such as ``turn``, ``rad``, ``deg``), ``extension`` (a length unit):
+  required;
+* ``molecule`` (any label): optional, one label per tethered molecule, read as
+  text exactly as written (``01``, ``1`` and ``1.0`` are three molecules);
+* ``sigma`` (a length unit): optional, the standard error of each extension;
+* any other column is kept as it is.
+
+:func:`read_tweezers_csv` reads it with :func:`supercoil.tables.read_csv` (units
+in the headers, ``# key: json`` provenance lines) and checks every cell. Every
+error is a :class:`~supercoil.exceptions.DataError` that names the problem, the
+file line and the column. No row is ever dropped silently: with
+``drop_incomplete=True`` rows with a missing value are removed and a
+:class:`~supercoil.exceptions.DataWarning` lists them by file line.
+
+The result is a DataFrame in the package's table convention: plain float
+magnitudes in the units of the file, ``attrs["units"]`` and
+``attrs["provenance"]`` (which also records the source file and the file line
+of every row, ``attrs["lines"]``).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pint
+
+from supercoil.exceptions import DataError, DataWarning
+from supercoil.tables import _header_hint, read_csv
+from supercoil.units import U, ureg
+
+__all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
+
+#: Columns every rotation-curve table must have.
+REQUIRED_COLUMNS = ("force", "turns", "extension")
+
+#: The dimension each numeric column must have, with the unit used to check it
+#: and a description for error messages.
+COLUMN_DIMENSIONS = {
+    "force": (U.N, "a force (e.g. pN)"),
+    "turns": (U.turn, "turns: no unit, or an angle unit (turn, rad, deg)"),
+    "extension": (U.m, "a length (e.g. nm, um)"),
+    "sigma": (U.m, "a length (e.g. nm), the extension's standard error"),
+}
+
+
+def _unit_for(column, unit_str, where):
+    """Parse and check the unit of a numeric column; raise DataError naming it."""
+    target, expected = COLUMN_DIMENSIONS[column]
+    try:
+        unit = ureg.Unit(unit_str) if unit_str else U.dimensionless
+    except (pint.UndefinedUnitError, pint.errors.DefinitionSyntaxError, ValueError,
+            AttributeError, TypeError) as exc:
+        raise DataError(
+            f"{where}, column {column!r}: unknown unit {unit_str!r} ({exc}); "
+            f"expected {expected}"
+        ) from None
+    if unit.dimensionality != target.dimensionality:
+        shown = f"{unit_str!r}" if unit_str else "no unit"
+        raise DataError(
+            f"{where}, column {column!r}: {shown} has dimension {unit.dimensionality}, "
+            f"expected {expected}"
+        )
+    return unit
+
+
+def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
+    """Check a rotation-curve table; return it with its numeric columns as floats.
+
+    Used by :func:`read_tweezers_csv` and by the fitting functions for tables
+    built in memory.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        Columns ``force``, ``turns``, ``extension`` (optional ``molecule``,
+        ``sigma``) and ``df.attrs["units"]``.
+    lines : sequence of int, optional
+        The file line of every row (for error messages); without it rows are
+        named by their DataFrame index.
+    source : str
+        What to call the table in messages (a file name).
+
+    Raises
+    ------
+    DataError
+        Missing column or units, unknown or wrong-dimension unit, non-numeric
+        or missing (NaN) cell, non-positive force or sigma; the message names
+        the row and the column.
+    """
+    if not isinstance(df, pd.DataFrame):
+        raise DataError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
+    units = df.attrs.get("units")
+    hline = df.attrs.get("header_line")
+    header = f"{source}, line {hline} (header)" if hline else f"{source}, header"
+    if lines is not None and len(lines) != len(df):
+        lines = None
+    if units is None:
+        raise DataError(f"{source}: the table has no attrs['units'] (the unit of every column)")
+    for col in REQUIRED_COLUMNS:
+        if col not in df.columns:
+            raise DataError(
+                f"{header}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
+                + _header_hint(",".join(map(str, df.columns)))
+            )
+    if len(df) == 0:
+        raise DataError(f"{source}: the table has no data rows")
+
+    def row_name(i):
+        label = df.index[i]
+        label = label.item() if hasattr(label, "item") else label
+        return f"line {lines[i]}" if lines is not None else f"row {label!r}"
+
+    out = df.copy()
+    for col in (*REQUIRED_COLUMNS, "sigma"):
+        if col not in df.columns:
+            continue
+        if col not in units:
+            raise DataError(f"{header}, column {col!r}: no unit in attrs['units']")
+        _unit_for(col, units[col], header)
+        raw = df[col]
+        values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            i = int(bad[0])
+            cell = raw.iloc[i]
+            if _is_missing(cell):
+                what = "missing value (empty cell or NaN)"
+            elif isinstance(cell, str) and _is_number(cell):
+                what = f"non-finite value {cell!r}"
+            elif isinstance(cell, float | np.floating):
+                what = f"non-finite value {float(cell)!r}"
+            else:
+                what = f"non-numeric value {cell!r}"
+            more = f" ({bad.size - 1} more rows in this column)" if bad.size > 1 else ""
+            raise DataError(f"{source}, {row_name(i)}, column {col!r}: {what}{more}")
+        if col in ("force", "sigma"):
+            nonpos = np.flatnonzero(values <= 0)
+            if nonpos.size:
+                i = int(nonpos[0])
+                raise DataError(
+                    f"{source}, {row_name(i)}, column {col!r}: {col} must be positive, "
+                    f"got {float(values[i]):g}"
+                )
+        out[col] = values
+    if "molecule" in df.columns:
+        if "molecule" not in units:
+            raise DataError(f"{header}, column 'molecule': no entry in attrs['units']")
+        miss = np.flatnonzero([_is_missing(v) for v in df["molecule"]])
+        if miss.size:
+            i = int(miss[0])
+            raise DataError(f"{source}, {row_name(i)}, column 'molecule': missing label")
+    out.attrs = dict(df.attrs)
+    return out
+
+
+def _is_missing(cell):
+    if cell is None:
+        return True
+    if isinstance(cell, str):
+        return cell.strip().lower() in _NA_STRINGS
+    try:
+        return bool(pd.isna(cell))
+    except (TypeError, ValueError):
+        return False
+
+
+def _is_number(s):
+    try:
+        float(s)
+    except ValueError:
+        return False
+    return True
+
+
+# pandas' default NA strings (read_csv's na_values)
+_NA_STRINGS = {
+    "", "#n/a", "#n/a n/a", "#na", "-1.#ind", "-1.#qnan", "-nan", "1.#ind", "1.#qnan",
+    "<na>", "n/a", "na", "null", "nan", "none",
+}
+
+
+def _row_lines(path, n_rows):
+    """File line (1-based) of the header and of every data row, as pandas reads them.
+
+    pandas skips blank lines and the ``#`` lines above the header; ``csv``'s
+    ``line_num`` follows quoted fields that span lines. Returns ``(header, rows)``
+    or ``(None, None)`` if the mapping cannot be made.
+    """
+    text = Path(path).read_text()
+    all_lines = text.splitlines(keepends=True)
+    n_comment = 0
+    for line in all_lines:
+        if not line.startswith("#"):
+            break
+        n_comment += 1
+    reader = csv.reader(io.StringIO("".join(all_lines[n_comment:])), skipinitialspace=True)
+    header, rows, prev = None, [], 0
+    for record in reader:
+        start = prev + 1
+        prev = reader.line_num
+        if not record or (all(not c.strip() for c in record) and len(record) <= 1):
+            continue
+        if header is None:
+            header = n_comment + start
+            continue
+        rows.append(n_comment + start)
+    if header is None or len(rows) != n_rows:
+        return None, None
+    return header, rows
+
+
+def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
+    """Read a magnetic-tweezers rotation-curve CSV (long format, units in headers).
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV with columns ``force [force unit]``, ``turns`` (no unit = turns, or
+        an angle unit), ``extension [length unit]``, optionally ``molecule``
+        and ``sigma [length unit]``; ``# key: json`` lines above the header are
+        kept as provenance.
+    drop_incomplete : bool
+        If True, rows with a missing value (empty cell or NaN) in ``force``,
+        ``turns``, ``extension``, ``sigma`` or ``molecule`` are removed, and a
+        :class:`~supercoil.exceptions.DataWarning` says how many and lists
+        their file lines. If False (default) such a row is an error.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table convention: float magnitudes in the file's units,
+        ``attrs["units"]``, ``attrs["provenance"]`` (plus ``"source"``, the
+        path) and ``attrs["lines"]``, the file line of every row kept.
+
+    Raises
+    ------
+    DataError
+        No such file; missing column; unknown unit or unit of the wrong
+        dimension; non-numeric, missing or non-finite cell; non-positive force
+        or sigma. The message names the file line and the column.
+
+    Examples
+    --------
+    >>> data = read_tweezers_csv("rotation_curves.csv")  # doctest: +SKIP
+    >>> data.attrs["units"]["extension"]  # doctest: +SKIP
+    'um'
+    """
+    path = Path(path)
+    df = read_csv(path)
+    header_line, lines = _row_lines(path, len(df))
+    source = str(path)
+    if header_line is not None:
+        df.attrs["header_line"] = header_line
+    units = df.attrs["units"]
+    # header-level checks first (missing columns, units), named by the header line
+    hdr = f"{source}, line {header_line} (header)" if header_line else f"{source}, header"
+    for col in REQUIRED_COLUMNS:
+        if col not in df.columns:
+            raise DataError(
+                f"{hdr}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
+                + _header_hint(",".join(map(str, df.columns)))
+            )
+    for col in (*REQUIRED_COLUMNS, "sigma"):
+        if col in df.columns:
+            _unit_for(col, units[col], hdr)
+    if drop_incomplete:
+        checked = [c for c in (*REQUIRED_COLUMNS, "sigma", "molecule") if c in df.columns]
+        missing = np.zeros(len(df), dtype=bool)
+        for col in checked:
+            missing |= np.array([_is_missing(v) for v in df[col]], dtype=bool)
+        if missing.any():
+            idx = np.flatnonzero(missing)
+            names = [str(lines[i]) if lines else f"data row {i + 1}" for i in idx]
+            shown = ", ".join(names[:20]) + (", ..." if len(names) > 20 else "")
+            warnings.warn(
+                f"{source}: dropped {idx.size} incomplete row(s) (empty or NaN cell in "
+                f"{', '.join(checked)}) at file line(s) {shown}",
+                DataWarning,
+                stacklevel=2,
+            )
+            attrs = dict(df.attrs)
+            df = df.loc[~missing].reset_index(drop=True)
+            df.attrs = attrs
+            if lines:
+                lines = [ln for ln, m in zip(lines, missing, strict=True) if not m]
+            if len(df) == 0:
+                raise DataError(f"{source}: no complete data rows left after dropping")
+    out = check_tweezers_frame(df, lines=lines, source=source)
+    out.attrs["provenance"] = dict(out.attrs.get("provenance", {}), source=source)
+    out.attrs.pop("header_line", None)
+    if lines is not None:
+        out.attrs["lines"] = list(lines)
+    return out

@@ -1,0 +1,151 @@
+"""Validity checks shared by every public DNA function (docs/theory/limits.md).
+
+One place for the limits of the DNA models: the input checks (a DNA, a finite
+force), the shared physical limits (overstretching above 65 pN, denaturation
+under negative turns above 0.8 pN, the strands pressed inside the hard core,
+a stretched tail carrying more than the Euler torque, an extension longer than
+the contour length) and the emission of the warnings. The model-specific
+checks (e.g. the Moroz-Nelson bracket of ``"li-zhao"``) come from each
+model's :meth:`~supercoil.dna.models.base.DNAModel.validity`; the public
+layer issues all of them through :func:`warn`.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
+from supercoil.dna.material import DNA
+from supercoil.exceptions import ValidityWarning
+from supercoil.units import U, magnitude
+
+__all__ = [
+    "DENATURATION_FORCE",
+    "OVERSTRETCHING_FORCE",
+    "StateRecorder",
+    "check_dna",
+    "checked_forces",
+    "denaturation_messages",
+    "extension_messages",
+    "force_messages",
+    "plectoneme_messages",
+    "tail_torque_messages",
+    "warn",
+]
+
+
+def check_dna(dna):
+    """The SI view of ``dna``; TypeError naming the argument if it is not a DNA."""
+    if not isinstance(dna, DNA):
+        hint = " (an ElasticRod is a rod scene's material)" if type(dna).__name__ == \
+            "ElasticRod" else ""
+        raise TypeError(f"dna must be a supercoil.DNA, got {type(dna).__name__}{hint}")
+    return dna.si
+
+
+def checked_forces(force, one_d=True):
+    """Force magnitudes in N (finite; 1-D if ``one_d``), ValueError naming ``force``."""
+    f = magnitude(force, U.N, "force")
+    if np.iscomplexobj(f):
+        raise TypeError("force must be real")
+    if not np.all(np.isfinite(f)):
+        raise ValueError(f"force must be finite, got {force}")
+    if one_d:
+        f = np.atleast_1d(f)
+        if f.ndim != 1:
+            raise ValueError(f"force must be a scalar or 1-D, got shape {f.shape}")
+    return f
+
+
+def warn(messages, stacklevel=3):
+    """Issue each message once as a ValidityWarning."""
+    for m in dict.fromkeys(messages):
+        warnings.warn(m, ValidityWarning, stacklevel=stacklevel + 1)
+
+
+def force_messages(force):
+    """Forces above the B-DNA overstretching plateau (~65 pN)."""
+    f = np.asarray(force)
+    over = f > OVERSTRETCHING_FORCE
+    if not np.any(over):
+        return []
+    return [f"force {np.max(f[over]) * 1e12:.6g} pN is above {OVERSTRETCHING_FORCE * 1e12:g} pN, "
+            "where B-DNA overstretches; the model (inextensible DNA) ignores it"]
+
+
+def denaturation_messages(force, turns):
+    """Negative turns above 0.8 pN, where real DNA denatures."""
+    den = (np.asarray(turns) < 0) & (np.asarray(force) > DENATURATION_FORCE)
+    if not np.any(den):
+        return []
+    return [f"negative turns at {np.asarray(force)[den].max() * 1e12:.6g} pN (> 0.8 pN): real "
+            "DNA denatures under negative supercoiling there; the model ignores denaturation"]
+
+
+def plectoneme_messages(state, dna, hard_core_radius=None):
+    """The superhelix radius below the hard-core radius (strands pressed into each other)."""
+    r0 = dna.radius if hard_core_radius is None else hard_core_radius
+    R = np.atleast_1d(state.radius)
+    tight = R < r0
+    if not np.any(tight):
+        return []
+    f = np.atleast_1d(state.force)[tight]
+    return [f"at {f.max() * 1e12:.6g} pN the superhelix radius R = "
+            f"{R[tight][np.argmax(f)] * 1e9:.4g} nm < r0 = {r0 * 1e9:.6g} nm: the strands are "
+            "pressed inside the hard-core radius (above ~30 pN for the seed set), where the "
+            "interaction is extrapolated"]
+
+
+def tail_torque_messages(force, turns, points, dna):
+    """A stretched tail carrying more than the Euler buckling torque ``2 sqrt(B F)``."""
+    limit = 2.0 * np.sqrt(dna.bending_rigidity * np.asarray(force))
+    over = (points.phase != 2) & (np.abs(points.torque) > limit)
+    if not np.any(over):
+        return []
+    i = np.flatnonzero(over)[0]
+    return [f"at force {force[i] * 1e12:.6g} pN, turns {turns[i]:.6g} the stretched tail "
+            f"carries a torque {abs(points.torque[i]) * 1e21:.4g} pN nm above the Euler limit "
+            f"2 sqrt(B F) = {limit[i] * 1e21:.4g} pN nm: a straight tail is unstable there"]
+
+
+def extension_messages(force, turns, points, dna):
+    """An extension longer than the contour length, or negative (never silent)."""
+    z = points.extension
+    bad = (z > dna.length * (1 + 1e-12)) | (z < 0)
+    if not np.any(bad):
+        return []
+    i = np.flatnonzero(bad)[0]
+    return [f"extension {z[i] * 1e9:.6g} nm at force {force[i] * 1e12:.6g} pN, turns "
+            f"{turns[i]:.6g} lies outside [0, L = {dna.length * 1e9:.6g} nm]: the thermal "
+            "formula is not valid there (tail of a few persistence lengths or less)"]
+
+
+class StateRecorder:
+    """Wraps an interaction and keeps the plectoneme states a model asked for.
+
+    The public layer passes it to the model instead of the interaction, so the
+    shared checks (:func:`plectoneme_messages`) reuse the states the model
+    computed instead of solving them again.
+    """
+
+    def __init__(self, interaction):
+        self.interaction = interaction
+        self.states = []
+
+    def __getattr__(self, name):
+        return getattr(self.interaction, name)
+
+    def equilibrium(self, tension, dna):
+        st = self.interaction.equilibrium(tension, dna)
+        self.states.append(st)
+        return st
+
+    def messages(self, dna):
+        hc = self.interaction.values.get("hard_core_radius")
+        out = []
+        for st in self.states:
+            out += plectoneme_messages(st, dna, hc)
+        return out
+

@@ -1,0 +1,152 @@
+"""Twist-spinning comparison: beta and pitch versus head tension T' (MODEL.md s.5).
+
+Public unit wrapper over :mod:`supercoil.core.rod.spinning`, whose module
+docstring holds the derivation of the stationarity equations [f4, f5] from
+the stated energy, what is held fixed, and the T' = 0 limit.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import warnings
+
+import numpy as np
+
+from supercoil.core.rod import contact as _sc
+from supercoil.core.rod import spinning as _ts
+from supercoil.exceptions import ValidityWarning
+from supercoil.rod.smooth import check_finite_results, checked_turns
+from supercoil.tables import make_table, provenance
+from supercoil.units import U, magnitude, quantity
+
+__all__ = ["TwistSpinningHelix", "twist_spinning"]
+
+
+@dataclasses.dataclass(frozen=True)
+class TwistSpinningHelix:
+    """Short smooth helix under a head tension (result of :func:`twist_spinning`).
+
+    All attributes are quantities broadcast over turns and head_tension.
+
+    Attributes
+    ----------
+    turns : Quantity [turn]
+        N (signed).
+    head_tension : [N]
+        T'.
+    alpha : [rad]
+        Tilt, root of [f4].
+    beta : [rad]
+        Half-angle between the tails (angle of a tail to the helix axis), from
+        [f5]; pi/2 at T' = 0.
+    pitch : [mm]
+        ``2 pi r / tan(alpha)``.
+    omega : [1/mm]
+        Twist density ``2 pi N / L`` (S'/L -> 0), signed like N.
+    alpha_slacking, pitch_slacking : [rad], [mm]
+        The twist-slacking helix at the same N (T' = 0, [eq ini]).
+    pitch_increase : dimensionless
+        ``pitch / pitch_slacking - 1``: the deviation twist-spinning leaves
+        behind once T' is released.
+    """
+
+    turns: object
+    head_tension: object
+    alpha: object
+    beta: object
+    pitch: object
+    omega: object
+    alpha_slacking: object
+    pitch_slacking: object
+    pitch_increase: object
+    provenance: dict = dataclasses.field(repr=False, compare=False, default_factory=dict)
+
+    def to_table(self):
+        """Flat table (one row per (N, T') pair) in the package convention."""
+        units = {"turns": "turn", "head_tension": "N", "alpha": "rad", "beta": "rad",
+                 "pitch": "mm", "omega": "1/mm", "alpha_slacking": "rad",
+                 "pitch_slacking": "mm", "pitch_increase": ""}
+        cols = {k: np.ravel(np.broadcast_to(getattr(self, k).magnitude, self.alpha.shape))
+                for k in units}
+        return make_table(cols, units, self.provenance)
+
+
+def twist_spinning(rod, turns, head_tension):
+    """beta and pitch of a twist-spun helix versus head tension T'.
+
+    The model of the paper's Discussion (MODEL.md s.5): a smooth rod of length
+    L twisted by N turns, ends held apart, a short helix (S' << L) at the head
+    pulled by T' along its axis. Stationarity of
+    ``E_p = (1/2) B kappa^2 S' + (1/2) C omega^2 L - T' h`` in alpha and S' at
+    fixed L, N, S and T' gives [f4] for alpha and [f5] for beta (derivation in
+    :mod:`supercoil.core.rod.spinning`; the helix height is
+    ``(S'/2) cos(alpha)``, not the ``S'/cos(alpha)`` printed in [f1]).
+    T' = 0 gives beta = pi/2 and the twist-slacking tilt of [eq ini].
+
+    Parameters
+    ----------
+    rod : ElasticRod
+    turns : number, array or dimensionless/angle Quantity
+        N (sign: handedness; omega carries it).
+    head_tension : Quantity [force], scalar or array
+        T' >= 0. Broadcasts with turns.
+
+    Returns
+    -------
+    TwistSpinningHelix
+
+    Raises
+    ------
+    NoHelixError
+        N = 0 or T' < 0 (or NaN/inf). No T' closes the tails: sec(beta) >= 1
+        holds for every solution (proof in :mod:`supercoil.core.rod.spinning`).
+    SingularityError
+        alpha within ``cos 2 alpha < 1e-9`` of pi/4.
+    ValueError
+        turns NaN or infinite ("turns must be finite").
+    TypeError
+        turns None or text.
+
+    Warns
+    -----
+    ValidityWarning
+        Hard contact fails: Hertz contact half-width above the rod radius
+        (alpha > 0.699 rad, see :func:`supercoil.core.rod.contact.contact_width_ratio`).
+    """
+    si = rod.si
+    r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
+    n = np.asarray(checked_turns(turns, "turns"), float)
+    Tp = np.asarray(magnitude(head_tension, U.N, "head_tension"), float)
+    st = _ts.spinning_state(np.abs(n), Tp, r, L, B, C)
+    _sc.check_tilt(st["alpha"], "twist-spinning helix")
+    shape = st["alpha"].shape
+    a0 = np.broadcast_to(_sc.initial_tilt(np.abs(n), r, L, B, C), shape)
+    with np.errstate(over="ignore", divide="ignore"):  # results checked below
+        p0 = 2 * np.pi * r / np.tan(a0)
+    sign = np.broadcast_to(np.sign(n), shape)
+
+    def q(x, unit, scale=1.0):
+        x = np.asarray(x, float) * scale
+        return quantity(float(x) if x.ndim == 0 else x, unit)
+
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        check_finite_results({"pitch [mm]": st["pitch"] * 1e3,
+                              "pitch_slacking [mm]": p0 * 1e3,
+                              "pitch_increase": st["pitch"] / p0 - 1.0},
+                             "twist_spinning: tiny |N| or huge head_tension")
+
+    msg = _sc.contact_warning(st["alpha"], "twist-spinning helix")
+    if msg:
+        warnings.warn(msg, ValidityWarning, stacklevel=2)
+    return TwistSpinningHelix(
+        turns=q(np.broadcast_to(n, shape), U.turn),
+        head_tension=q(np.broadcast_to(Tp, shape), U.N),
+        alpha=q(st["alpha"], U.rad),
+        beta=q(st["beta"], U.rad),
+        pitch=q(st["pitch"], U.mm, 1e3),
+        omega=q(sign * st["omega"], U.per_mm, 1e-3),
+        alpha_slacking=q(a0, U.rad),
+        pitch_slacking=q(p0, U.mm, 1e3),
+        pitch_increase=q(st["pitch"] / p0 - 1.0, U.dimensionless),
+        provenance=provenance(rod, scene="twist_spinning"),
+    )

@@ -1,0 +1,314 @@
+"""Hat curves (MODEL.md s.6): phases, symmetry, continuity, slope, linking, athermal limit."""
+
+import warnings
+
+import numpy as np
+import pint
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import supercoil as sc
+from supercoil.core import geometry as g
+from supercoil.core.dna import hat as hc
+from supercoil.core.dna import moroz_nelson as mn
+from supercoil.core.dna import plectoneme as pl
+from supercoil.dna.hat import buckling_turns, post_buckling_slope
+from supercoil.units import BOLTZMANN
+
+KT = BOLTZMANN * 300.0
+R0 = 1.75e-9
+B = 48e-9 * KT
+C = 86e-9 * KT
+L = 750e-9
+ARGS = (L, B, C, KT, R0)
+
+
+def points(turns, force, thermal=True, **kw):
+    turns = np.asarray(turns, float)
+    return hc.hat_curve_points(turns, np.full(turns.shape, force), *ARGS, thermal=thermal, **kw)
+
+
+@given(st.floats(0.15, 15.0), st.lists(st.floats(0.0, 60.0), min_size=1, max_size=20),
+       st.booleans())
+def test_symmetric_in_turns(f_pN, n, thermal):
+    n = np.array(n)
+    p, m = points(n, f_pN * 1e-12, thermal), points(-n, f_pN * 1e-12, thermal)
+    np.testing.assert_array_equal(p.extension, m.extension)
+    np.testing.assert_array_equal(p.phase, m.phase)
+    np.testing.assert_array_equal(p.plectoneme_length, m.plectoneme_length)
+    np.testing.assert_array_equal(p.torque, -m.torque)
+    assert np.all(p.torque >= 0)
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+@pytest.mark.parametrize("f", [0.2e-12, 0.4e-12, 1.2e-12, 3e-12, 10e-12])
+def test_continuous_at_buckling(f, thermal):
+    nb = hc.buckling_turns(f, *ARGS, thermal=thermal)[()]
+    eps = 1e-7
+    p = points([nb - eps, nb + eps], f, thermal)
+    assert list(p.phase) == [hc.STRETCHED, hc.PLECTONEME]
+    assert abs(p.extension[1] - p.extension[0]) < 1e-12  # a jump would be > 1 nm
+    assert p.torque[1] == pytest.approx(p.torque[0], rel=1e-6)
+    # the torques match at N_b: C_eff 2 pi N_b / L = C omega
+    s = pl.equilibrium(f, B, C, KT, R0)
+    assert p.torque[1] == pytest.approx(s.torque, rel=1e-12)
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+@pytest.mark.parametrize("f", [0.3e-12, 1.2e-12, 3e-12])
+def test_slope_formula_equals_finite_difference(f, thermal):
+    nb = hc.buckling_turns(f, *ARGS, thermal=thermal)[()]
+    slope = hc.post_buckling_slope(f, *ARGS, thermal=thermal)[()]
+    n = nb + 3.0
+    h = 1e-3
+    p = points([n - h, n + h, -n - h, -n + h], f, thermal)
+    assert np.all(p.phase == hc.PLECTONEME)
+    assert (p.extension[1] - p.extension[0]) / (2 * h) == pytest.approx(slope, rel=1e-7)
+    assert (p.extension[3] - p.extension[2]) / (2 * h) == pytest.approx(-slope, rel=1e-7)
+    if not thermal:
+        s = pl.equilibrium(f, B, C, KT, R0)
+        assert slope == pytest.approx(-2 * np.pi / s.torsion, rel=1e-12)
+
+
+@pytest.mark.parametrize("f", [0.4e-12, 1.2e-12, 3e-12])
+def test_linking_number_is_twist_plus_writhe_in_plectoneme_phase(f):
+    s = pl.equilibrium(f, B, C, KT, R0)
+    nb = hc.buckling_turns(f, *ARGS, thermal=False)[()]
+    n = np.linspace(nb + 0.5, nb + 10, 7)
+    p = points(n, f, thermal=False)
+    assert np.all(p.phase == hc.PLECTONEME)
+    S = p.plectoneme_length
+    tw = g.twist_uniform(s.omega, s.omega, S, L)
+    wr = g.writhe_uniform(s.alpha, s.radius, S)
+    np.testing.assert_allclose(tw + wr, n, rtol=1e-12)
+    # thermal: the tail holds (C/C_eff) omega of linking per length (twist + tail writhe)
+    nb = hc.buckling_turns(f, *ARGS, thermal=True)[()]
+    n = np.linspace(nb + 0.5, nb + 10, 7)
+    p = points(n, f, thermal=True)
+    assert np.all(p.phase == hc.PLECTONEME)
+    ratio = mn.twist_rigidity_ratio(f, B, C, KT)
+    S = p.plectoneme_length
+    tw = g.twist_uniform(s.omega, ratio * s.omega, S, L)
+    np.testing.assert_allclose(tw + g.writhe_uniform(s.alpha, s.radius, S), n, rtol=1e-12)
+
+
+@pytest.mark.parametrize("f", [0.4e-12, 1.2e-12, 3e-12])
+def test_athermal_equals_closed_formulas(f):
+    s = pl.equilibrium(f, B, C, KT, R0)
+    nb = C * s.omega * L / (2 * np.pi * C)
+    n = np.linspace(-40, 40, 801)
+    p = points(n, f, thermal=False)
+    an = np.abs(n)
+    S = np.clip(2 * np.pi * (an - nb) / s.torsion, 0, L)
+    np.testing.assert_allclose(p.plectoneme_length, S, rtol=1e-12, atol=1e-20)
+    np.testing.assert_allclose(p.extension, L - S, rtol=1e-12, atol=1e-20)
+    torque = np.where(an <= nb, C * 2 * np.pi * n / L, np.sign(n) * s.torque)
+    np.testing.assert_allclose(p.torque, torque, rtol=1e-12)
+    np.testing.assert_array_equal(p.zeta, np.where(S >= L, 0.0, 1.0))
+    assert hc.buckling_turns(f, *ARGS, thermal=False)[()] == pytest.approx(nb, rel=1e-14)
+
+
+def test_athermal_computes_no_thermal_terms(monkeypatch):
+    def boom(*a, **k):
+        raise AssertionError("thermal term computed")
+
+    for name in ("twist_rigidity_ratio", "zeta_bracket", "long_tail_factor", "extension_factor"):
+        monkeypatch.setattr(mn, name, boom)
+    p = points(np.linspace(-30, 30, 61), 1e-12, thermal=False)
+    assert np.all(p.extension >= 0)
+    with pytest.raises(AssertionError):
+        points([0.0], 1e-12, thermal=True)
+
+
+def test_thermal_stretched_phase_is_zeta_times_length(dna, ureg):
+    f = 1.2e-12
+    ratio = mn.twist_rigidity_ratio(f, B, C, KT)
+    n = np.array([0.0, 1.0, 3.0])
+    p = points(n, f)
+    M = (C / ratio) * 2 * np.pi * n / L
+    z = sc.extension_factor(dna, 1.2 * ureg.pN, M * ureg.N * ureg.m, L * ureg.m).magnitude
+    np.testing.assert_allclose(p.extension, z * L, rtol=1e-12)
+    assert np.all(p.phase == hc.STRETCHED)
+
+
+@pytest.mark.parametrize("f", [0.4e-12, 3e-12])
+def test_fully_coiled_and_short_tail(f):
+    nb = hc.buckling_turns(f, *ARGS)[()]
+    D = hc.hat_parameters(np.array([f]), *ARGS).linking_rate[0]
+    n_full = nb + L * D / (2 * np.pi)  # S = L
+    n = np.array([n_full - 1e-3, n_full + 1e-9, n_full + 1, n_full + 50])
+    p = points(n, f)
+    assert list(p.phase) == [hc.PLECTONEME] + [hc.FULLY_COILED] * 3
+    np.testing.assert_array_equal(p.extension[1:], 0.0)
+    np.testing.assert_array_equal(p.plectoneme_length[1:], L)
+    assert np.all(p.short_tail)
+    # just before S = L the formula is kept as written: z -> B kT/(B T - M^2/4), not 0
+    M = pl.equilibrium(f, B, C, KT, R0).torque
+    tail = L - p.plectoneme_length[0]
+    assert 0 < tail < 1e-10
+    limit = B * KT / (B * f - M**2 / 4)
+    zinf = mn.long_tail_factor(f, M, B, KT)
+    assert p.extension[0] == pytest.approx(zinf * tail + limit, rel=1e-9)
+    assert limit > (10e-9 if f < 1e-12 else 1e-9)
+    # the flag is exactly "tail shorter than 3 A", and its threshold is an argument
+    n = np.linspace(nb, n_full, 400)
+    p = points(n, f)
+    np.testing.assert_array_equal(p.short_tail, (L - p.plectoneme_length) < 3 * B / KT)
+    p2 = points(n, f, short_tail_length=50e-9)
+    np.testing.assert_array_equal(p2.short_tail, (L - p2.plectoneme_length) < 50e-9)
+    assert p2.short_tail.sum() < p.short_tail.sum()
+
+
+def test_trends_over_forces():
+    F = np.linspace(0.3e-12, 10e-12, 40)
+    for thermal in (True, False):
+        par = hc.hat_parameters(F, *ARGS, thermal=thermal)
+        assert np.all(np.diff(par.buckling_turns) > 0)
+        assert np.all(np.diff(par.torque) > 0)
+    assert np.all(np.diff(pl.equilibrium(F, B, C, KT, R0).radius) < 0)
+
+
+def test_paired_points_solve_once_per_force_and_match(monkeypatch):
+    calls = []
+    real = hc.equilibrium
+
+    def counting(force, *a, **k):
+        calls.append(np.size(force))
+        return real(force, *a, **k)
+
+    monkeypatch.setattr(hc, "equilibrium", counting)
+    F = np.array([0.4, 3.0, 1.2, 0.4, 3.0, 1.2]) * 1e-12
+    N = np.array([5.0, -12.0, 20.0, -1.0, 0.0, 7.5])
+    p = hc.hat_curve_points(N, F, *ARGS)
+    assert calls == [3]
+    for i in range(F.size):
+        q = points([N[i]], F[i])
+        for a, b_ in zip(p[:6], q[:6], strict=True):
+            assert a[i] == pytest.approx(b_[0], rel=1e-13, abs=1e-30)
+    assert p.phase.dtype == np.int8
+    assert p.short_tail.dtype == bool
+
+
+def test_core_failures():
+    with pytest.raises(sc.NoEquilibriumError, match="-1 pN"):
+        hc.hat_curve_points([1.0], [-1e-12], *ARGS)
+    with pytest.raises(sc.ValidityError, match=r"0\.09 pN.*torque"):
+        hc.hat_curve_points([10.0], [0.09e-12], *ARGS)
+    hc.hat_curve_points([10.0], [0.09e-12], *ARGS, thermal=False)  # athermal is defined
+    with pytest.raises(ValueError, match="turns"):
+        hc.hat_curve_points([np.nan], [1e-12], *ARGS)
+    with pytest.raises(ValueError, match="length"):
+        hc.hat_curve_points([1.0], [1e-12], -1.0, B, C, KT, R0)
+
+
+# ----------------------------------------------------------------- public API
+
+
+def test_hat_curve_table(dna, ureg):
+    df = sc.hat_curve(dna, [0.4, 1.2] * ureg.pN, np.linspace(0, 30, 31))
+    assert list(df.columns) == ["force", "turns", "extension", "phase", "torque",
+                                "plectoneme_length", "supercoiling_density", "eta",
+                                "short_tail"]
+    assert df.attrs["units"]["extension"] == "nm"
+    assert df.attrs["units"]["torque"] == "pN nm"
+    assert df.attrs["units"]["force"] == "pN"
+    assert df.attrs["provenance"]["thermal"] is True
+    assert set(df["phase"]) == {"stretched", "plectoneme", "fully coiled"}
+    assert len(df) == 62
+    row = df[(df.force == 1.2) & (df.turns == 10)].iloc[0]
+    assert row.supercoiling_density == pytest.approx(10 * 3.57 / 750)
+    assert row.eta == pytest.approx(2 * np.pi * 10 * 52 / 750)
+    assert (df.loc[df.phase == "fully coiled", "extension"] == 0).all()
+
+
+def test_hat_curve_unit_invariance(dna, ureg):
+    n = np.linspace(-5, 30, 36)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.ValidityWarning)
+        a = sc.hat_curve(dna, 1.2 * ureg.pN, n)
+        b_ = sc.hat_curve(dna, 1.2e-12 * ureg.N, n * ureg.turn)
+        c = sc.hat_curve(dna, 1200 * ureg.fN, 2 * np.pi * n * ureg.rad)
+        dna_um = dna.replace(length=0.75 * ureg.um, radius=1750 * ureg.pm)
+        d = sc.hat_curve(dna_um, 1.2 * ureg.pN, n)
+    for other in (b_, c, d):
+        for col in ("extension", "torque", "plectoneme_length", "eta", "turns"):
+            np.testing.assert_allclose(other[col], a[col], rtol=1e-10, atol=1e-9)
+        assert (other["phase"] == a["phase"]).all()
+
+
+def test_hat_curve_matches_kernel_and_public_helpers(dna, ureg):
+    F = [0.4, 1.2, 3.0] * ureg.pN
+    nb = buckling_turns(dna, F)
+    slope = post_buckling_slope(dna, F)
+    np.testing.assert_allclose(nb.magnitude, hc.buckling_turns(F.m * 1e-12, *ARGS), rtol=1e-12)
+    np.testing.assert_allclose(slope.m_as("nm/turn"),
+                               hc.post_buckling_slope(F.m * 1e-12, *ARGS) * 1e9, rtol=1e-12)
+    assert np.all(np.diff(nb.magnitude) > 0)
+    athermal = buckling_turns(dna, F, thermal=False).magnitude
+    assert np.all(athermal < nb.magnitude)  # C_eff < C: the tail buckles later
+
+
+def test_denaturation_warning(dna, ureg):
+    with pytest.warns(sc.ValidityWarning, match="denature"):
+        sc.hat_curve(dna, 1.2 * ureg.pN, [-5.0, 5.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sc.hat_curve(dna, 0.4 * ureg.pN, [-5.0, 5.0])  # below 0.8 pN: no warning
+        sc.hat_curve(dna, 3.0 * ureg.pN, [0.0, 5.0])  # positive turns: no warning
+
+
+def test_low_force_zeta_regions(dna, ureg):
+    # 0.09 pN: the bracket is negative at the plectoneme torque
+    with pytest.raises(sc.ValidityError, match=r"0\.09 pN"):
+        sc.hat_curve(dna, 0.09 * ureg.pN, [0.0, 10.0])
+    # still defined in the stretched phase, but the Moroz-Nelson expansion has not converged
+    with pytest.warns(sc.ValidityWarning, match="not converged"):
+        sc.hat_curve(dna, 0.09 * ureg.pN, [0.0, 0.5])
+    # 0.11 pN: bracket positive but the long-tail factor is negative in the
+    # plectoneme phase: z would grow with turns
+    with pytest.warns(sc.ValidityWarning, match="long-tail factor"):
+        df = sc.hat_curve(dna, 0.11 * ureg.pN, [5.0, 6.0])
+    assert df.extension.iloc[1] > df.extension.iloc[0]
+    # 0.1 pN: zeta itself is negative just past buckling
+    with pytest.warns(sc.ValidityWarning, match="outside"):
+        sc.hat_curve(dna, 0.1 * ureg.pN, [5.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sc.hat_curve(dna, 0.25 * ureg.pN, np.linspace(0, 40, 81))
+
+
+def test_hat_curve_bad_inputs(dna, ureg):
+    with pytest.raises(pint.DimensionalityError, match="force"):
+        sc.hat_curve(dna, 1.0 * ureg.nm, [1.0])
+    with pytest.raises(ValueError, match="turns"):
+        sc.hat_curve(dna, 1.0 * ureg.pN, np.ones((2, 2)))
+    with pytest.raises(ValueError, match="finite"):
+        sc.hat_curve(dna, 1.0 * ureg.pN, [np.inf])
+    with pytest.raises(sc.NoEquilibriumError, match="0 pN"):
+        sc.hat_curve(dna, 0.0 * ureg.pN, [1.0])
+    with pytest.raises(TypeError):
+        sc.hat_curve(sc.load_parameters("silicone_rubber_rod"), 1.0 * ureg.pN, [1.0])
+
+
+def test_turns_valued_outputs_carry_the_turn_unit(dna, ureg):
+    """Counts of turns are in pint's ``turn``: no 2 pi trap when converting."""
+    nb = buckling_turns(dna, 1.0 * ureg.pN)
+    assert nb.to("turn").magnitude == pytest.approx(nb.magnitude)
+    assert nb.to("rad").magnitude == pytest.approx(2 * np.pi * nb.magnitude)
+    slope = post_buckling_slope(dna, 1.0 * ureg.pN)
+    assert slope.to("nm/turn").magnitude == pytest.approx(slope.magnitude)
+    df = sc.hat_curve(dna, 1.0 * ureg.pN, [0.0, 10.0])
+    assert df.attrs["units"]["turns"] == "turn"
+    assert sc.tables.column_quantity(df, "turns").to("turn").magnitude[1] == pytest.approx(10.0)
+
+
+def test_post_buckling_slope_warns_where_zeta_long_tail_factor_fails(dna, ureg):
+    with pytest.warns(sc.ValidityWarning, match="long-tail factor .* <= 0"):
+        s = post_buckling_slope(dna, 0.1 * ureg.pN)
+    assert s.magnitude[0] > 0  # the unphysical positive slope the warning is about
+    with pytest.warns(sc.ValidityWarning, match="not converged"):
+        post_buckling_slope(dna, 0.15 * ureg.pN)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        post_buckling_slope(dna, [0.3, 1.0, 3.0] * ureg.pN)
