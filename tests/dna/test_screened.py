@@ -190,6 +190,22 @@ def _li_zhao(si, s, F):
     return Nb, -2 * np.pi * mn.long_tail_factor(F, s.torque, B, kT) / D, -2 * np.pi / s.torsion
 
 
+def test_public_li_zhao_buckling_and_slope_use_the_screened_state(dna150, ureg):
+    # the li-zhao model receives the interaction and calls interaction.equilibrium(T, dna)
+    si = dna150.si
+    s = Screened().equilibrium(FORCES, si)
+    Nb, slope, slope0 = _li_zhao(si, s, FORCES)
+    F = FORCES * 1e12 * ureg.pN
+    assert sc.buckling_turns(dna150, F, interaction="screened").m_as("turn") == \
+        pytest.approx(Nb, rel=1e-12)
+    assert sc.post_buckling_slope(dna150, F, interaction="screened").m_as("m/turn") == \
+        pytest.approx(slope, rel=1e-12)
+    assert sc.post_buckling_slope(dna150, F, interaction="screened", thermal=False).m_as(
+        "m/turn") == pytest.approx(slope0, rel=1e-12)
+    eq_pub = sc.plectoneme_equilibrium(dna150, F, interaction=Screened())
+    assert eq_pub.radius.m_as("m") == pytest.approx(s.radius, rel=1e-14)
+
+
 def test_radius_torque_turns_slope_fall_with_salt_and_radius_with_force(dna150):
     rows = []
     for c in SALTS:
@@ -206,6 +222,28 @@ def test_radius_torque_turns_slope_fall_with_salt_and_radius_with_force(dna150):
     thermal = np.array([r[3] for r in rows])
     assert np.all(np.diff(thermal[:, :3], axis=0) < 0)
     assert np.all(np.diff(thermal[1:, 3]) < 0)
+
+
+def test_hat_curve_and_cli_with_the_screened_interaction(dna150, ureg, tmp_path, capsys):
+    import warnings
+
+    from supercoil.cli import main
+
+    F = [1.0, 2.0] * ureg.pN
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.ValidityWarning)  # denaturation at N < 0
+        df = sc.hat_curve(dna150, F, np.linspace(0, 120, 25), interaction="screened")
+    nb = sc.buckling_turns(dna150, F, interaction="screened").m_as("turn")
+    for (_, g), n_b in zip(df.groupby("force", sort=True), nb, strict=True):
+        post = g[g["turns"] > n_b + 2]
+        assert set(post["phase"]) <= {"plectoneme", "fully coiled"}
+        assert np.all(np.diff(post["extension"]) < 0)  # plectoneme grows, z falls
+    code = main(["hat", "--params", "dna_150mM_nacl", "--interaction", "screened",
+                 "--force", "1pN", "--turns=0:60:5", "--out", str(tmp_path), "--no-plot"])
+    assert code == 0 and "35.54" in capsys.readouterr().out
+    assert main(["hat", "--params", "dna", "--interaction", "screened", "--force", "1pN",
+                 "--out", str(tmp_path), "--no-plot"]) == 2
+    assert "salt" in capsys.readouterr().err
 
 
 def test_reduced_charge_fraction_narrows_the_plectoneme(dna150):
