@@ -11,7 +11,7 @@ import pickle
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import cubature
 from scipy.optimize import minimize
@@ -156,6 +156,22 @@ def test_screened_state_solves_ge1_ge2_and_tension(dna150, c):
                                         si.torsional_rigidity, part):
         assert np.max(np.abs(res)) < 1e-10
     assert np.all(s.radius > 1e-9) and np.all(s.alpha < np.pi / 4)
+
+
+@settings(max_examples=15)
+@given(st.floats(5.0, 2000.0), st.floats(0.002, 0.998), st.booleans())
+def test_every_force_on_the_branch_solves_the_equations(dna150, salt, frac, conf):
+    si = _at_salt(dna150, salt).si
+    inter = Screened(confinement=float(conf))
+    br = inter.branch(si)
+    lo = 0.0 if br.ends_at_zero else br.tension[-1]
+    F = np.array([lo + frac * (br.tension[0] - lo)])
+    s = inter.equilibrium(F, si)
+    part = lambda a, R: inter.partials(a, R, si)  # noqa: E731
+    res = eq.equilibrium_residuals(F, s.alpha, s.radius, s.omega, si.bending_rigidity,
+                                   si.torsional_rigidity, part)
+    assert max(np.max(np.abs(r)) for r in res) < 1e-10
+    assert s.radius[0] >= br.radius[0] * (1 - 1e-12) and 0 < s.alpha[0] < np.pi / 4
 
 
 def test_state_is_the_minimum_of_f_at_its_torque(dna150):

@@ -160,7 +160,7 @@ def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOO
     n = int(np.argmax(~np.isfinite(T))) if not np.all(np.isfinite(T)) else T.size
     R, alpha, T = R[:n], alpha[:n], T[:n]
     dec = np.diff(T) < 0.0
-    if not np.any(dec) or T[0] <= 0.0:
+    if not np.any(dec):
         raise NoEquilibriumError(
             f"no stable plectoneme branch between R = {r_min * 1e9:.6g} and "
             f"{r_max * 1e9:.6g} nm: the tension never decreases with R")
