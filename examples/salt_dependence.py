@@ -10,7 +10,9 @@ paper's construction (``model="li-zhao"``).
 
     python examples/salt_dependence.py --out salt_out [--quick]
 
-Writes salt_dependence.csv, salt_dependence.png, salt_hat_curves_150mM.csv and
+Writes salt_dependence.csv, salt_dependence.png, salt_constructions_150mM.csv (buckling
+turns and slope of every construction that takes an interaction: li-zhao, and free-energy
+where it is registered; dotted in the figure), salt_hat_curves_150mM.csv and
 salt_hat_curves_150mM.png.
 """
 
@@ -67,7 +69,23 @@ def sweep(base, forces_pN):
                                               interactions="screened; hard-core"))
 
 
-def plot_sweep(df, path):
+def constructions(base, forces_pN):
+    """N_b and slope at 150 mM for every registered model that takes an interaction."""
+    force = forces_pN * sc.ureg.pN
+    models = [m for m in sc.available_models() if m in ("li-zhao", "free-energy")]
+    cols = {"model": [], "force": [], "buckling_turns": [], "slope": []}
+    for m in models:
+        nb = sc.buckling_turns(base, force, model=m, interaction="screened")
+        sl = sc.post_buckling_slope(base, force, model=m, interaction="screened")
+        cols["model"] += [m] * forces_pN.size
+        cols["force"] += list(forces_pN)
+        cols["buckling_turns"] += list(nb.m_as("turn"))
+        cols["slope"] += list(sl.m_as("nm/turn"))
+    units = {"model": "", "force": "pN", "buckling_turns": "turn", "slope": "nm/turn"}
+    return make_table(cols, units, provenance(base, interaction="screened"))
+
+
+def plot_sweep(df, path, models=None):
     panels = (("radius", "plectoneme radius R [nm]"), ("tilt", "tilt alpha [deg]"),
               ("torque", "torque [pN nm]"), ("buckling_turns", "buckling turns N_b"),
               ("slope", "post-buckling slope dz/dN [nm/turn]"))
@@ -78,9 +96,18 @@ def plot_sweep(df, path):
             ax.plot(g["force"], g[col], style, label=label)
             ax.set(xlabel="force [pN]", ylabel=ylabel)
             ax.grid(alpha=0.3)
+    if models is not None:
+        for label, g in models.groupby("model", sort=False):
+            if label == "li-zhao":
+                continue
+            for ax, col in ((axes[3], "buckling_turns"), (axes[4], "slope")):
+                ax.plot(g["force"], g[col], ":", color="tab:green", lw=2,
+                        label=f"screened 150 mM, {label}")
+        axes[4].legend(fontsize=8)
     axes[0].legend(fontsize=8)
     fig.suptitle("Screened interaction against salt (solid) and the paper's hard core "
-                 "(dashed); A = 50 nm, C = 100 nm, L = 5.03 um, li-zhao construction")
+                 "(dashed); A = 50 nm, C = 100 nm, L = 5.03 um, li-zhao construction "
+                 "(dotted: free-energy construction at 150 mM, where registered)")
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -123,10 +150,12 @@ def main(argv=None):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", sc.ValidityWarning)
         df = sweep(base, forces)
+        models = constructions(base, forces)
     for msg in dict.fromkeys(str(w.message) for w in caught):  # e.g. Q < 1 at 10 mM, 0.5 pN
         print(f"ValidityWarning: {msg}")
     sc.write_csv(df, out / "salt_dependence.csv")
-    plot_sweep(df, out / "salt_dependence.png")
+    sc.write_csv(models, out / "salt_constructions_150mM.csv")
+    plot_sweep(df, out / "salt_dependence.png", models)
 
     turns = np.linspace(-250, 250, 51 if args.quick else 1001)
     screened, hard = hat_curves(base, turns)
@@ -142,6 +171,7 @@ def main(argv=None):
               f"{table['torque'][i]:9.2f} {table['buckling_turns'][i]:6.1f} "
               f"{table['slope'][i]:15.1f}")
     print(f"wrote {out / 'salt_dependence.png'}, {out / 'salt_dependence.csv'}, "
+          f"{out / 'salt_constructions_150mM.csv'}, "
           f"{out / 'salt_hat_curves_150mM.png'}, {out / 'salt_hat_curves_150mM.csv'}")
 
 
