@@ -125,7 +125,7 @@ def test_effective_charge_trends_and_renormalisation():
                     for c in salts])
     assert np.all(np.diff(nu) > 0)  # the far field of the cylinder grows with salt
     assert np.all(nu < lin)  # nonlinear screening renormalises the charge down
-    # independent recomputation of Stigter's matching (project derivation note, solve_bvp,
+    # independent recomputation of Stigter's matching (a separate solve_bvp computation,
     # not literature): 2.377, 5.621, 7.203, 51.74 per nm at 10, 100, 150, 1000 mM
     for c, ref in ((10.0, 2.377), (100.0, 5.621), (150.0, 7.203), (1000.0, 51.74)):
         assert el.effective_line_charge(c, T25, 1e-9) * 1e-9 == pytest.approx(ref, rel=1e-3)

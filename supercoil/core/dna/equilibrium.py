@@ -1,5 +1,5 @@
 """Uniform plectoneme at fixed tension for any interaction ``w(alpha, R)``.
-Float-only SI kernel (MODEL.md s.2 and s.6; docs/theory/screened-interaction.md#5).
+Float-only SI kernel (docs/theory/plectoneme.md; docs/theory/screened-interaction.md#5).
 
 Equations
 ---------
@@ -7,7 +7,7 @@ For a uniform double helix of tilt alpha and radius R, stationarity of the energ
 [Eq Ep1] gives (GE1) ``C omega = X / tau_alpha`` and (GE2)
 ``tau_R X - tau_alpha Y = 0`` with ``X = B kappa kappa_alpha + w_alpha`` and
 ``Y = B kappa kappa_R + w_R``; the tension is ``T = -(1/2) B kappa^2 + C omega tau - w``.
-With ``kappa = sin^2 a / R`` and ``tau = sin a cos a / R`` (MODEL.md s.1),
+With ``kappa = sin^2 a / R`` and ``tau = sin a cos a / R`` (docs/theory/plectoneme.md),
 ``-R^2 (GE2)`` reads
 
     h(alpha, R) = (sin 2alpha / 2) X + R cos(2alpha) Y = 0,
@@ -266,7 +266,7 @@ def solve_equilibrium(force, B, partials, branch, xatol=1e-14):
 
 def equilibrium_residuals(force, alpha, R, omega, B, C, partials):
     """Relative residuals ``(GE1, GE2, tension)`` from the un-reduced equations of
-    MODEL.md s.2 (geometry partials written out here, not the solver's ``h``)."""
+    docs/theory/plectoneme.md (geometry partials written out here, not the solver's ``h``)."""
     s, c = np.sin(alpha), np.cos(alpha)
     kappa, tau = s * s / R, s * c / R
     k_a, k_r = np.sin(2 * alpha) / R, -s * s / R**2

@@ -34,7 +34,8 @@ z-derivatives of the integrand at fixed z:
     d(d^2)/dalpha = -4 R^2 q sin q / sin(2 alpha),
     d/dd [exp(-d/lambda)/d] = -exp(-d/lambda) (1/(lambda d) + 1/d^2).
 
-Entropic confinement (the paper's Marko-Siggia form, MODEL.md s.6)::
+Entropic confinement (the paper's Marko-Siggia form, Li, Zhao et al., Example III;
+docs/theory/plectoneme.md)::
 
     w_conf = kT A^(-1/3) [R^(-2/3) + (pi R cot alpha)^(-2/3)],   A = B/kT.
 
