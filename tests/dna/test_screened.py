@@ -110,7 +110,8 @@ def test_partials_against_finite_differences(alpha_deg, R, lam):
 
 
 def test_confinement_is_the_papers_entropic_term():
-    # the paper's w (Li, Zhao et al., Example III): w_MS = hard core + B^(-1/3) [1 + x^(-2/3)] kT^(4/3) / R^(2/3)
+    # the paper's w (Li, Zhao et al., Example III):
+    # w_MS = hard core + B^(-1/3) [1 + x^(-2/3)] kT^(4/3) / R^(2/3)
     a = np.radians(np.linspace(5, 44, 9))
     R, r0 = 2.3e-9, 1.75e-9
     x = np.pi / np.tan(a)
