@@ -9,7 +9,7 @@ Equations
       eps_r(t) = 87.740 - 0.40008 t + 9.398e-4 t^2 - 1.410e-6 t^3
 
   (78.30 at 25 degC). Outside 0-100 degC :class:`ValidityError` is raised.
-* Bjerrum length ``l_B = e^2 / (4 pi eps0 eps_r kT)`` (0.7152 nm at 25 degC).
+* Bjerrum length ``l_B = e^2 / (4 pi eps0 eps_r kT)`` (0.7158 nm at 25 degC).
 * Debye length of a 1:1 salt of concentration c (mol/m^3, i.e. mM)::
 
       lambda_D = sqrt(eps0 eps_r kT / (2 N_A e^2 c)) = 1 / sqrt(8 pi l_B N_A c)
