@@ -18,6 +18,7 @@ from scipy.optimize import minimize
 from scipy.special import k0
 
 import supercoil as sc
+from supercoil.core.dna import contact as ct
 from supercoil.core.dna import equilibrium as eq
 from supercoil.core.dna import marko_siggia as ms
 from supercoil.core.dna import moroz_nelson as mn
@@ -148,7 +149,7 @@ def test_generic_solver_reproduces_the_papers_hard_core_solver():
 @pytest.mark.parametrize("c", SALTS)
 def test_screened_state_solves_ge1_ge2_and_tension(dna150, c):
     dna = _at_salt(dna150, c)
-    inter = Screened()
+    inter = Screened(hard_contact=0)  # free branch only: (GE2) holds everywhere
     F = np.geomspace(0.2e-12, 5e-12, 7)
     s = inter.equilibrium(F, dna.si)
     part = lambda a, R: inter.partials(a, R, dna.si)  # noqa: E731
@@ -159,11 +160,11 @@ def test_screened_state_solves_ge1_ge2_and_tension(dna150, c):
     assert np.all(s.radius > 1e-9) and np.all(s.alpha < np.pi / 4)
 
 
-@settings(max_examples=15)
+@settings(max_examples=8)
 @given(st.floats(5.0, 2000.0), st.floats(0.002, 0.998), st.booleans())
 def test_every_force_on_the_branch_solves_the_equations(dna150, salt, frac, conf):
     si = _at_salt(dna150, salt).si
-    inter = Screened(confinement=float(conf))
+    inter = Screened(confinement=float(conf), hard_contact=0)
     br = inter.branch(si)
     lo = 0.0 if br.ends_at_zero else br.tension[-1]
     F = np.array([lo + frac * (br.tension[0] - lo)])
@@ -316,10 +317,11 @@ def test_needs_salt(dna):
 
 def test_named_errors_where_no_state_exists(dna150):
     low_salt = _at_salt(dna150, 10.0).si
+    free_only = Screened(hard_contact=0)
     with pytest.raises(NoEquilibriumError, match=r"6 pN.*hard core"):
-        Screened().equilibrium(np.array([1e-12, 6e-12]), low_salt)  # above the fold
+        free_only.equilibrium(np.array([1e-12, 6e-12]), low_salt)  # above the fold
     with pytest.raises(NoEquilibriumError, match=r"40 pN.*pass through each other"):
-        Screened().equilibrium(np.array([40e-12]), dna150.si)  # R would drop below a
+        free_only.equilibrium(np.array([40e-12]), dna150.si)  # R would drop below a
     with pytest.raises(NoEquilibriumError, match="positive"):
         Screened().equilibrium(np.array([-1e-12]), dna150.si)
     # with confinement T(R) crosses zero, so every positive force has a state; without
@@ -329,8 +331,54 @@ def test_named_errors_where_no_state_exists(dna150):
         Screened(confinement=0).equilibrium(np.array([1e-17]), dna150.si)
 
 
+def test_contact_holds_the_strands_where_the_free_branch_ends(dna150):
+    # 150 mM: above T(R = a) = 29.6 pN the strands touch; R, alpha, M continuous there
+    si = dna150.si
+    inter = Screened()
+    T_a = inter.branch(si).tension[0]
+    st = inter.equilibrium(np.array([T_a * (1 - 1e-7), T_a * (1 + 1e-7), 40e-12]), si)
+    assert st.radius[0] > 1e-9 and st.radius[1] == 1e-9 and st.radius[2] == 1e-9
+    assert st.torque[1] == pytest.approx(st.torque[0], rel=1e-5)
+    assert st.alpha[1] == pytest.approx(st.alpha[0], rel=1e-5)
+    # contact states satisfy (GE1) and the tension equation; the reaction presses (N >= 0)
+    part = lambda a, R: inter.partials(a, R, si)  # noqa: E731
+    ge1, _, ten = eq.equilibrium_residuals(st.force, st.alpha, st.radius, st.omega,
+                                           si.bending_rigidity, si.torsional_rigidity, part)
+    assert np.max(np.abs(ge1)) < 1e-10 and np.max(np.abs(ten)) < 1e-10
+    _, _, N = ct.normal_reaction(st.alpha[1:], 1e-9, si.bending_rigidity, part)
+    assert np.all(N > 0)
+
+
+def test_low_salt_first_order_jump_to_contact_is_the_lower_torque(dna150):
+    # 10 mM: between T(R = a) = 3.13 pN and the fold (5.39 pN) a free and a contact state
+    # coexist; the equilibrium is the one of lower torque (the global minimum of f)
+    si = _at_salt(dna150, 10.0).si
+    F = np.array([4.0e-12, 5.0e-12])
+    both = Screened().equilibrium(F, si)
+    free = Screened(hard_contact=0).equilibrium(F, si)
+    assert both.radius[0] == free.radius[0] > 2e-9  # free wins at 4 pN
+    assert both.radius[1] == 1e-9 and both.torque[1] < free.torque[1]  # contact at 5 pN
+    # second method: minimise f = B kappa^2/2 + w - M tau over alpha and R >= a at the
+    # 5 pN state's torque from both basins; the lower minimum is the contact state
+    B, M = si.bending_rigidity, both.torque[1]
+    inter = Screened()
+
+    def f(x):
+        a, R = x[0], x[1] * 1e-9
+        kap, tau = np.sin(a) ** 2 / R, np.sin(a) * np.cos(a) / R
+        return (0.5 * B * kap**2 + inter.energy(a, R, si) - M * tau) * 1e12
+
+    runs = [minimize(f, x0, method="L-BFGS-B", bounds=[(0.05, 0.78), (1.0, 20.0)],
+                     options=dict(ftol=1e-15, gtol=1e-12))
+            for x0 in ([both.alpha[1], 1.2], [free.alpha[1], free.radius[1] * 1e9])]
+    best = min(runs, key=lambda r: r.fun)
+    assert best.x[1] == pytest.approx(1.0, abs=1e-6)
+    assert -best.fun * 1e-12 == pytest.approx(5e-12, rel=1e-6)
+
+
 @pytest.mark.parametrize("kw", [dict(charge_fraction=0.0), dict(charge_fraction=1.6),
-                                dict(hard_core_radius=-1e-9), dict(confinement=2.0)])
+                                dict(hard_core_radius=-1e-9), dict(confinement=2.0),
+                                dict(hard_contact=0.5)])
 def test_parameter_bounds(kw):
     with pytest.raises(ValueError, match=f"screened.{next(iter(kw))}"):
         Screened(**kw)

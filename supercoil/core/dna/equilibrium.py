@@ -188,63 +188,37 @@ def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOO
     return Branch(R, alpha, T, ends_at_zero, fold)
 
 
-def _check_forces(force, branch):
+def _no_state(force, covered, branch, contact):
+    """NoEquilibriumError naming the first force no branch covers."""
+    bad = ~covered
+    if not np.any(bad):
+        return
+    f = force[bad].flat[0]
     T_max = branch.tension[0]
     T_min = 0.0 if branch.ends_at_zero else branch.tension[-1]
-    if np.any(force <= 0.0):
-        f = force[force <= 0.0].flat[0]
+    head = f"no plectoneme equilibrium at force {f * 1e12:.6g} pN: "
+    if f <= 0.0:
+        raise NoEquilibriumError(head + "the tension must be positive")
+    if f <= T_min:
         raise NoEquilibriumError(
-            f"no plectoneme equilibrium at force {f * 1e12:.6g} pN: the tension must be "
-            "positive")
-    if np.any(force > T_max) and branch.fold:
-        f = force[force > T_max].flat[0]
+            head + f"below {T_min * 1e12:.6g} pN the plectoneme radius leaves the tabulated "
+            f"range (R > {branch.radius[-1] * 1e9:.6g} nm)")
+    if contact is not None:  # pragma: no cover - the contact branch reaches T -> inf
+        raise NoEquilibriumError(head + "outside the free and the contact branch")
+    if branch.fold:
         raise NoEquilibriumError(
-            f"no plectoneme equilibrium at force {f * 1e12:.6g} pN: above "
-            f"{T_max * 1e12:.6g} pN (the largest tension of the stable branch, at "
-            f"R = {branch.radius[0] * 1e9:.6g} nm) the repulsion cannot hold the strands "
-            "apart; they would be pressed together onto the hard core")
-    if np.any(force > T_max):
-        f = force[force > T_max].flat[0]
-        raise NoEquilibriumError(
-            f"no plectoneme equilibrium at force {f * 1e12:.6g} pN: above "
-            f"{T_max * 1e12:.6g} pN the superhelix radius would fall below the hard-core "
-            f"radius {branch.radius[0] * 1e9:.6g} nm (the strands would pass through each "
-            "other)")
-    if np.any(force <= T_min):
-        f = force[force <= T_min].flat[0]
-        raise NoEquilibriumError(
-            f"no plectoneme equilibrium at force {f * 1e12:.6g} pN: below "
-            f"{T_min * 1e12:.6g} pN the plectoneme radius leaves the tabulated range "
-            f"(R > {branch.radius[-1] * 1e9:.6g} nm)")
+            head + f"above {T_max * 1e12:.6g} pN (the largest tension of the stable branch, "
+            f"at R = {branch.radius[0] * 1e9:.6g} nm) the repulsion cannot hold the strands "
+            "apart; they would be pressed together onto the hard core (no contact state "
+            "allowed)")
+    raise NoEquilibriumError(
+        head + f"above {T_max * 1e12:.6g} pN the superhelix radius would fall below the "
+        f"hard-core radius {branch.radius[0] * 1e9:.6g} nm (the strands would pass through "
+        "each other; no contact state allowed)")
 
 
-def solve_equilibrium(force, B, partials, branch, xatol=1e-14):
-    """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
-
-    Parameters
-    ----------
-    force : array
-        Tensions T (N), positive, finite.
-    B : float
-        Bending rigidity (N m^2).
-    partials : callable
-        ``partials(alpha, R) -> (w, w_alpha, w_R)`` (J/m, J/m, J/m^2), elementwise.
-    branch : Branch
-        From :func:`branch_table` for the same B and interaction.
-    xatol : float
-        Absolute tolerance on log R.
-
-    Raises
-    ------
-    NoEquilibriumError
-        Naming the force (module docstring).
-    """
-    force = np.asarray(force, dtype=float)
-    if not np.all(np.isfinite(force)):
-        raise ValueError(f"force must be finite, got {force!r}")
-    _check_forces(force, branch)
+def _solve_free(flat, B, partials, branch, xatol):
     T_t = branch.tension
-    flat = force.ravel()
     k = np.clip(np.searchsorted(-T_t, -flat, side="left") - 1, 0, T_t.size - 2)
     u_lo = np.log(branch.radius[k])
     u_hi = np.log(branch.radius[k + 1])
@@ -260,7 +234,59 @@ def solve_equilibrium(force, B, partials, branch, xatol=1e-14):
         raise NoEquilibriumError("plectoneme equilibrium: root finding did not converge")
     R = np.exp(res.x)
     alpha = solve_tilt(R, B, partials)
-    M = torque(alpha, R, B, partials)
+    return alpha, R, torque(alpha, R, B, partials)
+
+
+def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14):
+    """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
+
+    Each force is solved on the free branch (if it lies in its range) and on the contact
+    branch R = a (:mod:`supercoil.core.dna.contact`, if given and the force lies in its
+    range); where both exist the state of lower torque is the equilibrium (module
+    docstring of :mod:`supercoil.core.dna.contact`).
+
+    Parameters
+    ----------
+    force : array
+        Tensions T (N), positive, finite.
+    B : float
+        Bending rigidity (N m^2).
+    partials : callable
+        ``partials(alpha, R) -> (w, w_alpha, w_R)`` (J/m, J/m, J/m^2), elementwise.
+    branch : Branch
+        From :func:`branch_table` for the same B and interaction.
+    contact : ContactBranch or None
+        From :func:`supercoil.core.dna.contact.contact_table`; None: no contact states
+        (forces beyond the free branch raise).
+    xatol : float
+        Absolute tolerance on log R.
+
+    Raises
+    ------
+    NoEquilibriumError
+        Naming the force (module docstring).
+    """
+    from supercoil.core.dna import contact as _ct
+
+    force = np.asarray(force, dtype=float)
+    if not np.all(np.isfinite(force)):
+        raise ValueError(f"force must be finite, got {force!r}")
+    flat = force.ravel()
+    T_min = 0.0 if branch.ends_at_zero else branch.tension[-1]
+    free = (flat > T_min) & (flat <= branch.tension[0])
+    touch = np.zeros(flat.shape, bool) if contact is None else (
+        (flat >= contact.tension[0]) & (flat <= contact.tension[-1]))
+    _no_state(flat, free | touch, branch, contact)
+    alpha = np.empty(flat.shape)
+    R = np.empty(flat.shape)
+    M = np.full(flat.shape, np.inf)
+    if np.any(free):
+        alpha[free], R[free], M[free] = _solve_free(flat[free], B, partials, branch, xatol)
+    if np.any(touch):
+        a_c, M_c = _ct.solve_contact(flat[touch], B, partials, contact)
+        better = M_c < M[touch]  # the lower torque is the equilibrium
+        idx = np.flatnonzero(touch)[better]
+        alpha[idx], R[idx], M[idx] = a_c[better], contact.radius, M_c[better]
     return alpha.reshape(force.shape), R.reshape(force.shape), M.reshape(force.shape)
 
 

@@ -25,6 +25,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil.core.dna import contact as _ct
 from supercoil.core.dna import electrostatics as _el
 from supercoil.core.dna import equilibrium as _eq
 from supercoil.core.dna import screened as _sc
@@ -75,6 +76,12 @@ def _branch(B, kT, lam, prefactor, conf, radius):
     return _eq.branch_table(B, partials, radius, _R_MAX_FACTOR * radius)
 
 
+@lru_cache(maxsize=64)
+def _contact(B, kT, lam, prefactor, conf, radius):
+    partials = _partials_function(B, kT, lam, prefactor, conf)
+    return _ct.contact_table(B, partials, radius)
+
+
 class Screened(Interaction):
     """Screened (Debye-Hueckel) strand repulsion with Stigter's effective charge.
 
@@ -90,6 +97,11 @@ class Screened(Interaction):
     confinement : float, default 1
         Coefficient of the paper's entropic confinement term: 1 as in the paper and
         Marko & Siggia (1995), 0 for none (Clauvelin, Audoly & Neukirch 2009).
+    hard_contact : float, default 1
+        1: where the repulsion cannot hold the strands apart they touch at R = a (hard
+        contact, the counterpart of the paper's condition (HC) for the rod), and at each
+        force the state of lower torque (free or in contact) is the equilibrium; 0: no
+        contact states, such forces raise :class:`NoEquilibriumError`.
 
     Notes
     -----
@@ -114,10 +126,17 @@ class Screened(Interaction):
             "coefficient of the entropic confinement term (1 paper, 0 none)",
             "Marko & Siggia, Phys. Rev. E 52, 2912 (1995); 0 as in Clauvelin et al., "
             "Biophys. J. 96, 3716 (2009)"),
+        "hard_contact": ModelParameter(
+            "hard_contact", "", 1.0, 0.0, 1.0,
+            "1: strands may touch at R = a (contact states); 0: no contact states",
+            "hard contact of the paper's rods, condition (HC) (Li, Zhao et al.)"),
     }
 
     def __init__(self, **values):
         super().__init__(**values)  # bounds checked there (ValueError naming the parameter)
+        if self.values["hard_contact"] not in (0.0, 1.0):
+            raise ParameterError("screened.hard_contact must be 0 or 1, got "
+                                 f"{self.values['hard_contact']:g}")
         if self.values["charge_fraction"] <= 0.0:
             raise ParameterError("screened.charge_fraction must be positive (bounds (0, 1.5]), "
                                  f"got {self.values['charge_fraction']:g}")
@@ -155,16 +174,27 @@ class Screened(Interaction):
         return _branch(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                        self.values["hard_core_radius"])
 
+    def contact_branch(self, dna):
+        """The tabulated contact branch at R = a (:mod:`supercoil.core.dna.contact`) or None."""
+        if not self.values["hard_contact"]:
+            return None
+        si, lam, pref = self._functions(dna)
+        return _contact(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
+                        self.values["hard_core_radius"])
+
     def equilibrium(self, tension, dna):
         """Uniform plectoneme at each tension T (N): (GE1), (GE2) and the tension
         equation with this ``w`` (:mod:`supercoil.core.dna.equilibrium`).
 
+        With ``hard_contact=1`` (default) a force may also be held by the contact state
+        R = a (:mod:`supercoil.core.dna.contact`); the state of lower torque wins.
+
         Raises
         ------
         NoEquilibriumError
-            Naming the force: not positive, below the branch (R beyond 1000 a or
-            T <= 0), or above its largest tension (the strands would be pressed onto
-            the hard core or pass through each other).
+            Naming the force: not positive, below the branch (no confinement: R beyond
+            1000 a), or, with ``hard_contact=0``, above the free branch's largest tension
+            (the strands would be pressed onto the hard core or pass through each other).
         ParameterError
             If the DNA has no salt.
         """
@@ -172,7 +202,8 @@ class Screened(Interaction):
         B, C = si.bending_rigidity, si.torsional_rigidity
         partials = _partials_function(B, si.kT, lam, pref, self.values["confinement"])
         force = np.asarray(tension, dtype=float)
-        alpha, R, M = _eq.solve_equilibrium(force, B, partials, self.branch(si))
+        alpha, R, M = _eq.solve_equilibrium(force, B, partials, self.branch(si),
+                                            self.contact_branch(si))
         s, c = np.sin(alpha), np.cos(alpha)
         kappa, tau = s * s / R, s * c / R
         omega = M / C
