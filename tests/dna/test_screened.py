@@ -264,6 +264,32 @@ def test_hat_curve_and_cli_with_the_screened_interaction(dna150, ureg, tmp_path,
     assert "salt" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("c", [10.0, 150.0])
+def test_free_energy_model_with_screened_interaction_obeys_maxwell(dna150, c):
+    # the free-energy construction is Maxwell-consistent for any interaction whose states
+    # obey dT = tau dM; a wrong screened torque or tension would break dz/dN = -2 pi dM/dF
+    from supercoil.dna.models import get_model
+
+    si = _at_salt(dna150, c).si
+    model, inter = get_model("free-energy"), Screened()
+    F = 1e-12
+    nb = model.buckling(np.array([F]), si, True, inter).turns[0]
+    N = np.array([0.5 * nb, nb + 20.0])  # stretched and plectoneme phase
+    hN, hF = 1e-4, 1e-5
+
+    def pts(n, f):
+        return model.points(n, np.full(n.shape, f), si, True, inter, None)
+
+    dz = (pts(N + hN, F).extension - pts(N - hN, F).extension) / (2 * hN)
+    dM = (pts(N, F * (1 + hF)).torque - pts(N, F * (1 - hF)).torque) / (2 * hF * F)
+    assert dz / (-2 * np.pi * dM) == pytest.approx([1.0, 1.0], rel=1e-5)
+    # athermal free-energy is the athermal li-zhao construction exactly
+    lz = get_model("li-zhao").buckling(np.array([F]), si, False, inter)
+    fe0 = model.buckling(np.array([F]), si, False, inter)
+    assert fe0.turns == pytest.approx(lz.turns, rel=1e-10)
+    assert fe0.slope == pytest.approx(lz.slope, rel=1e-10)
+
+
 def test_reduced_charge_fraction_narrows_the_plectoneme(dna150):
     si = dna150.si
     full = Screened().equilibrium(FORCES, si)
