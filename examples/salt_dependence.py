@@ -146,7 +146,7 @@ def main(argv=None):
     args = example_arguments(__doc__, argv, default_out="results/salt_dependence")
     out = args.out
     base = sc.load_parameters("dna_150mM_nacl")
-    forces = np.linspace(0.5, 5.0, 6 if args.quick else 46)
+    forces = np.linspace(0.5, 5.0, 4 if args.quick else 46)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", sc.ValidityWarning)
         df = sweep(base, forces)

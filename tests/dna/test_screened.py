@@ -160,7 +160,7 @@ def test_screened_state_solves_ge1_ge2_and_tension(dna150, c):
     assert np.all(s.radius > 1e-9) and np.all(s.alpha < np.pi / 4)
 
 
-@settings(max_examples=8)
+@settings(max_examples=6)
 @given(st.floats(5.0, 2000.0), st.floats(0.002, 0.998), st.booleans())
 def test_every_force_on_the_branch_solves_the_equations(dna150, salt, frac, conf):
     si = _at_salt(dna150, salt).si

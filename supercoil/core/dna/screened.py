@@ -28,8 +28,8 @@ Gauss-Legendre rule in t for ``z = 2R sinh t`` (``dz = d0 dt``, ``d0 = 2R cosh t
 ``0 <= t <= t_max`` with ``cosh t_max = 1 + 40 lambda/(2R)`` (the integrand is below
 e^-40 of its peak beyond); against adaptive quadrature (scipy quad, rtol 1e-13) the error
 is below 1e-11 relative for alpha = 2-40 deg, R = 1-10 nm, lambda = 0.3-3 nm, below 1e-10 up
-to 45 deg (the solver never goes beyond 45 deg) and 6e-9 at 60 deg. The partials are the same rule applied to the analytic
-z-derivatives of the integrand at fixed z:
+to 45 deg (the solver never goes beyond 45 deg) and 6e-9 at 60 deg. The partials are the
+same rule applied to the analytic z-derivatives of the integrand at fixed z:
 
     d(d^2)/dR     = 4R (1 + cos q) + 2R q sin q,
     d(d^2)/dalpha = -4 R^2 q sin q / sin(2 alpha),
