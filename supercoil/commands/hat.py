@@ -96,8 +96,10 @@ def register(sub):
                    help="DNA model (default li-zhao, the paper's); any registered model, "
                    "see supercoil.available_models()")
     p.add_argument("--interaction", default="hard-core", metavar="NAME",
-                   help="plectoneme interaction (default hard-core); models without a "
-                   "plectoneme take none")
+                   help="inter-strand interaction of the plectoneme: hard-core (the paper's "
+                   "Marko-Siggia w, default), screened (Debye-Hueckel with salt; needs a "
+                   "parameter set with 'salt', e.g. --params dna_150mM_nacl) or any "
+                   "registered interaction; models without a plectoneme take none")
     p.add_argument("--out", default="hat_out", help="output folder (default: hat_out)")
     p.add_argument("--no-plot", action="store_true", help="write only the CSV")
     p.set_defaults(func=run)
@@ -164,9 +166,6 @@ def run(args) -> int:
                        **mi)
         nb = buckling_turns(dna, force, thermal=thermal, **mi).magnitude
         slope = post_buckling_slope(dna, force, thermal=thermal, **mi).magnitude
-        torque_p = (plectoneme_equilibrium(dna, force, interaction=args.interaction)
-                    .torque.m_as("pN nm") if mi["interaction"] is not None
-                    else np.full(len(nb), np.nan))
     for w in caught:
         print(f"supercoil hat: warning: {w.message}", file=sys.stderr)
     out = Path(args.out)
@@ -184,6 +183,12 @@ def run(args) -> int:
         print(f"wrote {out / 'hat_curve.png'}")
     print(f"{'force [pN]':>10} {'N_b':>8} {'plectoneme torque [pN nm]':>26} "
           f"{'dz/dN [nm/turn]':>16}")
+    torque_p = np.full(len(nb), np.nan)
+    if mi["interaction"] is not None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # already reported above
+            torque_p = plectoneme_equilibrium(dna, force, interaction=mi["interaction"]
+                                              ).torque.m_as("pN nm")
     for f, n, m, s in zip(force.magnitude, nb, torque_p, slope, strict=True):
         torque = f"{m:26.4g}" if np.isfinite(m) else f"{'- (no plectoneme helix)':>26}"
         print(f"{f:10.4g} {n:8.4g} {torque} {s:16.4g}")
