@@ -394,3 +394,21 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     return build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
                             check_flag(fit_turns_offset, "fit_turns_offset"),
                             check_flag(fit_extension_offset, "fit_extension_offset"))[0]
+
+
+#: names that lived in this module before the fit package was split (old import paths)
+_MOVED = {"simulate_rotation_curves": "simulate", "valid_turns_range": "simulate",
+          "fit_many": "batch", "compare_models": "compare"}
+
+
+def __getattr__(name):
+    """Old import paths (``from supercoil.dna.fitting.fit import simulate_rotation_curves``)."""
+    if name in _MOVED:
+        import importlib
+
+        return getattr(importlib.import_module(f"supercoil.dna.fitting.{_MOVED[name]}"), name)
+    if name == "PHYSICAL_PARAMETERS":
+        from supercoil.dna.fitting.parameters import DNA_FIELDS
+
+        return DNA_FIELDS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
