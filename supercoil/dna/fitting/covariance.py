@@ -1,6 +1,6 @@
 """Covariance of the fitted parameters from the thin SVD of the weighted Jacobian.
 
-docs/theory/fitting.md#uncertainties. ``cov = (J^T J)^-1 = V S^-2 V^T`` from
+docs/theory/fitting.md#covariance. ``cov = (J^T J)^-1 = V S^-2 V^T`` from
 the thin SVD ``J = U S V^T`` (``U`` is n x m, never the unused n x n matrix of
 the full SVD), with the parameters the data do not determine marked.
 """

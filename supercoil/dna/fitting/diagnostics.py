@@ -1,6 +1,6 @@
 """Checks of a finished fit: plausible parameter values and goodness of fit.
 
-docs/theory/fitting.md#diagnostics. Each check returns messages that the fit
+docs/theory/fitting.md. Each check returns messages that the fit
 issues as :class:`~supercoil.exceptions.FitWarning` and lists in the report.
 
 Goodness of fit

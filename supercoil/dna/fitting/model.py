@@ -1,6 +1,6 @@
 """The fitted model: hat curves through the DNA model interface, residuals and Jacobian.
 
-For data point i of molecule m at force T_i and turns N_i (docs/theory/fitting.md#model)::
+For point i of molecule m at force T_i and turns N_i (docs/theory/fitting.md#the-global-fit)::
 
     z_i = hat(N_i - N0_m ; T_i, dna, model, interaction) + z0_m
 

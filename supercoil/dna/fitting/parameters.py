@@ -1,7 +1,7 @@
 """Fit parameters: one :class:`FitParameter` per fitted or fixed quantity, an ordered set of them.
 
 In the style of lmfit's ``Parameter``/``Parameters`` and pylake's fit
-parameters (docs/theory/fitting.md#parameters). Every number is stored in SI
+parameters (docs/theory/fitting.md#the-global-fit). Every number is stored in SI
 (turns for the turns offset); ``unit`` is only the display unit.
 
 A parameter is one of
