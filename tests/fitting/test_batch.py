@@ -164,3 +164,27 @@ def test_fit_many_splits_a_per_point_sigma_by_molecule(many, base):
         r = sc.fit_hat_curves(sub, base, sigma=(5.5 if lab == "m2" else 5.0) * sc.ureg.nm)
         assert table.loc[i, "radius_stderr"] == pytest.approx(r.stderr["radius"].m, rel=1e-9)
     assert table.attrs["provenance"]["weighting"] == "sigma argument"
+
+
+def test_fit_many_checks_and_splits_the_table_once(many, base, monkeypatch):
+    """Parent cost per molecule constant: one table check for all molecules, not one each."""
+    from supercoil.dna.fitting import data as fit_data
+
+    calls = []
+    real = fit_data.check_tweezers_frame
+
+    def spy(df, **kw):
+        calls.append(len(df))
+        return real(df, **kw)
+
+    monkeypatch.setattr(fit_data, "check_tweezers_frame", spy)
+    submitted = []
+
+    class Recording(_NonStandardExecutor):
+        def submit(self, fn, *args):
+            submitted.append(args[0].data.n)  # each spec holds its own molecule's points only
+            return super().submit(fn, *args)
+
+    sc.fit_many(many, base, executor=Recording())
+    assert calls == [len(many)]
+    assert submitted == [int((many["molecule"] == m).sum()) for m in ("m1", "m2", "m3", "m4")]
