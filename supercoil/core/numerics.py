@@ -1,28 +1,34 @@
-"""Generic numerics of the kernels: bracketed roots, safeguarded Newton, running integrals.
+"""Generic numerics of the kernels: bisection, safeguarded Newton, running integrals, crossings.
 
 Float-only (numpy, scipy); no physics here. Every helper is vectorised and ends
-in a bounded number of iterations. The choice between scipy's elementwise
-solvers and a hand-written one was made by measurement (best of 5 runs,
-2-core machine, numpy 2.4, scipy 1.17; the script is in the docstring of each
-helper's test, ``tests/core/test_numerics.py``):
+in a bounded number of iterations. Whether a hand-written solver stays or is
+replaced by scipy's elementwise solvers was decided by measurement (best of
+5-7 runs on the 2-core development machine, numpy 2.4, scipy 1.17; the
+measuring code is ``measure()`` in ``tests/core/test_numerics.py``, run it
+with ``python tests/core/test_numerics.py``); the rule: scipy wherever it is
+no more than 1.5x slower.
 
-=========================  ===================================  ===========  ==========
-helper                     workload                             scipy / own  decision
-=========================  ===================================  ===========  ==========
-:func:`bracketed_root`     [eq ini], 1000 turns 1e-6..2000      1.22x        scipy
-                           (find_root vs 1100-step bisection)   (2.0x for 1
-                                                                point,
-                                                                +0.5 ms)
-:func:`safe_newton`        (GE2) tilt on 600 reduced radii      3.7x         own
-                           (find_root vs safeguarded Newton)
-k = 0 rough tilt           Newton in y on 2000 arclengths       12.8x        own
-(``core/rod/rough.py``)    (find_root vs monotone Newton)
-:func:`cumulative_         Tw, Wr integrals on 860 panels       177x         own
-integrals`                 (tanhsinh vs 8/4-point adaptive GL)
-=========================  ===================================  ===========  ==========
+=============================  ================================  ==============  ========
+solver                         workload                          scipy time /    kept
+                                                                 own time
+=============================  ================================  ==============  ========
+:func:`bisect_increasing`      [eq ini], 1000 N_0 in 1e-6..2000  1.22x raw,      own
+                               (find_root)                       1.53-1.60x
+                                                                 sign-exact
+:func:`safe_newton`            (GE2) tilt, 600 reduced radii     3.7x            own
+                               (find_root)
+k = 0 rough tilt, Newton in y  2000 arclengths (find_root)       12.8x           own
+(core/rod/rough.k0_y_of_s)
+s(y) inversion, Newton         2000 points, k = 0 / -20 rad/m    2.8x / 5.5x     own
+(core/rod/rough_ode)           (find_root)
+:func:`cumulative_integrals`   Tw, Wr of the k = 0 helix on      177x            own
+                               860 panels (tanhsinh)
+:func:`first_crossing`         scalar refinement                 scipy brentq    scipy
+=============================  ================================  ==============  ========
 
 scipy's find_root and tanhsinh agree with the hand-written solvers to 4e-16
-(roots) and 2e-14 (integrals) relative on these workloads.
+(roots) and 2e-14 (integrals) relative on these workloads. "Sign-exact": the
+root depends only on the sign of the function (see :func:`bisect_increasing`).
 """
 
 from __future__ import annotations
@@ -135,17 +141,18 @@ def _gl_panels(fun, lo, hi):
     return i8, err, (np.abs(f8) @ w8) * half
 
 
-def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000):
+def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000, atol=0.0):
     """Running integrals ``int_{b_0}^{b_j} f ds`` of a vector integrand at sorted breakpoints.
 
     Adaptive composite Gauss-Legendre quadrature: every panel between two
     breakpoints is integrated with 8 points; the 4-point rule gives a
     (pessimistic) error estimate. A panel is accepted when its estimate is below
     its share of ``rtol`` times the integral of ``|f|`` (in proportion to its
-    width); the rest are halved, level by level, until the estimates of all
-    panels together are below that budget (so rounding noise of the integrand
-    does not force endless halving), at most ``max_depth`` times and while
-    fewer than ``max_panels`` panels are pending. The 8-point rule is exact for
+    width), or of ``atol`` if that is larger; the rest are halved, level by
+    level, until the estimates of all panels together are below that budget
+    (so rounding noise of the integrand does not force endless halving), at
+    most ``max_depth`` times and while fewer than ``max_panels`` panels are
+    pending. The 8-point rule is exact for
     polynomials of degree 15, so smooth integrands converge at once, and a jump
     of a twisting-rate callable is localised by the halving.
 
@@ -160,6 +167,11 @@ def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000
         ``fun(x) -> array (m, x.size)``, vectorised over a 1-D array x.
     breaks : array_like
         Strictly increasing breakpoints (1-D, at least one).
+    atol : float or array of shape (m,)
+        Absolute error budget per component over the whole range (default 0).
+        Give it when the range is a short piece of a longer integral (the
+        relative budget of a tiny piece is below the rounding noise of the
+        integrand, and the halving would run to ``max_depth``).
 
     Returns
     -------
@@ -178,7 +190,7 @@ def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000
         i8, err, absint = _gl_panels(fun, lo, hi)
         if totals is None:
             totals = np.zeros((i8.shape[0], b.size - 1))
-            budget = rtol * np.sum(absint, axis=1)
+            budget = np.maximum(rtol * np.sum(absint, axis=1), atol)
             spent = np.zeros(i8.shape[0])
         ok = np.all(err <= (budget / span)[:, None] * (hi - lo), axis=0)
         ok |= ~np.all(np.isfinite(i8), axis=0)  # NaN/inf: no refinement helps; caller checks

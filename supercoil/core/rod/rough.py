@@ -256,7 +256,10 @@ def _integrals_at(x, inner, ints_in, y_at, kfun, r, B, C):
     j0 = int(np.searchsorted(inner, x[0], side="right")) - 1
     j1 = int(np.searchsorted(inner, x[-1], side="right"))
     breaks = np.unique(np.concatenate([inner[j0:j1], x]))
-    local = strand_integrals(breaks, y_at, kfun, r, B, C)
+    # absolute budget: 1e-12 of the integrals over the whole helix (a relative one
+    # on a short chunk sits below the integrand's rounding noise)
+    local = strand_integrals(breaks, y_at, kfun, r, B, C,
+                             atol=1e-12 * np.max(np.abs(ints_in), axis=1))
     return ints_in[:, j0, None] + local[:, np.searchsorted(breaks, x)]
 
 
@@ -379,7 +382,7 @@ def profile_grid(s_end, n_points=801, n_end=60, include_end=False):
     return grid[np.concatenate([[True], np.diff(grid) > 1e-12 * s_end])]
 
 
-def strand_integrals(breaks, y_at, kfun, r, B, C):
+def strand_integrals(breaks, y_at, kfun, r, B, C, atol=0.0):
     """``(int omega ds, int tau ds, int k(2s) ds)`` from s = breaks[0] at every breakpoint.
 
     ``y_at(s)`` gives ``y = 1 - cos 2 alpha`` along the helix and ``kfun(S)``
@@ -390,7 +393,8 @@ def strand_integrals(breaks, y_at, kfun, r, B, C):
         Wr = (1/pi) int_0^s tau,      N = N_0 + (1/pi) int_0^s k(2s') ds',
 
     and ``Tw + Wr = N`` holds for the exact solution of [eq da/ds] (its
-    derivative is the ODE). See :func:`cumulative_integrals` for the quadrature.
+    derivative is the ODE). See :func:`cumulative_integrals` for the quadrature
+    (relative tolerance 1e-12; ``atol`` its absolute budget per row).
     """
 
     def f(x):
@@ -398,7 +402,7 @@ def strand_integrals(breaks, y_at, kfun, r, B, C):
         k = np.broadcast_to(np.asarray(kfun(2.0 * x), float), x.shape)
         return np.vstack([sc.twist_density(alpha, r, B, C), torsion(alpha, r), k])
 
-    return cumulative_integrals(f, breaks)
+    return cumulative_integrals(f, breaks, atol=atol)
 
 
 def profile_columns(s, y, dyds, turns_abs, omega_int, tau_int, r, L, B, C, mu=None):

@@ -101,8 +101,11 @@ class InverseSOfY:
 
     The inversion is a safeguarded Newton iteration with the ODE's own slope
     ``ds/dy = 1 / (dy/ds)`` (at most 60 steps, then bisection on the bracket,
-    at most 1100 halvings). Kept hand-written by measurement: scipy's
-    elementwise find_root needs about 3x the evaluations of the dense output.
+    at most 1100 halvings). Kept hand-written by measurement: inverting the
+    last s(y) segment of the N_0 = 40 helix (r = 1 mm, L = 56.7 cm) at 2000
+    points, scipy.optimize.elementwise.find_root takes 2.8x (k = 0) and 5.5x
+    (k = -20 rad/m) the time of this Newton iteration, for the same y
+    (1.5e-15 apart): Newton uses the ODE's slope, find_root only values.
     """
 
     kind = "s(y)"
@@ -360,15 +363,13 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
               max_nfev=MAX_NFEV):
     """Integrate [eq da/ds] from s = 0 with ``solve_ivp``, in two phases.
 
-    Phase "y(s)": y = 1 - cos 2 alpha as a function of s (regular for k = 0 and
-    wherever y is not small). Phase "s(y)": once y falls below ``y_switch``
-    while decreasing, s is integrated as a function of y down to y = 0,
-    ``ds/dy = 1 / (dy/ds)``. Near the end dy/ds is finite (k = 0) or diverges
-    like ``y^(-1/2)`` (k < 0, untwisting while slacking), so ds/dy is regular
-    in both cases and the end s_max = s(y = 0) is reached without an event
-    search on a singular right side. If dy/ds rises to half its value at the
-    switch in phase "s(y)" (a turning point ahead: k > 0 re-tilting the helix)
-    the integration goes back to phase "y(s)" with the switch level halved.
+    Phase "y(s)": y = 1 - cos 2 alpha versus s. Phase "s(y)": once y falls
+    below ``y_switch`` while decreasing, ``ds/dy = 1 / (dy/ds)`` down to y = 0;
+    near the end dy/ds is finite (k = 0) or diverges like ``y^(-1/2)`` (k < 0),
+    so ds/dy is regular and s_max = s(y = 0) needs no event search on a
+    singular right side. If dy/ds rises to half its value at the switch (a
+    turning point ahead: k > 0 re-tilting the helix) it goes back to "y(s)"
+    with the switch level halved.
 
     Parameters
     ----------
