@@ -1,4 +1,4 @@
-"""Case II, rough surface: the frozen non-uniform double helix (MODEL.md section 4).
+"""Case II, rough surface: the frozen non-uniform double helix (docs/theory/rough.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.rough` and
 :mod:`supercoil.core.rod.contact`.
@@ -244,7 +244,7 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
                 rtol=_rh.RTOL, atol=_rh.ATOL, cos2a_min=_sc.COS2A_MIN, max_nfev=_rh.MAX_NFEV):
     """The frozen non-uniform helix of a rough rod twisted by N_0 turns, then slacked.
 
-    MODEL.md s.4. No relative slip: alpha(s) is frozen once formed. The initial
+    docs/theory/rough.md. No relative slip: alpha(s) is frozen once formed. The initial
     tilt comes from [eq ini] ``(1 - cos 2a0) tan 2a0 = (C/B) 4 pi r N_0 / L``;
     alpha(s) then follows [eq da/ds] with twisting rate ``k(S) = 2 pi dN/dS``.
 

@@ -1,4 +1,4 @@
-"""Case II, rough surface (MODEL.md s.4): physics checks of supercoil.rough_helix."""
+"""Case II, rough surface (docs/theory/rough.md): physics checks of supercoil.rough_helix."""
 
 import numpy as np
 import pint

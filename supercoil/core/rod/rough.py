@@ -1,6 +1,6 @@
 """Case II, rough surface: the frozen non-uniform hard-contact helix. Float-only kernel.
 
-MODEL.md section 4, paper [eq da/ds, eq ini, eq tension, eq example k=0] and
+docs/theory/rough.md, paper [eq da/ds, eq ini, eq tension, eq example k=0] and
 Appendix C. SI floats (m, N, N m^2, rad); nothing here imports pint.
 
 The ODE in a regular variable
