@@ -23,6 +23,8 @@ s(y) inversion, Newton         2000 points, k = 0 / -20 rad/m    2.8x / 5.5x    
 (core/rod/rough_ode)           (find_root)
 :func:`cumulative_integrals`   Tw, Wr of the k = 0 helix on      177x            own
                                860 panels (tanhsinh)
+:func:`finite_difference`      designed pitch P(s), 2001 points  17x             own
+                               (scipy.differentiate.derivative)
 :func:`first_crossing`         scalar refinement                 scipy brentq    scipy
 =============================  ================================  ==============  ========
 
@@ -36,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["bisect_increasing", "cumulative_integrals", "first_crossing",
+__all__ = ["bisect_increasing", "cumulative_integrals", "finite_difference", "first_crossing",
            "safe_newton"]
 
 
@@ -231,3 +233,33 @@ def first_crossing(s, g, g_at, xtol=1e-15, rtol=1e-13):
         return float(brentq(g_at, a, b, xtol=xtol, rtol=rtol))
     except (ValueError, RuntimeError):  # sign change not reproduced, or no convergence
         return b
+
+
+def finite_difference(fun, x, h, lo, hi):
+    """4th-order finite-difference derivative of a vectorised ``fun`` on [lo, hi].
+
+    Central 5-point stencil inside, one-sided 5-point stencils within 2 h of
+    the ends (so ``fun`` is never evaluated outside [lo, hi]). Five
+    evaluations per point, no iteration.
+
+    Kept hand-written by measurement: for ``P(s) = 16 + 4 sin(2 pi s / 0.16 m)``
+    mm on 2001 points of [0, 0.2 m] (the designed-helix scene) with
+    ``h = 1e-4 s_end``, scipy.differentiate.derivative (one-sided within 2 mm
+    of the ends) takes 17x the time (2.1 ms vs 0.12 ms) and is less accurate
+    at its defaults (3e-9 vs 2e-12 relative to the exact derivative).
+    """
+    x = np.asarray(x, float)
+    d = np.empty_like(x)
+    mid = (x - 2 * h >= lo) & (x + 2 * h <= hi)
+    left = (~mid) & (x - 2 * h < lo)
+    right = (~mid) & ~left
+    if np.any(mid):
+        xm = x[mid]
+        d[mid] = (fun(xm - 2 * h) - 8 * fun(xm - h) + 8 * fun(xm + h) - fun(xm + 2 * h)) / (12 * h)
+    for sel, sgn in ((left, 1.0), (right, -1.0)):
+        if np.any(sel):
+            xs = x[sel]
+            hh = sgn * h
+            d[sel] = (-25 * fun(xs) + 48 * fun(xs + hh) - 36 * fun(xs + 2 * hh)
+                      + 16 * fun(xs + 3 * hh) - 3 * fun(xs + 4 * hh)) / (12 * hh)
+    return d

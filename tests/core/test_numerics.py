@@ -104,6 +104,19 @@ def test_cumulative_integrals_absolute_budget_stops_rounding_noise():
     assert out[0, -1] == pytest.approx(1e-9, rel=1e-8) and len(calls) == 1
 
 
+def test_finite_difference_matches_scipy_and_the_exact_derivative():
+    from scipy.differentiate import derivative
+
+    x = np.linspace(0.0, 1.0, 41)
+    d = nu.finite_difference(np.exp, x, 1e-3, 0.0, 1.0)  # one-sided at both ends
+    np.testing.assert_allclose(d, np.exp(x), rtol=1e-10)
+    ref = derivative(np.exp, x[5:-5]).df
+    np.testing.assert_allclose(d[5:-5], ref, rtol=1e-10)
+    seen = []
+    nu.finite_difference(lambda t: seen.append(t) or np.sin(t), x, 1e-2, 0.0, 1.0)
+    assert min(map(np.min, seen)) >= 0.0 and max(map(np.max, seen)) <= 1.0
+
+
 def test_first_crossing_matches_brentq():
     s = np.linspace(0.0, 2.0, 11)
 
