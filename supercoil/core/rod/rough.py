@@ -250,17 +250,22 @@ def _profile_points(grid, s_end, end, n_points):
 def _integrals_at(x, inner, ints_in, y_at, kfun, r, B, C):
     """``(int omega, int tau, int k(2s))`` from the head at the sorted points x.
 
-    The internal integrals ``ints_in`` (at the nodes ``inner``) plus the
-    integral from the last node at or below x[0] over the nodes and the points.
+    Points on an internal node take the internal integrals ``ints_in``; the
+    others add the integral from their node below, taken as a difference of
+    running integrals over those nodes and points (one quadrature per chunk).
     """
-    j0 = int(np.searchsorted(inner, x[0], side="right")) - 1
-    j1 = int(np.searchsorted(inner, x[-1], side="right"))
-    breaks = np.unique(np.concatenate([inner[j0:j1], x]))
-    # absolute budget: 1e-12 of the integrals over the whole helix (a relative one
-    # on a short chunk sits below the integrand's rounding noise)
-    local = strand_integrals(breaks, y_at, kfun, r, B, C,
-                             atol=1e-12 * np.max(np.abs(ints_in), axis=1))
-    return ints_in[:, j0, None] + local[:, np.searchsorted(breaks, x)]
+    idx = np.searchsorted(inner, x, side="right") - 1
+    out = ints_in[:, idx]
+    off = inner[idx] != x
+    if np.any(off):
+        breaks = np.unique(np.concatenate([inner[idx[off]], x[off]]))
+        # absolute budget: 1e-12 of the integrals over the whole helix (a relative one
+        # on a short chunk sits below the integrand's rounding noise)
+        run = strand_integrals(breaks, y_at, kfun, r, B, C,
+                               atol=1e-12 * np.max(np.abs(ints_in), axis=1))
+        out[:, off] += (run[:, np.searchsorted(breaks, x[off])]
+                        - run[:, np.searchsorted(breaks, inner[idx[off]])])
+    return out
 
 
 def _onsets(inner, y_in, dy_in, y_at, dy_at, r, B, mu, tol):
