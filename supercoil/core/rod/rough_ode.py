@@ -381,8 +381,7 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
     r, L, B, C : float
         Rod radius, length (m), rigidities (N m^2).
     s_stop : float, optional
-        Last s to integrate to if the helix does not end first; default
-        ``(L/2)(1 - TAIL_FRACTION_MIN)``.
+        Last s if the helix does not end first; ``(L/2)(1 - TAIL_FRACTION_MIN)``.
     ode_method : str
         Any ``solve_ivp`` method ("RK45", "DOP853", "Radau", "LSODA", ...).
     rtol, atol : float
@@ -393,8 +392,7 @@ def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
     y_switch : float
         Phase switch threshold in y (default 1e-3).
     max_nfev : int
-        Budget of right-side evaluations for the whole run (default
-        :data:`MAX_NFEV`, about 1 s).
+        Budget of right-side evaluations for the whole run (:data:`MAX_NFEV`).
 
     Returns
     -------
