@@ -33,8 +33,6 @@ of every row, ``attrs["lines"]``).
 
 from __future__ import annotations
 
-import csv
-import io
 import warnings
 from pathlib import Path
 
@@ -42,8 +40,9 @@ import numpy as np
 import pandas as pd
 import pint
 
+from supercoil._checks import check_flag
 from supercoil.exceptions import DataError, DataWarning
-from supercoil.tables import _header_hint, read_csv
+from supercoil.tables import _header_hint, _read, row_lines
 from supercoil.units import U, ureg
 
 __all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
@@ -163,12 +162,25 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
     if "molecule" in df.columns:
         if "molecule" not in units:
             raise DataError(f"{header}, column 'molecule': no entry in attrs['units']")
-        miss = np.flatnonzero([_is_missing(v) for v in df["molecule"]])
+        miss = np.flatnonzero(_missing_mask(df["molecule"]))
         if miss.size:
             i = int(miss[0])
             raise DataError(f"{source}, {row_name(i)}, column 'molecule': missing label")
     out.attrs = dict(df.attrs)
     return out
+
+
+def _missing_mask(column):
+    """Boolean array: True where a cell is missing (NaN/None, or an NA string), vectorised."""
+    mask = column.isna().to_numpy(dtype=bool, copy=True)
+    if column.dtype == object or pd.api.types.is_string_dtype(column.dtype):
+        text = column[~mask]
+        if len(text):  # the NA test on the distinct labels only (few: one per molecule)
+            labels = pd.unique(text.to_numpy(dtype=object))
+            na = [v for v in labels if isinstance(v, str) and v.strip().lower() in _NA_STRINGS]
+            if na:
+                mask[np.flatnonzero(~mask)[text.isin(na).to_numpy(dtype=bool)]] = True
+    return mask
 
 
 def _is_missing(cell):
@@ -195,36 +207,6 @@ _NA_STRINGS = {
     "", "#n/a", "#n/a n/a", "#na", "-1.#ind", "-1.#qnan", "-nan", "1.#ind", "1.#qnan",
     "<na>", "n/a", "na", "null", "nan", "none",
 }
-
-
-def _row_lines(path, n_rows):
-    """File line (1-based) of the header and of every data row, as pandas reads them.
-
-    pandas skips blank lines and the ``#`` lines above the header; ``csv``'s
-    ``line_num`` follows quoted fields that span lines. Returns ``(header, rows)``
-    or ``(None, None)`` if the mapping cannot be made.
-    """
-    text = Path(path).read_text()
-    all_lines = text.splitlines(keepends=True)
-    n_comment = 0
-    for line in all_lines:
-        if not line.startswith("#"):
-            break
-        n_comment += 1
-    reader = csv.reader(io.StringIO("".join(all_lines[n_comment:])), skipinitialspace=True)
-    header, rows, prev = None, [], 0
-    for record in reader:
-        start = prev + 1
-        prev = reader.line_num
-        if not record or (all(not c.strip() for c in record) and len(record) <= 1):
-            continue
-        if header is None:
-            header = n_comment + start
-            continue
-        rows.append(n_comment + start)
-    if header is None or len(rows) != n_rows:
-        return None, None
-    return header, rows
 
 
 def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
@@ -263,9 +245,13 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     >>> data.attrs["units"]["extension"]  # doctest: +SKIP
     'um'
     """
+    drop_incomplete = check_flag(drop_incomplete, "drop_incomplete")
+    if not isinstance(path, str | Path) and not hasattr(path, "__fspath__"):
+        raise TypeError(f"path must be a str or a path, got {type(path).__name__}")
     path = Path(path)
-    df = read_csv(path)
-    header_line, lines = _row_lines(path, len(df))
+    df, (header_line, body, n_comment) = _read(path)
+    lines = row_lines(body, n_comment, len(df))
+    del body  # the file's text
     source = str(path)
     if header_line is not None:
         df.attrs["header_line"] = header_line
@@ -285,10 +271,11 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
         checked = [c for c in (*REQUIRED_COLUMNS, "sigma", "molecule") if c in df.columns]
         missing = np.zeros(len(df), dtype=bool)
         for col in checked:
-            missing |= np.array([_is_missing(v) for v in df[col]], dtype=bool)
+            missing |= _missing_mask(df[col])
         if missing.any():
             idx = np.flatnonzero(missing)
-            names = [str(lines[i]) if lines else f"data row {i + 1}" for i in idx]
+            names = [str(lines[i]) if lines is not None else f"data row {i + 1}"
+                     for i in idx[:21]]
             shown = ", ".join(names[:20]) + (", ..." if len(names) > 20 else "")
             warnings.warn(
                 f"{source}: dropped {idx.size} incomplete row(s) (empty or NaN cell in "
@@ -299,13 +286,13 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
             attrs = dict(df.attrs)
             df = df.loc[~missing].reset_index(drop=True)
             df.attrs = attrs
-            if lines:
-                lines = [ln for ln, m in zip(lines, missing, strict=True) if not m]
+            if lines is not None:
+                lines = lines[~missing]
             if len(df) == 0:
                 raise DataError(f"{source}: no complete data rows left after dropping")
     out = check_tweezers_frame(df, lines=lines, source=source)
     out.attrs["provenance"] = dict(out.attrs.get("provenance", {}), source=source)
     out.attrs.pop("header_line", None)
     if lines is not None:
-        out.attrs["lines"] = list(lines)
+        out.attrs["lines"] = lines.tolist()
     return out
