@@ -16,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
 from supercoil.exceptions import ValidityWarning
@@ -38,11 +39,7 @@ __all__ = [
 
 def check_dna(dna):
     """The SI view of ``dna``; TypeError naming the argument if it is not a DNA."""
-    if not isinstance(dna, DNA):
-        hint = " (an ElasticRod is a rod scene's material)" if type(dna).__name__ == \
-            "ElasticRod" else ""
-        raise TypeError(f"dna must be a supercoil.DNA, got {type(dna).__name__}{hint}")
-    return dna.si
+    return check_material(dna, DNA, "dna")
 
 
 def checked_forces(force, one_d=True):

@@ -12,6 +12,7 @@ import numpy as np
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import design as _dh
 from supercoil.exceptions import ValidityWarning
+from supercoil.rod.material import check_rod
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, magnitude, quantity
 
@@ -123,7 +124,7 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
         P < 2 pi r / tan(0.699) = 7.5 r; see
         :func:`supercoil.core.rod.contact.contact_width_ratio`).
     """
-    si = rod.si
+    si = check_rod(rod)
     r, L, B, C, mu = (si.radius, si.length, si.bending_rigidity, si.torsional_rigidity,
                       si.friction_coefficient)
     if isinstance(n_points, bool) or not isinstance(n_points, int | np.integer):

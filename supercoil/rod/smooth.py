@@ -10,9 +10,11 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import smooth as _sm
 from supercoil.exceptions import ValidityError, ValidityWarning
+from supercoil.rod.material import check_rod
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, as_turns, magnitude, quantity
 
@@ -174,12 +176,13 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         sqrt(cos 2a) > 1`` (alpha > 0.699 rad; derivation and strains in
         :func:`supercoil.core.rod.contact.contact_width_ratio`).
     """
-    si = rod.si
+    si = check_rod(rod)
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
     n = checked_turns(turns, "turns")
     S = magnitude(slack, U.m, "slack")
     if not np.all(np.isfinite(S)):
         raise ValueError(f"slack must be finite, got {slack!r}")
+    broadcast_shape(turns=n, slack=S)
     cos2a_min = _sc.check_cos2a_min(cos2a_min)
     with np.errstate(over="ignore", divide="ignore"):  # results checked below
         st = _sm.smooth_state(n, S, r, L, B, C, cos2a_min)

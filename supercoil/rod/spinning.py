@@ -12,9 +12,11 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import spinning as _ts
 from supercoil.exceptions import ValidityWarning
+from supercoil.rod.material import check_rod
 from supercoil.rod.smooth import check_finite_results, checked_turns
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, magnitude, quantity
@@ -113,10 +115,11 @@ def twist_spinning(rod, turns, head_tension):
         Hard contact fails: Hertz contact half-width above the rod radius
         (alpha > 0.699 rad, see :func:`supercoil.core.rod.contact.contact_width_ratio`).
     """
-    si = rod.si
+    si = check_rod(rod)
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
     n = np.asarray(checked_turns(turns, "turns"), float)
     Tp = np.asarray(magnitude(head_tension, U.N, "head_tension"), float)
+    broadcast_shape(turns=n, head_tension=Tp)
     st = _ts.spinning_state(np.abs(n), Tp, r, L, B, C)
     _sc.check_tilt(st["alpha"], "twist-spinning helix")
     shape = st["alpha"].shape
