@@ -98,6 +98,8 @@ RHO_MIN = 0.5
 #: against an independent MINPACK solve, for ~15 % less time.
 EQUILIBRIUM_RTOL = 1e-8
 _SCALAR_LOOP_MAX = 12
+#: Forces solved together: larger inputs are processed in blocks of this size
+BLOCK = 65536
 _ALPHA_LO = 1e-12
 _ALPHA_HI = 0.25 * np.pi
 _TWO_THIRDS = 2.0 / 3.0
@@ -441,29 +443,46 @@ def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
     force = np.asarray(force, dtype=float)
     if not np.all(np.isfinite(force)):
         raise ValueError(f"force must be finite, got {force!r}")
-    b = B / (kT * r0)
-    Tr = force * (r0 / kT)
-    bad = Tr <= 0.0
+    b = float(B / (kT * r0))
+    bad = force <= 0.0
     if np.any(bad):
         f = force[bad].flat[0]
         raise NoEquilibriumError(
             f"no plectoneme equilibrium at force {_format_force(f)}: "
             "the tension must be positive"
         )
-    _, _, T_t = branch_table(float(b))
-    if np.any(Tr > T_t[0]):
-        f = force[Tr > T_t[0]].flat[0]
+    _, _, T_t = branch_table(b)
+    f_max = T_t[0] * kT / r0
+    if np.any(force * (r0 / kT) > T_t[0]):
+        f = force[force * (r0 / kT) > T_t[0]].flat[0]
         raise NoEquilibriumError(
             f"no plectoneme equilibrium at force {_format_force(f)}: above "
-            f"{_format_force(T_t[0] * kT / r0)} the superhelix radius would fall below "
+            f"{_format_force(f_max)} the superhelix radius would fall below "
             f"r0/2 (alpha -> pi/4)"
         )
+    if force.size <= BLOCK:
+        return _equilibrium_block(force, B, C, kT, r0, b, rtol)
+    # large inputs in blocks: the solver's temporaries (~30 arrays) stay bounded
+    # by BLOCK, and only the output is of the input's size (issue 9, item 12)
+    flat = force.reshape(-1)
+    out = {k: np.empty(flat.size) for k in PlectonemeState._fields if k != "force"}
+    for start in range(0, flat.size, BLOCK):
+        st = _equilibrium_block(flat[start:start + BLOCK], B, C, kT, r0, b, rtol)
+        for k, v in out.items():
+            v[start:start + BLOCK] = getattr(st, k)
+    return PlectonemeState(force=force, **{k: v.reshape(force.shape) for k, v in out.items()})
+
+
+def _equilibrium_block(force, B, C, kT, r0, b, rtol):
+    """:func:`equilibrium` for checked forces (all in the tabulated range)."""
+    Tr = force * (r0 / kT)
     if Tr.size <= _SCALAR_LOOP_MAX:  # a few forces: the pure-float path is faster
-        pairs = [_solve_scalar(t, float(b), rtol=rtol) for t in Tr.ravel().tolist()]
+        pairs = [_solve_scalar(t, b, rtol=rtol) for t in Tr.ravel().tolist()]
         alpha = np.array([p[0][0] for p in pairs]).reshape(Tr.shape)
         rho = np.array([p[1][0] for p in pairs]).reshape(Tr.shape)
     else:
         alpha, rho = solve_reduced(Tr, b, rtol=rtol)
+    del Tr
     M = reduced_torque(alpha, rho, b) * kT
     R = rho * r0
     kappa = _g.curvature(alpha, R)
