@@ -118,10 +118,11 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
         seed set) or < 0.5 (the Moroz-Nelson expansion has not converged).
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    b = m.buckling(f, si, thermal, inter)
-    msgs = _v.force_messages(f) + inter.messages(si)
-    if thermal and hasattr(m, "slope_validity"):
-        msgs += m.slope_validity(f, b.torque, si)
+    with np.errstate(invalid="ignore"):  # an undefined slope is raised as ValidityError below
+        b = m.buckling(f, si, thermal, inter)
+        msgs = _v.force_messages(f) + inter.messages(si)
+        if thermal and hasattr(m, "slope_validity"):
+            msgs += m.slope_validity(f, b.torque, si)
     if not np.all(np.isfinite(b.slope)):
         from supercoil.exceptions import ValidityError
 

@@ -32,7 +32,8 @@ __all__ = [
 
 def twist_rigidity_ratio(force, B, C, kT):
     """``C / C_eff = 1 + C kT / (4 B sqrt(B T))`` (> 1)."""
-    return 1.0 + C * kT / (4.0 * B * np.sqrt(B * np.asarray(force, float)))
+    # sqrt(B) sqrt(T), not sqrt(B T): the product underflows for T below ~1e-280 N
+    return 1.0 + C * kT / (4.0 * B * np.sqrt(B) * np.sqrt(np.asarray(force, float)))
 
 
 def effective_twist_rigidity(force, B, C, kT):

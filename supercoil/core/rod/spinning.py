@@ -122,9 +122,10 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
         x = np.where(Tp > 0, 2.0 * Ts / np.where(Tp > 0, Tp, 1.0)
                      - 2.0 * np.sin(0.5 * alpha) ** 2, np.inf)
     x = np.maximum(x, 0.0)
-    with np.errstate(invalid="ignore"):
+    # x / (2 (1 + x)) as 0.5 / (1 + 1/x): no overflow for x near the float maximum
+    with np.errstate(invalid="ignore", divide="ignore"):
         beta = np.where(np.isinf(x), 0.5 * np.pi,
-                        2.0 * np.arcsin(np.sqrt(x / (2.0 * (1.0 + x)))))
+                        2.0 * np.arcsin(np.sqrt(0.5 / (1.0 + 1.0 / x))))
     return {
         "alpha": alpha,
         "beta": beta,
