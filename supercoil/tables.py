@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from supercoil._csvfile import CsvFile
 from supercoil.exceptions import DataError
 
 __all__ = ["column_quantity", "make_table", "provenance", "read_csv", "write_csv"]
@@ -194,59 +195,19 @@ def read_csv(path, text_columns=("molecule",)) -> pd.DataFrame:
         comment lines, with a hint when the header does not look like
         ``name [unit]`` with commas); a column named twice.
     """
-    return _read(path, text_columns)[0]
-
-
-def _split_comments(text):
-    """(provenance dict, number of ``#`` lines, offset of the first other line) of ``text``."""
-    prov, comments, n_comment, pos = {}, [], 0, 0
-    while text.startswith("#", pos):
-        end = text.find("\n", pos)
-        end = len(text) if end < 0 else end + 1
-        line, pos = text[pos:end], end
-        n_comment += 1
-        body = line[1:].strip()
-        key, sep, value = body.partition(":")
-        if sep and key.strip() and " " not in key.strip():
-            try:
-                prov[key.strip()] = json.loads(value.strip())
-                continue
-            except json.JSONDecodeError:
-                pass
-        comments.append(body)
-    if comments:
-        prov["comments"] = comments
-    return prov, n_comment, pos
+    df, src = _read(path, text_columns)
+    src.close()
+    return df
 
 
 def _read(path, text_columns=("molecule",)):
-    """:func:`read_csv` plus ``(header_line, body, n_comment)`` for the file-line mapping."""
-    path = Path(path)
+    """:func:`read_csv` and the open :class:`~supercoil._csvfile.CsvFile` (caller closes it)."""
+    src = CsvFile(path)
     try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise DataError(f"no such file: {path}") from None
-    except (IsADirectoryError, PermissionError) as exc:
-        raise DataError(f"cannot read {path}: {exc.strerror}") from None
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = raw[: exc.start].count(b"\n") + 1
-        raise DataError(
-            f"{path}, line {line}: not UTF-8 text ({exc.reason} at byte {exc.start}); "
-            "save the file as UTF-8 CSV"
-        ) from None
-    prov, n_comment, offset = _split_comments(text)
-    body = text[offset:]
-    stripped = body.lstrip()
-    if not stripped:
-        raise DataError(f"{path}: no header line (the file is empty after its comments)")
-    header_text = stripped.split("\n", 1)[0].strip()
-    header_line = n_comment + 1 + body[: len(body) - len(stripped)].count("\n")
-    # pandas reads the body's bytes (no second copy of the text as str)
-    bom = 3 if raw.startswith(b"\xef\xbb\xbf") else 0
-    body_bytes = memoryview(raw)[bom + len(text[:offset].encode("utf-8")):]
-    df = _parse(path, (body, body_bytes), n_comment, header_line, header_text, text_columns)
+        df = _parse(src, text_columns)
+    except BaseException:
+        src.close()
+        raise
     names, units = [], {}
     for col in df.columns:
         m = _HEADER.match(str(col))
@@ -255,32 +216,35 @@ def _read(path, text_columns=("molecule",)):
         units[name] = unit
     df.columns = names
     df.attrs["units"] = units
-    df.attrs["provenance"] = prov
-    return df, (header_line, (body, body_bytes), n_comment)
+    df.attrs["provenance"] = src.provenance
+    return df, src
 
 
-def _parse(path, bodies, n_comment, header_line, header_text, text_columns):
+def _parse(src, text_columns):
     """pandas' reading of the table body; DataError naming the file line on a bad record."""
-    body, body_bytes = bodies
+    path, header_text, n_comment = src.path, src.header_text, src.n_comment
 
     def too_many_fields(n_fields):
-        where, got = _bad_record(body, n_fields)
+        where, got = _bad_record(src.body_text(), n_fields)
         if where is None:
             return None
         return DataError(
             f"{path}, line {n_comment + where}: {got} fields, but the header (line "
-            f"{header_line}) has {n_fields} (a decimal comma, e.g. 1,68 for 1.68, or an "
+            f"{src.header_line}) has {n_fields} (a decimal comma, e.g. 1,68 for 1.68, or an "
             f"unquoted comma in a label splits a value){_header_hint(header_text)}")
 
     n_fields = None
     try:
         head = pd.read_csv(io.StringIO(header_text + "\n"), skipinitialspace=True, nrows=0)
         n_fields = len(head.columns)
-        _check_unique_names(path, header_line, header_text)
+        _check_unique_names(path, src.header_line, header_text)
         text_set = set(text_columns or ())
         dtype = {c: str for c in head.columns if _HEADER.match(str(c)).group("name") in text_set}
-        df = pd.read_csv(io.BytesIO(body_bytes), skipinitialspace=True, dtype=dtype or None,
+        df = pd.read_csv(src.body(), skipinitialspace=True, dtype=dtype or None,
                          encoding="utf-8")
+    except UnicodeDecodeError:
+        src.body_text()  # raises the DataError naming the line
+        raise
     except pd.errors.EmptyDataError:
         raise DataError(f"{path}: no header line (the file is empty after its comments)"
                         ) from None
@@ -299,54 +263,3 @@ def _parse(path, bodies, n_comment, header_line, header_text, text_columns):
         if err is not None:
             raise err
     return df
-
-
-def row_lines(bodies, n_comment, n_rows):
-    """File line (1-based) of every data row, as pandas reads the body; None if unsure.
-
-    pandas skips blank (or whitespace-only) lines; the ``#`` lines above the
-    header count. Without quotes in the body one data row is one line, and
-    the mapping is computed on the bytes with numpy; a quoted field may span
-    lines, and then the records are read one by one with :mod:`csv`.
-    """
-    body, body_bytes = bodies
-    b = np.frombuffer(body_bytes, dtype=np.uint8)
-    newline = np.flatnonzero(b == 10)
-    n_cr = np.count_nonzero(b == 13)
-    if (n_cr and n_cr != np.count_nonzero(b[newline[newline > 0] - 1] == 13)) or \
-            np.any(b == 34):  # bare carriage returns, or quotes: record by record
-        return _row_lines_csv(body, n_comment, n_rows)
-    starts = np.concatenate(([0], newline + 1))
-    ends = np.concatenate((newline, [b.size]))
-    keep = starts < b.size  # the text after the last newline, if any
-    starts, ends = starts[keep], ends[keep]
-    white = np.zeros(256, dtype=bool)
-    white[[9, 10, 13, 32]] = True
-    # a line is blank if it is empty or whitespace only; only lines that start
-    # with whitespace (few) are looked at one by one
-    maybe = np.flatnonzero((starts >= ends) | white[b[np.minimum(starts, b.size - 1)]])
-    raw = bytes(body_bytes) if maybe.size else b""
-    blank = [i for i in maybe if not raw[starts[i]:ends[i]].strip()]
-    filled = np.delete(np.arange(starts.size), blank)
-    if filled.size - 1 != n_rows:
-        return None
-    return filled[1:] + (n_comment + 1)
-
-
-def _row_lines_csv(body, n_comment, n_rows):
-    import csv
-
-    reader = csv.reader(io.StringIO(body), skipinitialspace=True)
-    rows, prev, header = [], 0, False
-    for record in reader:
-        start = prev + 1
-        prev = reader.line_num
-        if not record or (all(not c.strip() for c in record) and len(record) <= 1):
-            continue
-        if not header:
-            header = True
-            continue
-        rows.append(n_comment + start)
-    if len(rows) != n_rows:
-        return None
-    return np.asarray(rows, dtype=np.int64)

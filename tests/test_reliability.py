@@ -250,17 +250,67 @@ def test_geometry_overflow_is_a_named_error():
         sc.geometry.curvature(1 * u.rad, 1e-320 * u.m)
 
 
-def test_loader_row_lines_match_the_record_by_record_reading(tmp_path):
-    from supercoil.tables import _read, _row_lines_csv, row_lines
+@pytest.mark.parametrize("block", [7, 64, 1 << 22])
+def test_loader_row_lines_match_the_record_by_record_reading(tmp_path, monkeypatch, block):
+    from supercoil import _csvfile
 
+    monkeypatch.setattr(_csvfile, "BLOCK_BYTES", block)  # lines across block borders
     p = tmp_path / "x.csv"
-    p.write_text('# a: 1\n#note\n\nforce [pN],turns,extension [um]\n1,0,0.3\n\n   \n'
-                 '2,1,0.4\r\n3,2,0.5\n 4,3,0.6\n')
-    df, (_, bodies, n_comment) = _read(p)
-    fast = row_lines(bodies, n_comment, len(df))
-    slow = _row_lines_csv(bodies[0], n_comment, len(df))
-    assert fast.tolist() == slow.tolist() == [5, 8, 9, 10]
-    assert sc.read_tweezers_csv(p).attrs["lines"] == [5, 8, 9, 10]
+    p.write_bytes(b'\xef\xbb\xbf# a: 1\n#note\n\nforce [pN],turns,extension [um]\n1,0,0.3\n\n'
+                  b'   \n2,1,0.4\r\n3,2,0.5\n 4,3,0.6\n\t\n5,4,0.7')
+    with _csvfile.CsvFile(p) as src:
+        assert src.header_line == 4 and src.provenance == {"a": 1, "comments": ["note"]}
+        fast = src.data_lines(5)
+        slow = src._data_lines_csv(5)
+    assert fast.tolist() == slow.tolist() == [5, 8, 9, 10, 12]
+    df = sc.read_tweezers_csv(p)
+    assert df.attrs["lines"].tolist() == [5, 8, 9, 10, 12]
+    assert df["turns"].tolist() == [0, 1, 2, 3, 4]
+
+
+def test_loader_row_lines_without_blank_lines_or_final_newline(tmp_path):
+    p = tmp_path / "plain.csv"
+    p.write_text("# x: 2\n\nforce [pN],turns,extension [um]\n1,0,0.3\n2,1,0.4")
+    df = sc.read_tweezers_csv(p)
+    assert df.attrs["lines"].tolist() == [4, 5] and df.attrs["provenance"]["x"] == 2
+
+
+def test_loader_quoted_fields_fall_back_to_csv(tmp_path):
+    p = tmp_path / "q.csv"
+    p.write_text('molecule,force [pN],turns,extension [um]\n"a\nb",1,0,0.3\nc,1,1,0.3\n')
+    df = sc.read_tweezers_csv(p)
+    assert df.attrs["lines"].tolist() == [2, 4]
+
+
+def test_loader_not_utf8_names_the_line(tmp_path):
+    p = tmp_path / "bad.csv"
+    p.write_bytes(b"# ok: 1\nforce [pN],turns,extension [um]\n1,0,0.3\n1,\xff,0.3\n")
+    with pytest.raises(DataError, match="line 4: not UTF-8"):
+        sc.read_tweezers_csv(p)
+    p.write_bytes(b"# \xff\nforce [pN],turns,extension [um]\n1,0,0.3\n")
+    with pytest.raises(DataError, match="line 1: not UTF-8"):
+        sc.read_csv(p)
+
+
+def test_loader_memory_beyond_the_table_is_bounded(tmp_path, monkeypatch):
+    import tracemalloc
+
+    from supercoil import _csvfile
+    from supercoil.benchmark.memory import write_rotation_csv
+
+    n = 100_000  # ~2.7 MB; the line scan in blocks of 64 kB (1 MB by default)
+    monkeypatch.setattr(_csvfile, "BLOCK_BYTES", 1 << 16)
+    p = write_rotation_csv(tmp_path / "big.csv", n)
+    tracemalloc.start()
+    try:
+        base, _ = tracemalloc.get_traced_memory()
+        df = sc.read_tweezers_csv(p)
+        kept, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert len(df) == n and df.attrs["lines"][-1] == n + 2
+    # main: the whole text twice, per-row Python lists and a copy of the frame
+    assert (peak - kept) / n <= 64, ((peak - base) / n, (kept - base) / n)
 
 
 def test_plectoneme_blocks_agree_with_one_block(dna, monkeypatch):

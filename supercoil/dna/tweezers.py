@@ -42,7 +42,7 @@ import pint
 
 from supercoil._checks import check_flag
 from supercoil.exceptions import DataError, DataWarning
-from supercoil.tables import _header_hint, _read, row_lines
+from supercoil.tables import _header_hint, _read
 from supercoil.units import U, ureg
 
 __all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
@@ -80,7 +80,7 @@ def _unit_for(column, unit_str, where):
     return unit
 
 
-def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
+def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.DataFrame:
     """Check a rotation-curve table; return it with its numeric columns as floats.
 
     Used by :func:`read_tweezers_csv` and by the fitting functions for tables
@@ -127,7 +127,7 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
         label = label.item() if hasattr(label, "item") else label
         return f"line {lines[i]}" if lines is not None else f"row {label!r}"
 
-    out = df.copy()
+    out = df.copy() if _copy else df  # read_tweezers_csv owns its frame: checked in place
     for col in (*REQUIRED_COLUMNS, "sigma"):
         if col not in df.columns:
             continue
@@ -135,7 +135,9 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
             raise DataError(f"{header}, column {col!r}: no unit in attrs['units']")
         _unit_for(col, units[col], header)
         raw = df[col]
-        values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=float)
+        is_float = raw.dtype == np.float64  # already numbers: checked without a copy
+        values = raw.to_numpy() if is_float else pd.to_numeric(
+            raw, errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
             i = int(bad[0])
@@ -158,7 +160,8 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
                     f"{source}, {row_name(i)}, column {col!r}: {col} must be positive, "
                     f"got {float(values[i]):g}"
                 )
-        out[col] = values
+        if not is_float or _copy:
+            out[col] = values
     if "molecule" in df.columns:
         if "molecule" not in units:
             raise DataError(f"{header}, column 'molecule': no entry in attrs['units']")
@@ -174,12 +177,14 @@ def _missing_mask(column):
     """Boolean array: True where a cell is missing (NaN/None, or an NA string), vectorised."""
     mask = column.isna().to_numpy(dtype=bool, copy=True)
     if column.dtype == object or pd.api.types.is_string_dtype(column.dtype):
-        text = column[~mask]
-        if len(text):  # the NA test on the distinct labels only (few: one per molecule)
-            labels = pd.unique(text.to_numpy(dtype=object))
-            na = [v for v in labels if isinstance(v, str) and v.strip().lower() in _NA_STRINGS]
-            if na:
-                mask[np.flatnonzero(~mask)[text.isin(na).to_numpy(dtype=bool)]] = True
+        # the NA test on the distinct labels only (few: one per molecule), found in
+        # blocks (pandas' unique of a whole text column costs ~60 bytes per row)
+        labels = set()
+        for start in range(0, len(column), 65536):
+            labels.update(column.iloc[start:start + 65536].dropna().unique())
+        na = [v for v in labels if isinstance(v, str) and v.strip().lower() in _NA_STRINGS]
+        if na:
+            mask |= column.isin(na).to_numpy(dtype=bool)
     return mask
 
 
@@ -249,9 +254,10 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     if not isinstance(path, str | Path) and not hasattr(path, "__fspath__"):
         raise TypeError(f"path must be a str or a path, got {type(path).__name__}")
     path = Path(path)
-    df, (header_line, body, n_comment) = _read(path)
-    lines = row_lines(body, n_comment, len(df))
-    del body  # the file's text
+    df, src = _read(path)
+    with src:
+        lines = src.data_lines(len(df))
+        header_line = src.header_line
     source = str(path)
     if header_line is not None:
         df.attrs["header_line"] = header_line
@@ -290,9 +296,9 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
                 lines = lines[~missing]
             if len(df) == 0:
                 raise DataError(f"{source}: no complete data rows left after dropping")
-    out = check_tweezers_frame(df, lines=lines, source=source)
+    out = check_tweezers_frame(df, lines=lines, source=source, _copy=False)
     out.attrs["provenance"] = dict(out.attrs.get("provenance", {}), source=source)
     out.attrs.pop("header_line", None)
     if lines is not None:
-        out.attrs["lines"] = lines.tolist()
+        out.attrs["lines"] = lines  # int64 array: pandas deep-copies attrs on every operation
     return out
