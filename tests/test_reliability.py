@@ -125,6 +125,14 @@ def test_thermal_flag_rejects_non_booleans(dna, flag):
             call()
 
 
+@pytest.mark.parametrize("register", [sc.register_model, sc.register_interaction])
+def test_registry_replace_flag_is_checked(register):
+    with pytest.raises(TypeError, match=r"replace must be True or False, got 'yes'"):
+        register(object, replace="yes")
+
+
+# ---- item 7: every DNA function gives the shared validity warnings ----
+
 def test_buckling_turns_warns_overstretching_and_hard_core(dna):
     nb, msgs = validity_messages(lambda: sc.buckling_turns(dna, 1e4 * u.pN))
     text = " ".join(msgs)  # the issue: 7819 turns, silently
