@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_finite_output
+from supercoil._checks import broadcast_shape, check_finite_output
 from supercoil.core import geometry as _g
 from supercoil.exceptions import SingularityError
 from supercoil.units import U, magnitude, quantity
@@ -40,6 +40,13 @@ def _out(value, unit, name, **inputs):
         given = ", ".join(f"{k} = {v!r}" for k, v in inputs.items())
         check_finite_output(a, name, given)
     return quantity(value, unit)
+
+
+def _alpha_radius(alpha, radius):
+    """Checked (alpha, radius) that broadcast together."""
+    a, r = _alpha(alpha), _radius(radius)
+    broadcast_shape(alpha=a, radius=r)
+    return a, r
 
 
 def _finite(x, name, given):
@@ -97,7 +104,9 @@ def tilt_angle(radius, pitch):
         radius or pitch not finite or not positive (a negative pitch would give
         alpha > pi/2; the handedness is the sign of the turns N).
     """
-    return _out(_g.tilt_angle(_radius(radius), _length(pitch, "pitch")), U.rad, "alpha",
+    r, p = _radius(radius), _length(pitch, "pitch")
+    broadcast_shape(radius=r, pitch=p)
+    return _out(_g.tilt_angle(r, p), U.rad, "alpha",
                 radius=radius, pitch=pitch)
 
 
@@ -112,6 +121,7 @@ def pitch_from_tilt(alpha, radius):
         alpha or radius not finite or out of range.
     """
     a = _alpha(alpha)
+    broadcast_shape(alpha=a, radius=_radius(radius))
     if np.any(np.asarray(a) == 0):
         raise SingularityError("pitch diverges at alpha = 0 (straight strands)")
     with np.errstate(over="ignore", divide="ignore"):
@@ -122,6 +132,7 @@ def pitch_from_tilt(alpha, radius):
 def radius_from_tilt(alpha, pitch):
     """Radius ``R = P tan(alpha) / (2 pi)``, alpha in [0, pi/2), pitch > 0 (finite)."""
     a = _alpha(alpha, hi_open=True)
+    broadcast_shape(alpha=a, pitch=_length(pitch, "pitch"))
     with np.errstate(over="ignore"):
         r = _g.radius_from_tilt(a, _length(pitch, "pitch"))
     return _out(r, U.m, "radius", alpha=alpha, pitch=pitch)
@@ -130,21 +141,21 @@ def radius_from_tilt(alpha, pitch):
 def curvature(alpha, radius):
     """Curvature ``kappa = sin^2(alpha) / R`` [Eq curvature1], in 1/m."""
     with np.errstate(over="ignore"):
-        k = _g.curvature(_alpha(alpha), _radius(radius))
+        k = _g.curvature(*_alpha_radius(alpha, radius))
     return _out(k, U.per_m, "curvature", alpha=alpha, radius=radius)
 
 
 def torsion(alpha, radius):
     """Torsion ``tau = sin(alpha) cos(alpha) / R`` [Eq torsion1], in 1/m."""
     with np.errstate(over="ignore"):
-        t = _g.torsion(_alpha(alpha), _radius(radius))
+        t = _g.torsion(*_alpha_radius(alpha, radius))
     return _out(t, U.per_m, "torsion", alpha=alpha, radius=radius)
 
 
 def curvature_partials(alpha, radius):
     """``(d kappa/d alpha [1/m/rad], d kappa/d R [1/m^2])``."""
     with np.errstate(over="ignore"):
-        da, dr = _g.curvature_partials(_alpha(alpha), _radius(radius))
+        da, dr = _g.curvature_partials(*_alpha_radius(alpha, radius))
     return (_out(da, U.per_m / U.rad, "d kappa/d alpha", alpha=alpha, radius=radius),
             _out(dr, U.per_m / U.m, "d kappa/d R", alpha=alpha, radius=radius))
 
@@ -152,7 +163,7 @@ def curvature_partials(alpha, radius):
 def torsion_partials(alpha, radius):
     """``(d tau/d alpha [1/m/rad], d tau/d R [1/m^2])``."""
     with np.errstate(over="ignore"):
-        da, dr = _g.torsion_partials(_alpha(alpha), _radius(radius))
+        da, dr = _g.torsion_partials(*_alpha_radius(alpha, radius))
     return (_out(da, U.per_m / U.rad, "d tau/d alpha", alpha=alpha, radius=radius),
             _out(dr, U.per_m / U.m, "d tau/d R", alpha=alpha, radius=radius))
 
@@ -172,8 +183,10 @@ def superhelical_turns(alpha, radius, slack):
     attach sign(N) (see :class:`supercoil.SmoothHelix`).
     """
     with np.errstate(over="ignore"):
-        n = _g.superhelical_turns(_alpha(alpha), _radius(radius),
-                                  _length(slack, "slack", positive=False))
+        a, r = _alpha_radius(alpha, radius)
+        s = _length(slack, "slack", positive=False)
+        broadcast_shape(alpha=a, radius=r, slack=s)
+        n = _g.superhelical_turns(a, r, s)
     return _out(n, U.turn, "superhelical_turns", alpha=alpha, radius=radius, slack=slack)
 
 
@@ -193,6 +206,7 @@ def writhe(alpha, radius, slack, method="exact"):
         valid only for small alpha.
     """
     a, r, s = _alpha(alpha), _radius(radius), _length(slack, "slack", positive=False)
+    broadcast_shape(alpha=a, radius=r, slack=s)
     if method not in ("exact", "one_view"):
         raise ValueError(f"method must be 'exact' or 'one_view', got {method!r}")
     with np.errstate(over="ignore"):
@@ -213,12 +227,14 @@ def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
     a, r = _alpha(alpha), _radius(radius)
     s = _length(slack, "slack", positive=False)
     L = _length(length, "length")
+    broadcast_shape(alpha=a, radius=r, slack=s, length=L)
     if np.any(np.asarray(s) > np.asarray(L)):
         raise ValueError(f"slack must not exceed length (S <= L), got S = {slack!r}, "
                          f"L = {length!r}")
     wh = _finite(magnitude(omega_helix, U.per_m, "omega_helix"), "omega_helix", omega_helix)
     wt = wh if omega_tail is None else _finite(
         magnitude(omega_tail, U.per_m, "omega_tail"), "omega_tail", omega_tail)
+    broadcast_shape(alpha=a, radius=r, slack=s, length=L, omega_helix=wh, omega_tail=wt)
     with np.errstate(over="ignore", invalid="ignore"):
         tw = _g.twist_uniform(wh, wt, s, L)
         wr = _g.writhe_uniform(a, r, s)

@@ -209,6 +209,19 @@ def test_shape_mismatch_names_the_arguments(rod):
         sc.twist_spinning(rod, [40, 30], [0.1, 0.2, 0.3] * u.N)
 
 
+@pytest.mark.parametrize("call", [
+    lambda d: sc.extension_factor(d, [1, 2] * u.pN, [1, 2, 3] * u.pN * u.nm, 500 * u.nm),
+    lambda d: sc.geometry.curvature([0.1, 0.2] * u.rad, [1, 2, 3] * u.mm),
+    lambda d: sc.geometry.tilt_angle([1, 2] * u.mm, [1, 2, 3] * u.mm),
+    lambda d: sc.geometry.writhe([0.1, 0.2] * u.rad, 1 * u.mm, [1, 2, 3] * u.mm),
+    lambda d: sc.geometry.linking_number([0.1, 0.2] * u.rad, 1 * u.mm, [1, 2, 3] * u.mm,
+                                         1 * u.m, 1 / u.m),
+])
+def test_shape_mismatch_names_the_arguments_everywhere(dna, call):
+    with pytest.raises(ValueError, match=r"the shapes of .* do not broadcast together"):
+        call(dna)  # main: "operands could not be broadcast together with shapes (2,) (3,)"
+
+
 def test_tiny_temperature_is_named(dna):
     with pytest.raises(ValueError, match=r"kT.*check temperature"):
         dna.replace(temperature=1e-300 * u.K)  # main: ZeroDivisionError in the solver

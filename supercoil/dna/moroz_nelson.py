@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.dna import validity as _v
 from supercoil.exceptions import ValidityWarning
@@ -70,6 +71,10 @@ def extension_factor(dna, force, torque, tail_length):
     f = _v.checked_forces(force, one_d=False)
     m = magnitude(torque, U.N_m, "torque")
     length = magnitude(tail_length, U.m, "tail_length")
+    for name, x, given in (("torque", m, torque), ("tail_length", length, tail_length)):
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{name} must be finite, got {given}")
+    broadcast_shape(force=f, torque=m, tail_length=length)
     if not np.all(f > 0):
         raise ValueError(f"force must be positive, got {force}")
     if not np.all(np.asarray(length) > 0):
