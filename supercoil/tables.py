@@ -81,7 +81,7 @@ def make_table(columns, units, provenance_dict=None) -> pd.DataFrame:
     missing = [c for c in columns if c not in units]
     if missing:
         raise ValueError(f"make_table: no unit given for columns {missing}")
-    df = pd.DataFrame(dict(columns))
+    df = pd.DataFrame(dict(columns), copy=False)  # fresh arrays: no copy, no consolidation
     df.attrs["units"] = {c: units[c] for c in columns}
     df.attrs["provenance"] = provenance_dict if provenance_dict is not None else provenance()
     return df

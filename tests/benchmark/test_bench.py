@@ -49,3 +49,18 @@ def test_stability_map_in_bench_has_no_wrong_cell(bench_dir):
     smap = sc.read_csv(bench_dir / "stability_map.csv")
     assert set(smap["category"]) <= {"ok", "flagged", "named error"}
     assert np.isfinite(smap[smap["category"] == "ok"]["force"].dropna()).all()
+
+
+def test_model_cost_measures_both_models():
+    """The free-energy benchmark beside li-zhao: rows per model, ratios to li-zhao."""
+    from supercoil.benchmark.dna_models import MODELS, UNITS, model_cost
+
+    rows = model_cost(n_forces=20, sizes=(200,), repeat=1)
+    from supercoil.tables import make_table
+
+    assert make_table(rows, UNITS).shape == (6, 7)
+    assert rows["model"] == list(MODELS) * 3
+    ratio = np.array(rows["ratio_to_li_zhao"])
+    assert np.all(ratio[::2] == 1.0) and np.all(np.isfinite(ratio)) and np.all(ratio > 0)
+    assert np.all(np.array(rows["rate"]) > 0)
+    assert "full coiling" in rows["measurement"][2]

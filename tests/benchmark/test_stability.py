@@ -16,6 +16,7 @@ import pytest
 
 import supercoil as sc
 from supercoil.benchmark import stability
+from supercoil.benchmark.stability import maps_rod
 from supercoil.core.dna import moroz_nelson as mn
 from supercoil.core.dna import plectoneme as pl
 from supercoil.core.rod import contact as sco
@@ -75,19 +76,19 @@ def test_classification_catches_silent_failures():
     def dividing():
         return np.array([1.0]) / np.array([0.0])
 
-    value, exc, warns = stability._call(dividing)
-    assert stability._verdict(exc, warns)[0] == "WRONG"
-    value, exc, warns = stability._call(lambda: 1 / 0)
-    assert stability._verdict(exc, warns) == (
+    value, exc, warns = stability.call(dividing)
+    assert stability.verdict(exc, warns)[0] == "WRONG"
+    value, exc, warns = stability.call(lambda: 1 / 0)
+    assert stability.verdict(exc, warns) == (
         "WRONG", "unnamed exception ZeroDivisionError: division by zero")
-    value, exc, warns = stability._call(nan_returning)
-    assert stability._verdict(exc, warns, stability._finite_problems({"x": value}))[0] == "WRONG"
-    value, exc, warns = stability._call(lambda: sc.smooth_helix(
+    value, exc, warns = stability.call(nan_returning)
+    assert stability.verdict(exc, warns, stability.finite_problems({"x": value}))[0] == "WRONG"
+    value, exc, warns = stability.call(lambda: sc.smooth_helix(
         sc.load_parameters("silicone_rubber_rod"), 0, 0.1 * u.m))
-    assert stability._verdict(exc, warns)[0] == "named error: NoHelixError"
-    value, exc, warns = stability._call(lambda: sc.extension_factor(
+    assert stability.verdict(exc, warns)[0] == "named error: NoHelixError"
+    value, exc, warns = stability.call(lambda: sc.extension_factor(
         sc.load_parameters("dna"), 0.4 * u.pN, 0 * u.pN * u.nm, 5 * u.nm))
-    assert stability._verdict(exc, warns)[0] == "flagged"
+    assert stability.verdict(exc, warns)[0] == "flagged"
 
 
 def test_plot_writes_one_png(coarse, tmp_path):
@@ -200,7 +201,7 @@ def test_rough_helix_at_one_minus_1e_9_of_s_max(rod, method, k):
     # accurate against an independent reference to the map's tolerance
     si = rod.si
     args = (si.radius, si.length, si.bending_rigidity, si.torsional_rigidity)
-    y_ref = stability._rough_reference(
+    y_ref = stability.rough_reference(
         "dop853" if method == "closed_form" else "closed_form" if not k else "lsoda",
         res.alpha0.m_as(u.rad), k, s, *args)
     dyds = np.abs(rh.dy_ds(s, y_ref, np.full_like(s, k), *args))
@@ -237,7 +238,7 @@ def test_twist_spinning_beta_at_small_tilt(rod):
     """beta without cancellation at small tilt (was arccos(1/sec beta), 100 % off)."""
     sp = sc.twist_spinning(rod, 1e-4, 1e4 * u.N)
     si = rod.si
-    problems = stability._spinning_checks(
+    problems = maps_rod.spinning_checks(
         sp.alpha.m_as(u.rad), sp.beta.m_as(u.rad), sp.alpha_slacking.m_as(u.rad), 1e-4, 1e4,
         si.radius, si.length, si.bending_rigidity, si.torsional_rigidity)
     assert not problems, problems
@@ -248,7 +249,7 @@ def test_twist_spinning_beta_reference_agrees_where_alpha_is_not_small(rod):
     si = rod.si
     for a, b, a0, T in zip(sp.alpha.m_as(u.rad), sp.beta.m_as(u.rad),
                            sp.alpha_slacking.m_as(u.rad), [0.0, 0.1, 100.0], strict=True):
-        assert not stability._spinning_checks(a, b, a0, 40, T, si.radius, si.length,
+        assert not maps_rod.spinning_checks(a, b, a0, 40, T, si.radius, si.length,
                                               si.bending_rigidity, si.torsional_rigidity)
 
 
@@ -259,7 +260,7 @@ def _design_error(rod, q, a):
     r = si.radius
     P0, kw = q * 2 * np.pi * r, 2 * np.pi / (10 * q * 2 * np.pi * r)
     t = sc.design_twist_schedule(rod, sinusoidal_pitch(P0 * u.m, a * P0 * u.m, kw / u.m))
-    ref = stability._design_reference(P0, a * P0, kw, t["s"].iloc[-1] * 1e-3, r, si.length,
+    ref = maps_rod.design_reference(P0, a * P0, kw, t["s"].iloc[-1] * 1e-3, r, si.length,
                                       si.bending_rigidity, si.torsional_rigidity)
     return abs(t["turns"].iloc[-1] - ref) / ref
 

@@ -312,3 +312,19 @@ def test_post_buckling_slope_warns_where_zeta_long_tail_factor_fails(dna, ureg):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         post_buckling_slope(dna, [0.3, 1.0, 3.0] * ureg.pN)
+
+
+def test_blocked_points_equal_one_block(monkeypatch):
+    """Blocked evaluation (bounded temporaries) gives bit-identical points."""
+    F = np.repeat(np.array([0.4, 1.2, 3.0]) * 1e-12, 301)
+    N = np.tile(np.linspace(-60, 60, 301), 3)
+    for thermal in (True, False):
+        whole = hc.hat_curve_points(N, F, *ARGS, thermal=thermal)
+        monkeypatch.setattr(hc, "BLOCK", 7)
+        small = hc.hat_curve_points(N, F, *ARGS, thermal=thermal)
+        monkeypatch.setattr(hc, "BLOCK", 1 << 15)
+        for a, b in zip(whole, small, strict=True):
+            if a is None:
+                assert b is None
+            else:
+                np.testing.assert_array_equal(a, b)

@@ -46,6 +46,7 @@ from supercoil.core.dna.plectoneme import EQUILIBRIUM_RTOL, equilibrium
 from supercoil.exceptions import ValidityError
 
 __all__ = [
+    "BLOCK",
     "DENATURATION_FORCE",
     "FULLY_COILED",
     "OVERSTRETCHING_FORCE",
@@ -81,6 +82,7 @@ class HatPoints(NamedTuple):
     short_tail: np.ndarray  # bool: tail L - S shorter than short_tail_length
     zeta: np.ndarray  # Moroz-Nelson extension factor (1 athermal, 0 fully coiled)
     free_energy: np.ndarray | None = None  # G(N, F) in J, for models that have one
+    bracket: np.ndarray | None = None  # li-zhao thermal: Moroz-Nelson bracket Q per point
 
 
 class HatParameters(NamedTuple):
@@ -212,51 +214,82 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * B / kT
     if turns.size == 0:
         empty = np.empty(turns.shape)
-        return HatPoints(empty, empty, empty, empty.astype(np.int8), empty.astype(bool), empty)
+        return HatPoints(empty, empty, empty, empty.astype(np.int8), empty.astype(bool), empty,
+                         None, empty if thermal else None)
 
     fmin, fmax = force.min(), force.max()
     if fmin == fmax:
-        uf = np.array([fmin])
-        eq = None if equilibrium_solver is None else equilibrium_solver(uf)
-        par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
-
-        def take(a):
-            return a[0]
+        uf, inv = np.array([fmin]), None
     else:
         uf, inv = np.unique(force, return_inverse=True)
-        inv = inv.reshape(force.shape)
-        eq = None if equilibrium_solver is None else equilibrium_solver(uf)
-        par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
+        inv = inv.reshape(-1)
+    eq = None if equilibrium_solver is None else equilibrium_solver(uf)
+    par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
+    shape = turns.shape
+    turns, force = turns.reshape(-1), force.reshape(-1)
+    out = HatPoints(np.empty(turns.size), np.empty(turns.size), np.empty(turns.size),
+                    np.empty(turns.size, np.int8), np.empty(turns.size, bool),
+                    np.empty(turns.size), None, np.empty(turns.size) if thermal else None)
+    for start in range(0, turns.size, BLOCK):
+        sl = slice(start, start + BLOCK)
+        idx = None if inv is None else inv[sl]
+        _fill_block(turns[sl], force[sl], idx, par, length, B, kT, thermal, short_tail_length,
+                    out, sl)
+    if shape != turns.shape:
+        out = HatPoints(*(None if a is None else a.reshape(shape) for a in out))
+    return out
 
-        def take(a):
-            return a[inv]
 
-    Nb = take(par.buckling_turns)
-    Mp = take(par.torque)
+#: points per block of :func:`hat_curve_points`: temporaries stay bounded (a few
+#: block-sized arrays, cache-resident) whatever the number of points
+BLOCK = 1 << 15
+
+
+def _fill_block(turns, force, idx, par, length, B, kT, thermal, short_tail_length, out, sl):
+    """Hat-curve points of one block, written into the slices ``sl`` of ``out``."""
+    def take(a):
+        return a[0] if idx is None else a[idx]
+
+    Nb, Mp = take(par.buckling_turns), take(par.torque)
     n = np.abs(turns)
     stretched = n <= Nb
-    S = np.maximum(n - Nb, 0.0) * (_TWO_PI / take(par.linking_rate))
+    S = out.plectoneme_length[sl]
+    np.subtract(n, Nb, out=S)
+    np.maximum(S, 0.0, out=S)
+    np.multiply(S, _TWO_PI / take(par.linking_rate), out=S)
     coiled = S >= length
-    S = np.minimum(S, length)
+    np.minimum(S, length, out=S)
     tail = length - S
-    M = np.where(stretched, take(par.effective_twist_rigidity) * (_TWO_PI / length) * n, Mp)
+    M = out.torque[sl]
+    np.multiply(n, take(par.effective_twist_rigidity) * (_TWO_PI / length), out=M)
+    np.copyto(M, Mp, where=~stretched)
+    zeta, extension = out.zeta[sl], out.extension[sl]
     if thermal:
-        Q = _mn.zeta_bracket(force, M, B, kT)
+        Q = out.bracket[sl]
+        np.multiply(M, 0.5 / kT, out=Q)
+        np.square(Q, out=Q)
+        np.subtract(force * (B / (kT * kT)) - 1.0 / 32.0, Q, out=Q)
         if not np.all((Q > 0.0) | coiled):
             _mn.check_bracket(np.where(coiled, 1.0, Q), force, np.sign(turns) * M)
         with np.errstate(divide="ignore", invalid="ignore"):
-            zeta = 1.0 - 0.5 / np.sqrt(Q) + (B * kT) / (tail * (B * force - 0.25 * M * M))
-        zeta = np.where(coiled, 0.0, zeta)
-        extension = zeta * tail
+            np.sqrt(Q, out=zeta)
+            np.divide(-0.5, zeta, out=zeta)
+            zeta += 1.0
+            np.multiply(M, M, out=extension)
+            np.multiply(extension, -0.25, out=extension)
+            extension += B * force
+            extension *= tail
+            np.divide(B * kT, extension, out=extension)
+            zeta += extension
+        zeta[coiled] = 0.0
+        np.multiply(zeta, tail, out=extension)
     else:
-        zeta = np.where(coiled, 0.0, 1.0)
-        extension = tail
-    phase = np.where(stretched, STRETCHED, np.where(coiled, FULLY_COILED, PLECTONEME))
-    return HatPoints(
-        extension=extension,
-        torque=np.copysign(M, turns),
-        plectoneme_length=S,
-        phase=phase.astype(np.int8),
-        short_tail=tail < short_tail_length,
-        zeta=zeta,
-    )
+        zeta[:] = 1.0
+        zeta[coiled] = 0.0
+        extension[:] = tail
+    phase = out.phase[sl]
+    phase[:] = PLECTONEME
+    phase[coiled] = FULLY_COILED
+    phase[stretched] = STRETCHED
+    np.copysign(M, turns, out=M)
+    np.less(tail, short_tail_length, out=out.short_tail[sl])

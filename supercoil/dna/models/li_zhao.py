@@ -67,7 +67,9 @@ class LiZhao(DNAModel):
             return [f"Moroz-Nelson zeta = {points.zeta[i]:.4g} lies outside (0, 1] at force "
                     f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
                     "valid there"]
-        Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
+        Q = points.bracket
+        if Q is None:
+            Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
         return long_tail_messages(force, Q, points.phase != _hc.FULLY_COILED, turns)
 
 

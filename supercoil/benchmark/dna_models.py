@@ -1,0 +1,95 @@
+"""Cost of the DNA models side by side: li-zhao against free-energy.
+
+:func:`model_cost` measures, for each model, through the model interface at
+the float level (``model.buckling`` and ``model.points``, hard-core
+interaction, no units):
+
+* ``per force``: the per-force constants (plectoneme equilibrium, and for
+  free-energy the coexistence at the tail's effective pull, three equilibrium
+  calls), vectorised over ``n_forces`` forces 0.3-10 pN, time per force;
+* ``hat points``: hat-curve points per second at 1.2 pN for ``sizes`` turns
+  values, on two ranges: up to full coiling of the free-energy model
+  (stretched and plectoneme phases, where tweezers data lie) and the range
+  +-25 turns of :func:`supercoil.benchmark.dna.hat_cost` (7 % of it fully
+  coiled for free-energy, where each point needs a root solve on the
+  plectoneme branch: the expensive part).
+
+Rows are a dict of lists (``measurement``, ``model``, ``points``, ``time``,
+``per_item``, ``rate``, ``ratio_to_li_zhao``) for
+:func:`supercoil.tables.make_table` with :data:`UNITS`. Wiring into
+``supercoil bench`` (suite.run)::
+
+    rows = dna_models.model_cost(n_forces=100 if quick else 1000,
+                                 sizes=(1_000,) if quick else (1_000, 100_000))
+    write_csv(make_table(rows, dna_models.UNITS, provenance(...)), out / "dna_model_cost.csv")
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .timing import best_time
+
+MODELS = ("li-zhao", "free-energy")
+#: units of the :func:`model_cost` columns, for ``make_table(rows, UNITS, ...)``
+UNITS = {"measurement": "", "model": "", "points": "", "time": "s", "per_item": "s",
+         "rate": "1/s", "ratio_to_li_zhao": ""}
+
+
+def _calls(d, names):
+    """Per-force and per-point calls of each model through the model interface."""
+    from supercoil.dna.interactions import get_interaction
+    from supercoil.dna.models import get_model
+
+    inter = get_interaction("hard-core")
+    per_force, points = {}, {}
+    for name in names:
+        m = get_model(name)
+        per_force[name] = lambda F, m=m: m.buckling(F, d, True, inter)
+        points[name] = lambda N, F, m=m: m.points(N, F, d, True, inter, None)
+    return per_force, points
+
+
+def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, repeat=3,
+               models=MODELS):
+    """Time per force and points per second of each model (dict of lists).
+
+    ``models[0]`` is the reference of ``ratio_to_li_zhao`` (time over its time
+    for the same measurement).
+    """
+    import supercoil as sc
+    from supercoil.core.dna import free_energy as fe
+    from supercoil.dna.interactions import get_interaction
+
+    d = (dna or sc.load_parameters("dna")).si
+    per_force, points = _calls(d, models)
+    rows = {k: [] for k in ("measurement", "model", "points", "time", "per_item", "rate",
+                            "ratio_to_li_zhao")}
+
+    def add(measurement, model, n, t):
+        rows["measurement"].append(measurement)
+        rows["model"].append(model)
+        rows["points"].append(n)
+        rows["time"].append(t)
+        rows["per_item"].append(t / n)
+        rows["rate"].append(n / t)
+        base = rows["time"][-len(models)] if model != models[0] else t
+        rows["ratio_to_li_zhao"].append(t / base)
+
+    forces = np.geomspace(0.3e-12, 10e-12, n_forces)
+    for model in models:
+        add(f"per-force constants, {n_forces} forces 0.3-10 pN", model, n_forces,
+            best_time(lambda m=model: per_force[m](forces), repeat=repeat))
+    inter = get_interaction("hard-core")
+    co = fe.coexistence(np.array([force]), d.length, d.bending_rigidity, d.torsional_rigidity,
+                        d.kT, lambda T: inter.equilibrium(T, d))
+    n_full = float(co.buckling_turns[0] + d.length * co.linking_rate[0] / (2 * np.pi))
+    for label, top in ((f"hat points to full coiling (|N| <= {n_full:.1f})", n_full),
+                       ("hat points, |N| <= 25", 25.0)):
+        for n in sizes:
+            N = np.linspace(-top, top, n)
+            F = np.full(n, force)
+            for model in models:
+                add(f"{label} at {force * 1e12:g} pN", model, n,
+                    best_time(lambda m=model, N=N, F=F: points[m](N, F), repeat=repeat))
+    return rows

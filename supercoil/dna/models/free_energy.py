@@ -1,0 +1,128 @@
+"""``model="free-energy"``: the thermodynamically consistent hat curve.
+
+One free energy ``G(N, F) = min_S max_M [(L - S) g_s(F, M) + S g_p(M) + 2 pi N M]``
+of a Moroz-Nelson tail and a uniform plectoneme sharing the torque M; extension
+``z = -dG/dF`` and torque ``M = (1/2 pi) dG/dN`` satisfy the Maxwell relation
+``dz/dN|_F = -2 pi dM/dF|_N`` exactly. Derivation, limits and the validity
+table: docs/theory/free-energy.md; kernel :mod:`supercoil.core.dna.free_energy`.
+No own parameters; the plectoneme comes from the ``interaction`` (its
+``equilibrium(T, dna)`` at the tail's effective pull).
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from supercoil.core.dna import free_energy as _fe
+from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
+
+__all__ = ["CONVERGED_BRACKET", "FreeEnergy"]
+
+#: below this Moroz-Nelson bracket Q the long-tail factor 1 - Q^(-1/2)/2 < 0.5
+CONVERGED_BRACKET = 1.0
+
+
+def _args(dna):
+    return dna.length, dna.bending_rigidity, dna.torsional_rigidity, dna.kT
+
+
+def _equilibrium(interaction, dna):
+    def eq(T):
+        return interaction.equilibrium(T, dna)
+
+    return eq
+
+
+class FreeEnergy(DNAModel):
+    """Hat curve from one free energy: Maxwell-consistent extension and torque.
+
+    Differs from ``li-zhao`` (the paper's construction) in three places, each
+    forced by the free energy (docs/theory/free-energy.md#maxwell): the tail twists
+    with the Moroz-Nelson compliance at its own torque,
+    ``1/C_eff = 1/C + 1/(4 B sqrt(Q))``; the plectoneme coexists with a tail
+    that pulls with ``T_eff = F - (kT^2/B) sqrt(Q)`` instead of F; and there is
+    no finite-length term (short tails are flagged). ``thermal=False`` is the
+    athermal li-zhao construction exactly.
+    """
+
+    name = "free-energy"
+    summary = ("Moroz-Nelson tail and plectoneme from one free energy: "
+               "Maxwell-consistent extension and torque")
+    parameters: ClassVar[dict] = {}
+
+    def has_free_energy(self, thermal: bool) -> bool:
+        """True for both ``thermal=True`` and ``thermal=False``."""
+        return True
+
+    def buckling(self, force, dna, thermal, interaction):
+        """Buckling turns ``N_b = L l_s(F, M*)/(2 pi)``, torque M*, slope ``-2 pi zeta_inf / D``.
+
+        Raises
+        ------
+        ValidityError
+            (thermal) naming the force where no coexistence exists (below
+            0.0946 pN and above 44.04 pN for the seed set) or ``D <= 0``.
+        NoEquilibriumError
+            From the interaction, where no plectoneme exists.
+        """
+        co = _fe.coexistence(force, *_args(dna), _equilibrium(interaction, dna), thermal)
+        return Buckling(co.buckling_turns, co.torque, co.slope)
+
+    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+        """Hat-curve points with the ``free_energy`` column (J).
+
+        The secant's trial tensions of fully coiled points go to the bare
+        interaction when ``interaction`` is the public layer's state recorder
+        (attribute ``interaction``); only the final states are recorded.
+        """
+        bare = getattr(interaction, "interaction", interaction)
+        trial = None if bare is interaction else _equilibrium(bare, dna)
+        p = _fe.hat_points(turns, force, *_args(dna), _equilibrium(interaction, dna), thermal,
+                           short_tail_length, trial_equilibrium=trial)
+        return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
+                         p.zeta, p.free_energy)
+
+    def free_energy(self, turns, force, dna, thermal, interaction):
+        """``G(N, F)`` (J), docs/theory/free-energy.md#coexistence (up to a constant)."""
+        return self.points(turns, force, dna, thermal, interaction, None).free_energy
+
+    def slope_validity(self, force, torque, dna):
+        """Messages where the tail's expansion fails at the coexistence torque."""
+        force = np.asarray(force, float)
+        return _messages(force, _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT),
+                         np.ones(force.shape, bool), lambda i: f"force {force[i] * 1e12:.6g} pN")
+
+    def validity(self, turns, force, points, dna, thermal):
+        """Messages where the tail's expansion fails (zeta_inf <= 0, or bracket Q < 1)."""
+        if not thermal:
+            return []
+        force = np.asarray(force, float)
+        turns = np.asarray(turns, float)
+        where = np.asarray(points.phase) != _fe.FULLY_COILED
+        Q = _fe.tail_bracket(force, np.asarray(points.torque, float), dna.bending_rigidity,
+                             dna.kT)
+
+        def at(i):
+            return f"force {force.flat[i] * 1e12:.6g} pN, turns {turns.flat[i]:.6g}"
+
+        return _messages(force, Q, where, at)
+
+
+def _messages(force, Q, where, at):
+    """zeta_inf <= 0 (Q <= 1/4), else not converged (Q < 1), at the first such point."""
+    bad = where & (Q <= 0.25)
+    if np.any(bad):
+        i = np.flatnonzero(bad)[0]
+        return [f"free-energy model: Moroz-Nelson tail not valid at {at(i)}: its long-tail "
+                f"factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.4g} <= 0 (the "
+                "extension would grow with turns; below 0.1123 pN for the seed set)"]
+    rough = where & (Q < CONVERGED_BRACKET)
+    if np.any(rough):
+        i = np.flatnonzero(rough)[0]
+        return [f"free-energy model: Moroz-Nelson expansion not converged at {at(i)}: the "
+                f"long-tail factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.3g} < 0.5 "
+                "(bracket Q < 1), so extension, torque and slope are qualitative there "
+                "(below 0.1817 pN for the seed set)"]
+    return []

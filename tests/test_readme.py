@@ -1,0 +1,120 @@
+"""Every Python block and every ``supercoil`` command of the README runs as written.
+
+Python blocks run in a temporary folder (files they write land there). Command
+lines (the README's indented code lines that start with ``supercoil`` or
+``python -c``) are expanded by bash exactly as a user's shell would (quotes,
+``$(...)``, comments), then run in-process through :func:`supercoil.cli.main`
+(``python -c`` lines through ``exec``), so the suite pays no start-up per
+command. ``supercoil bench`` takes minutes: it is only parsed. The two set-up
+commands are not run (they build a virtual environment); they are checked
+against ``.ci/run``, which runs the test command verbatim.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import re
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import pytest
+
+from supercoil import cli
+
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text()
+CI = (ROOT / ".ci" / "run").read_text()
+
+PYTHON_BLOCKS = re.findall(r"^```python\n(.*?)^```", README, re.M | re.S)
+COMMANDS = [line[4:] for line in README.splitlines()
+            if re.match(r"^    (supercoil|python -c) ", line)]
+SETUP = [line[4:] for line in README.splitlines()
+         if line.startswith("    python3 -m venv")]
+#: commands that take minutes: parsed, not run
+PARSE_ONLY = ("bench",)
+
+
+def test_readme_has_blocks_and_commands():
+    assert len(PYTHON_BLOCKS) >= 2
+    subcommands = {c.split()[1] for c in COMMANDS if c.startswith("supercoil ")}
+    assert {"params", "hat", "rod", "fit"} <= subcommands
+    assert len(SETUP) == 2, SETUP
+
+
+def test_readme_cites_no_path_outside_the_repository():
+    assert "../shared" not in README
+    assert "MODEL.md" not in README
+    for target in re.findall(r"\]\(((?!https?://)[^)#]+)(?:#[^)]*)?\)", README):
+        assert (ROOT / target).exists(), f"README links to a missing file {target}"
+
+
+@pytest.mark.parametrize("index", range(len(PYTHON_BLOCKS)))
+def test_python_block_runs(index, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    namespace = {"__name__": "__readme__"}
+    with contextlib.redirect_stdout(io.StringIO()):
+        exec(compile(PYTHON_BLOCKS[index], f"README.md python block {index}", "exec"), namespace)
+    plt.close("all")
+    comment = re.search(r"#\s*R = ([\d.]+), ([\d.]+), ([\d.]+) nm", PYTHON_BLOCKS[index])
+    if comment and "eq" in namespace:  # the numbers quoted in the README are the computed ones
+        quoted = [float(x) for x in comment.groups()]
+        assert [round(x, 2) for x in namespace["eq"].radius.m_as("nm")] == quoted
+
+
+def _argv(command, tmp_path):
+    """The words bash makes of a README command line (``$(...)`` runs with this Python)."""
+    bindir = tmp_path / "bin"
+    bindir.mkdir(exist_ok=True)
+    shim = bindir / "python"
+    shim.write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
+    shim.chmod(shim.stat().st_mode | stat.S_IEXEC)
+    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ.get('PATH', '')}",
+               PYTHONPATH=str(ROOT), MPLBACKEND="Agg")
+    proc = subprocess.run(["bash", "-c", f"printf '%s\\0' {command}"], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    return proc.stdout.split("\0")[:-1]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=[c.split()[1] for c in COMMANDS])
+def test_command_runs(command, tmp_path, monkeypatch):
+    argv = _argv(command, tmp_path)
+    monkeypatch.chdir(tmp_path)
+    out, err = io.StringIO(), io.StringIO()
+    if argv[:2] == ["python", "-c"]:
+        with contextlib.redirect_stdout(out):
+            exec(compile(argv[2], "README python -c", "exec"), {"__name__": "__main__"})
+        assert Path(out.getvalue().strip()).is_file()  # the line prints the sample's path
+        return
+    assert argv[0] == "supercoil", argv
+    if argv[1] in PARSE_ONLY:
+        args = cli.build_parser().parse_args(argv[1:])
+        assert args.func is not None
+        return
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        status = cli.main(argv[1:])
+    plt.close("all")
+    assert status == 0, err.getvalue()[-2000:]
+    if "--out" in argv:
+        written = list((tmp_path / argv[argv.index("--out") + 1]).rglob("*"))
+        assert any(p.suffix == ".csv" for p in written), written
+
+
+def test_setup_commands_are_the_ones_ci_runs(tmp_path, monkeypatch):
+    main_job, test_command = SETUP
+    assert test_command in CI.splitlines(), "README's test command is not in .ci/run verbatim"
+    venv, install, job = main_job.split(" && ")
+    ci_venv, ci_install, _ = test_command.split(" && ")
+    assert venv == ci_venv
+    assert install == ci_install.replace(" '.[test]'", " .")
+    assert job.startswith(".venv/bin/supercoil ")
+    monkeypatch.chdir(tmp_path)
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        assert cli.main(job.split()[1:]) == 0
+    plt.close("all")
+    assert list((tmp_path / "results").glob("*.csv"))
