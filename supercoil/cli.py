@@ -14,7 +14,7 @@ import sys
 from supercoil import __version__
 
 #: subcommand modules, in the order ``--help`` lists them
-COMMANDS = ("params", "rod", "hat", "fit", "curves", "bench")
+COMMANDS = ("params", "rod", "hat", "fit", "curves", "validate", "docs", "bench")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -89,6 +89,10 @@ def register(sub):
     p.add_argument("--short-tail", type=_quantity("length", "m"), default=None,
                    help="tail length below which points are flagged short_tail "
                    "(default: 3 bending persistence lengths)")
+    p.add_argument("--interaction", default="hard-core",
+                   help="inter-strand interaction of the plectoneme: hard-core (the paper's "
+                   "Marko-Siggia w, default) or screened (Debye-Hueckel with salt; needs a "
+                   "parameter set with 'salt', e.g. --params dna_150mM_nacl)")
     p.add_argument("--athermal", action="store_true",
                    help="no Moroz-Nelson corrections (C_eff = C, zeta = 1)")
     p.add_argument("--out", default="hat_out", help="output folder (default: hat_out)")
@@ -118,9 +122,11 @@ def run(args) -> int:
     thermal = not args.athermal
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        df = hat_curve(dna, force, turns, thermal=thermal, short_tail_length=args.short_tail)
-        nb = buckling_turns(dna, force, thermal=thermal).magnitude
-        slope = post_buckling_slope(dna, force, thermal=thermal).magnitude
+        inter = args.interaction
+        df = hat_curve(dna, force, turns, thermal=thermal, short_tail_length=args.short_tail,
+                       interaction=inter)
+        nb = buckling_turns(dna, force, thermal=thermal, interaction=inter).magnitude
+        slope = post_buckling_slope(dna, force, thermal=thermal, interaction=inter).magnitude
     for w in caught:
         print(f"supercoil hat: warning: {w.message}", file=sys.stderr)
     out = Path(args.out)
@@ -138,7 +144,9 @@ def run(args) -> int:
         print(f"wrote {out / 'hat_curve.png'}")
     print(f"{'force [pN]':>10} {'N_b':>8} {'plectoneme torque [pN nm]':>26} "
           f"{'dz/dN [nm/turn]':>16}")
-    torque_p = plectoneme_equilibrium(dna, force).torque.m_as("pN nm")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # already reported above
+        torque_p = plectoneme_equilibrium(dna, force, interaction=inter).torque.m_as("pN nm")
     for f, n, m, s in zip(force.magnitude, nb, torque_p, slope, strict=True):
         print(f"{f:10.4g} {n:8.4g} {m:26.4g} {s:16.4g}")
     return 0

@@ -1,15 +1,18 @@
 """Inter-strand interactions of the DNA plectoneme (docs/theory/plectoneme.md).
 
-``get_interaction("hard-core")`` (the paper's Marko-Siggia ``w``, the default);
+``get_interaction("hard-core")`` (the paper's Marko-Siggia ``w``, the default),
+``get_interaction("screened")`` (Debye-Hueckel electrostatics with salt,
+docs/theory/screened-interaction.md);
 further interactions register themselves with :func:`register_interaction`.
 """
 
 from supercoil.dna.interactions.base import Interaction
 from supercoil.dna.interactions.hard_core import HardCore
+from supercoil.dna.interactions.screened import Screened
 from supercoil.dna.registry import Registry
 
-__all__ = ["DEFAULT_INTERACTION", "HardCore", "Interaction", "available_interactions",
-           "get_interaction", "register_interaction"]
+__all__ = ["DEFAULT_INTERACTION", "HardCore", "Interaction", "Screened",
+           "available_interactions", "get_interaction", "register_interaction"]
 
 #: the interaction used when none is given (the paper's)
 DEFAULT_INTERACTION = "hard-core"
@@ -32,3 +35,4 @@ def available_interactions():
 
 
 register_interaction(HardCore)
+register_interaction(Screened)

@@ -1,0 +1,309 @@
+"""Uniform plectoneme at fixed tension for any interaction ``w(alpha, R)``.
+Float-only SI kernel (docs/theory/plectoneme.md; docs/theory/screened-interaction.md#5).
+
+Equations
+---------
+For a uniform double helix of tilt alpha and radius R, stationarity of the energy
+[Eq Ep1] gives (GE1) ``C omega = X / tau_alpha`` and (GE2)
+``tau_R X - tau_alpha Y = 0`` with ``X = B kappa kappa_alpha + w_alpha`` and
+``Y = B kappa kappa_R + w_R``; the tension is ``T = -(1/2) B kappa^2 + C omega tau - w``.
+With ``kappa = sin^2 a / R`` and ``tau = sin a cos a / R`` (docs/theory/plectoneme.md),
+``-R^2 (GE2)`` reads
+
+    h(alpha, R) = (sin 2alpha / 2) X + R cos(2alpha) Y = 0,
+
+which does not contain C: the torque ``M = C omega = X / tau_alpha``, alpha and R at a
+given tension are independent of C. Along the solution curve ``dT = tau dM``
+(the state is a stationary point of ``f = B kappa^2/2 + w - M tau`` at fixed torque
+and ``T = -f``), so the stable branch is the one on which T decreases monotonically
+as R grows (M grows with T).
+
+Method
+------
+For each R, (GE2) is solved for alpha in (0, pi/4) by bracketed root finding
+(``h < 0`` as alpha -> 0 for a repulsive interaction, ``w_R < 0``; ``h = X/2 > 0`` at
+pi/4). The tension ``T(R)`` is tabulated on a log grid from the smallest allowed
+radius ``r_min`` (the hard core) outwards; the physical branch runs from ``r_min`` to
+the first grid point where T stops decreasing or falls to zero. Each target tension
+is bracketed in that table and ``T(alpha(R), R) = T_target`` is solved for ``log R``
+with ``scipy.optimize.elementwise.find_root`` (each evaluation solving (GE2) for
+alpha by the same routine): vectorised over the forces, no starting guess.
+
+Errors: a force above ``T(r_min)`` would push R below the hard core (the strands would
+pass through each other); a force below the branch's smallest tension has no
+plectoneme state. Both raise :class:`~supercoil.exceptions.NoEquilibriumError`
+naming the force.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from scipy.optimize.elementwise import find_minimum, find_root
+
+from supercoil.exceptions import NoEquilibriumError
+
+__all__ = [
+    "T_FLOOR",
+    "Branch",
+    "branch_table",
+    "equilibrium_residuals",
+    "solve_equilibrium",
+    "solve_tilt",
+    "tension",
+    "tilt_residual",
+    "torque",
+]
+
+_ALPHA_LO = 1e-9
+_ALPHA_HI = 0.25 * np.pi
+_TABLE_POINTS = 241
+#: smallest tabulated tension (N) of a branch on which T only tends to zero
+T_FLOOR = 1e-15
+
+
+class Branch(NamedTuple):
+    """Tabulated physical branch: radii (m), tilts (rad), tensions (N), decreasing T."""
+
+    radius: np.ndarray
+    alpha: np.ndarray
+    tension: np.ndarray
+    ends_at_zero: bool  # True if T reaches 0 on the grid (else the grid ran out)
+    fold: bool  # True if the branch starts at a maximum of T (not at the hard core)
+
+
+def _xy(alpha, R, B, partials):
+    s = np.sin(alpha)
+    c = np.cos(alpha)
+    kappa = s * s / R
+    w, w_a, w_R = partials(alpha, R)
+    X = B * kappa * 2.0 * s * c / R + w_a
+    Y = -B * kappa * s * s / (R * R) + w_R
+    return X, Y, w, kappa
+
+
+def tilt_residual(alpha, R, B, partials):
+    """``h = -R^2 (GE2) = (sin 2a / 2) X + R cos(2a) Y`` (N)."""
+    X, Y, _, _ = _xy(alpha, R, B, partials)
+    return np.sin(2.0 * alpha) * 0.5 * X + R * np.cos(2.0 * alpha) * Y
+
+
+def torque(alpha, R, B, partials):
+    """(GE1) torque ``M = C omega = X / tau_alpha = R X / cos(2 alpha)`` (N m)."""
+    X, _, _, _ = _xy(alpha, R, B, partials)
+    return R * X / np.cos(2.0 * alpha)
+
+
+def tension(alpha, R, B, partials):
+    """``T = -(1/2) B kappa^2 + M tau - w`` with M from (GE1) (N)."""
+    X, _, w, kappa = _xy(alpha, R, B, partials)
+    M = R * X / np.cos(2.0 * alpha)
+    tau = np.sin(alpha) * np.cos(alpha) / R
+    return -0.5 * B * kappa * kappa + M * tau - w
+
+
+def solve_tilt(R, B, partials, strict=True):
+    """The root alpha in (0, pi/4) of (GE2) at each radius R (bracketed, to rounding).
+
+    Where ``h`` does not change sign on (0, pi/4) (no repulsion left, e.g. far beyond
+    the Debye length without confinement) this raises, or with ``strict=False``
+    returns NaN there.
+    """
+    R = np.asarray(R, dtype=float)
+    lo = np.full(R.shape, _ALPHA_LO)
+    hi = np.full(R.shape, _ALPHA_HI)
+    h_lo = tilt_residual(lo, R, B, partials)
+    h_hi = tilt_residual(hi, R, B, partials)
+    bad = ~((h_lo < 0) & (h_hi > 0))
+    if strict and np.any(bad):
+        r = R[bad].flat[0]
+        raise NoEquilibriumError(
+            f"no plectoneme tilt in (0, 45 deg) solves (GE2) at R = {r * 1e9:.6g} nm "
+            "(the interaction is not repulsive there)"
+        )
+    res = find_root(lambda a, r: tilt_residual(a, r, B, partials), (lo, hi), args=(R,),
+                    tolerances=dict(xatol=1e-16, xrtol=1e-15), maxiter=200)
+    return np.where(bad, np.nan, res.x)
+
+
+def _peak(B, partials, u):
+    """Refined maximum of T(log R) bracketed by the three grid points ``u``."""
+    def neg_t(x):
+        R = np.exp(x)
+        return -tension(solve_tilt(R, B, partials), R, B, partials)
+
+    res = find_minimum(neg_t, (u[0], u[1], u[2]), tolerances=dict(xatol=1e-12, xrtol=0.0))
+    R = float(np.exp(res.x))
+    a = float(solve_tilt(R, B, partials))
+    return R, a, float(tension(a, R, B, partials))
+
+
+def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOOR):
+    """Tabulate the stable branch ``T(R)`` between ``r_min`` and ``r_max`` (module doc).
+
+    The branch starts at ``r_min`` if T decreases there, else at the first maximum of
+    T (a fold: closer in, T rises with R and the state is unstable; above that
+    maximum no plectoneme state exists). It ends where T stops decreasing, falls to
+    zero, or (GE2) has no root any more; where T only tends to zero as R grows (no
+    confinement) the table stops below ``t_floor`` (N, default 1 fN: far below any
+    tweezers force, where the screened repulsion has died out numerically).
+
+    Raises
+    ------
+    NoEquilibriumError
+        If no decreasing, positive stretch of T(R) exists on the grid.
+    """
+    R = np.geomspace(r_min, r_max, points)
+    alpha = solve_tilt(R, B, partials, strict=False)
+    T = tension(alpha, R, B, partials)
+    n = int(np.argmax(~np.isfinite(T))) if not np.all(np.isfinite(T)) else T.size
+    R, alpha, T = R[:n], alpha[:n], T[:n]
+    dec = np.diff(T) < 0.0
+    if not np.any(dec):
+        raise NoEquilibriumError(
+            f"no stable plectoneme branch between R = {r_min * 1e9:.6g} and "
+            f"{r_max * 1e9:.6g} nm: the tension never decreases with R")
+    j = int(np.argmax(dec))  # first point after which T decreases
+    stop = np.nonzero(~dec[j:] | (T[j + 1:] <= 0.0))[0]
+    k = j + 1 + (stop[0] if stop.size else T.size - 1 - j)
+    ends_at_zero = bool(k < T.size and T[k] <= 0.0)
+    if ends_at_zero:  # keep the first point with T <= 0 as the bracket's end
+        k += 1
+    R, alpha, T = R[j:k], alpha[j:k], T[j:k]
+    if not ends_at_zero and T[-1] < t_floor:
+        keep = max(int(np.argmax(T < t_floor)) + 1, 2)
+        R, alpha, T = R[:keep], alpha[:keep], T[:keep]
+    fold = j > 0
+    if fold:  # replace the first point by the refined maximum of T
+        u = np.log([r_min if j == 1 else R[0] / (R[1] / R[0]), R[0], R[1]])
+        R = R.copy()
+        alpha = alpha.copy()
+        T = T.copy()
+        R[0], alpha[0], T[0] = _peak(B, partials, u)
+    if T[0] <= 0.0 or R.size < 2:
+        raise NoEquilibriumError("no stable plectoneme branch with positive tension")
+    for arr in (R, alpha, T):
+        arr.setflags(write=False)
+    return Branch(R, alpha, T, ends_at_zero, fold)
+
+
+def _no_state(force, covered, branch, contact):
+    """NoEquilibriumError naming the first force no branch covers."""
+    bad = ~covered
+    if not np.any(bad):
+        return
+    f = force[bad].flat[0]
+    T_max = branch.tension[0]
+    T_min = 0.0 if branch.ends_at_zero else branch.tension[-1]
+    head = f"no plectoneme equilibrium at force {f * 1e12:.6g} pN: "
+    if f <= 0.0:
+        raise NoEquilibriumError(head + "the tension must be positive")
+    if f <= T_min:
+        raise NoEquilibriumError(
+            head + f"below {T_min * 1e12:.6g} pN the plectoneme radius leaves the tabulated "
+            f"range (R > {branch.radius[-1] * 1e9:.6g} nm)")
+    if contact is not None:  # pragma: no cover - the contact branch reaches T -> inf
+        raise NoEquilibriumError(head + "outside the free and the contact branch")
+    if branch.fold:
+        raise NoEquilibriumError(
+            head + f"above {T_max * 1e12:.6g} pN (the largest tension of the stable branch, "
+            f"at R = {branch.radius[0] * 1e9:.6g} nm) the repulsion cannot hold the strands "
+            "apart; they would be pressed together onto the hard core (no contact state "
+            "allowed)")
+    raise NoEquilibriumError(
+        head + f"above {T_max * 1e12:.6g} pN the superhelix radius would fall below the "
+        f"hard-core radius {branch.radius[0] * 1e9:.6g} nm (the strands would pass through "
+        "each other; no contact state allowed)")
+
+
+def _solve_free(flat, B, partials, branch, xatol):
+    T_t = branch.tension
+    k = np.clip(np.searchsorted(-T_t, -flat, side="left") - 1, 0, T_t.size - 2)
+    u_lo = np.log(branch.radius[k])
+    u_hi = np.log(branch.radius[k + 1])
+
+    def g(u, target):
+        R = np.exp(u)
+        a = solve_tilt(R, B, partials)
+        return tension(a, R, B, partials) - target
+
+    res = find_root(g, (u_lo, u_hi), args=(flat,), tolerances=dict(xatol=xatol, xrtol=0.0),
+                    maxiter=200)
+    if not np.all(res.success):  # pragma: no cover - bracketed, cannot fail
+        raise NoEquilibriumError("plectoneme equilibrium: root finding did not converge")
+    R = np.exp(res.x)
+    alpha = solve_tilt(R, B, partials)
+    return alpha, R, torque(alpha, R, B, partials)
+
+
+def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14):
+    """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
+
+    Each force is solved on the free branch (if it lies in its range) and on the contact
+    branch R = a (:mod:`supercoil.core.dna.contact`, if given and the force lies in its
+    range); where both exist the state of lower torque is the equilibrium (module
+    docstring of :mod:`supercoil.core.dna.contact`).
+
+    Parameters
+    ----------
+    force : array
+        Tensions T (N), positive, finite.
+    B : float
+        Bending rigidity (N m^2).
+    partials : callable
+        ``partials(alpha, R) -> (w, w_alpha, w_R)`` (J/m, J/m, J/m^2), elementwise.
+    branch : Branch
+        From :func:`branch_table` for the same B and interaction.
+    contact : ContactBranch or None
+        From :func:`supercoil.core.dna.contact.contact_table`; None: no contact states
+        (forces beyond the free branch raise).
+    xatol : float
+        Absolute tolerance on log R.
+
+    Raises
+    ------
+    NoEquilibriumError
+        Naming the force (module docstring).
+    """
+    from supercoil.core.dna import contact as _ct
+
+    force = np.asarray(force, dtype=float)
+    if not np.all(np.isfinite(force)):
+        raise ValueError(f"force must be finite, got {force!r}")
+    flat = force.ravel()
+    T_min = 0.0 if branch.ends_at_zero else branch.tension[-1]
+    free = (flat > T_min) & (flat <= branch.tension[0])
+    touch = np.zeros(flat.shape, bool) if contact is None else (
+        (flat >= contact.tension[0]) & (flat <= contact.tension[-1]))
+    _no_state(flat, free | touch, branch, contact)
+    alpha = np.empty(flat.shape)
+    R = np.empty(flat.shape)
+    M = np.full(flat.shape, np.inf)
+    if np.any(free):
+        alpha[free], R[free], M[free] = _solve_free(flat[free], B, partials, branch, xatol)
+    if np.any(touch):
+        a_c, M_c = _ct.solve_contact(flat[touch], B, partials, contact)
+        better = M_c < M[touch]  # the lower torque is the equilibrium
+        idx = np.flatnonzero(touch)[better]
+        alpha[idx], R[idx], M[idx] = a_c[better], contact.radius, M_c[better]
+    return alpha.reshape(force.shape), R.reshape(force.shape), M.reshape(force.shape)
+
+
+def equilibrium_residuals(force, alpha, R, omega, B, C, partials):
+    """Relative residuals ``(GE1, GE2, tension)`` from the un-reduced equations of
+    docs/theory/plectoneme.md (geometry partials written out here, not the solver's ``h``)."""
+    s, c = np.sin(alpha), np.cos(alpha)
+    kappa, tau = s * s / R, s * c / R
+    k_a, k_r = np.sin(2 * alpha) / R, -s * s / R**2
+    t_a, t_r = np.cos(2 * alpha) / R, -np.sin(2 * alpha) / (2 * R**2)
+    w, w_a, w_r = partials(alpha, R)
+    X = B * kappa * k_a + w_a
+    Y = B * kappa * k_r + w_r
+    ge1 = (C * omega * t_a - X) / (np.abs(C * omega * t_a) + np.abs(B * kappa * k_a)
+                                   + np.abs(w_a))
+    ge2 = (t_r * X - t_a * Y) / (np.abs(t_r * X) + np.abs(t_a * B * kappa * k_r)
+                                 + np.abs(t_a * w_r))
+    terms = (0.5 * B * kappa**2, C * omega * tau, w, force)
+    ten = (-terms[0] + terms[1] - terms[2] - force) / sum(np.abs(x) for x in terms)
+    return ge1, ge2, ten

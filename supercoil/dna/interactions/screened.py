@@ -1,0 +1,223 @@
+"""The screened electrostatic interaction of the two strands of a DNA plectoneme.
+
+``interaction="screened"``: Debye-Hueckel repulsion of the two helical strands, each a
+line of Stigter's effective charge, plus (by default) the paper's entropic confinement
+term, with a hard-core radius below which the strands cannot come. Derivations and the
+literature comparison: docs/theory/screened-interaction.md. Float kernels:
+:mod:`supercoil.core.dna.electrostatics`, :mod:`supercoil.core.dna.screened`,
+:mod:`supercoil.core.dna.equilibrium`.
+
+Per unit DNA length (docs/theory/screened-interaction.md#3, #4)::
+
+    w = w_el + c_conf w_conf,
+    w_el   = (nu^2 kT l_B / (2 cos alpha)) int exp(-d/lambda_D)/d dz,
+    w_conf = kT A^(-1/3) [R^(-2/3) + (pi R cot alpha)^(-2/3)],
+
+with ``nu`` Stigter's effective line charge of a cylinder of radius
+``hard_core_radius`` carrying ``charge_fraction`` times the bare B-DNA charge
+(2 e / 0.34 nm), ``lambda_D`` and ``l_B`` from the DNA's salt and temperature.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import ClassVar
+
+import numpy as np
+
+from supercoil.core.dna import contact as _ct
+from supercoil.core.dna import electrostatics as _el
+from supercoil.core.dna import equilibrium as _eq
+from supercoil.core.dna import screened as _sc
+from supercoil.core.dna.plectoneme import PlectonemeState
+from supercoil.dna.interactions.base import Interaction
+from supercoil.dna.parameters import ModelParameter
+from supercoil.exceptions import ParameterError
+from supercoil.units import U, quantity
+
+__all__ = ["Screened"]
+
+#: outer end of the tabulated branch, in hard-core radii (1 um for a = 1 nm)
+_R_MAX_FACTOR = 1000.0
+
+
+def _si(dna):
+    si = getattr(dna, "si", dna)
+    if getattr(si, "salt", None) is None:
+        raise ParameterError(
+            "the screened interaction needs the salt concentration: the DNA has "
+            "salt=None; give it one, e.g. DNA(..., salt=150 * ureg.mM), or set 'salt' "
+            "in the parameter file")
+    return si
+
+
+@lru_cache(maxsize=128)
+def _screening(salt, temperature, kT, radius, fraction):
+    lB = float(_el.bjerrum_length(temperature))
+    lam = float(_el.debye_length(salt, temperature))
+    nu = _el.effective_line_charge(salt, temperature, radius, fraction * _el.BARE_LINE_CHARGE)
+    return lam, lB, nu, nu * nu * kT * lB
+
+
+def _partials_function(B, kT, lam, prefactor, conf):
+    def partials(alpha, R):
+        w, w_a, w_R = _sc.electrostatic_partials(alpha, R, lam, prefactor)
+        if conf:
+            c, c_a, c_R = _sc.confinement_partials(alpha, R, B, kT)
+            w, w_a, w_R = w + conf * c, w_a + conf * c_a, w_R + conf * c_R
+        return w, w_a, w_R
+
+    return partials
+
+
+@lru_cache(maxsize=64)
+def _branch(B, kT, lam, prefactor, conf, radius):
+    partials = _partials_function(B, kT, lam, prefactor, conf)
+    return _eq.branch_table(B, partials, radius, _R_MAX_FACTOR * radius)
+
+
+@lru_cache(maxsize=64)
+def _contact(B, kT, lam, prefactor, conf, radius):
+    partials = _partials_function(B, kT, lam, prefactor, conf)
+    return _ct.contact_table(B, partials, radius)
+
+
+class Screened(Interaction):
+    """Screened (Debye-Hueckel) strand repulsion with Stigter's effective charge.
+
+    Parameters (keywords; pint quantities or SI floats)
+    ----------------------------------------------------
+    charge_fraction : float, default 1
+        Fraction of the bare B-DNA charge put on Stigter's cylinder before the
+        Poisson-Boltzmann far-field matching, in (0, 1.5]; Maffeo et al., PRL 105,
+        158101 (2010) report 0.4 from fits of supercoiling in monovalent salt.
+    hard_core_radius : Quantity [length], default 1.0 nm
+        Geometric radius a of B-DNA: the strands cannot come closer than 2a (axis to
+        axis), and a is the radius of Stigter's charged cylinder.
+    confinement : float, default 1
+        Coefficient of the paper's entropic confinement term: 1 as in the paper and
+        Marko & Siggia (1995), 0 for none (Clauvelin, Audoly & Neukirch 2009).
+    hard_contact : float, default 1
+        1: where the repulsion cannot hold the strands apart they touch at R = a (hard
+        contact, the counterpart of the paper's condition (HC) for the rod), and at each
+        force the state of lower torque (free or in contact) is the equilibrium; 0: no
+        contact states, such forces raise :class:`NoEquilibriumError`.
+
+    Notes
+    -----
+    Needs the DNA's ``salt``; raises :class:`~supercoil.exceptions.ParameterError`
+    naming ``salt`` if it is ``None``.
+    """
+
+    name: ClassVar[str] = "screened"
+    summary: ClassVar[str] = ("Debye-Hueckel repulsion of the two helical strands with "
+                              "Stigter's effective charge, entropic confinement, hard core")
+    parameters: ClassVar[dict[str, ModelParameter]] = {
+        "charge_fraction": ModelParameter(
+            "charge_fraction", "", 1.0, 0.0, 1.5,
+            "fraction of the bare charge 2e/0.34 nm on Stigter's PB cylinder",
+            "Maffeo et al., Phys. Rev. Lett. 105, 158101 (2010): 0.4 from supercoiling fits"),
+        "hard_core_radius": ModelParameter(
+            "hard_core_radius", "nm", 1.0e-9, 0.5e-9, 1.5e-9,
+            "geometric radius of B-DNA (closest axis distance 2a; PB cylinder radius)",
+            "B-DNA diameter about 2 nm; Stigter, Biopolymers 16, 1435 (1977) uses a = 1 nm"),
+        "confinement": ModelParameter(
+            "confinement", "", 1.0, 0.0, 1.0,
+            "coefficient of the entropic confinement term (1 paper, 0 none)",
+            "Marko & Siggia, Phys. Rev. E 52, 2912 (1995); 0 as in Clauvelin et al., "
+            "Biophys. J. 96, 3716 (2009)"),
+        "hard_contact": ModelParameter(
+            "hard_contact", "", 1.0, 0.0, 1.0,
+            "1: strands may touch at R = a (contact states); 0: no contact states",
+            "hard contact of the paper's rods, condition (HC) (Li, Zhao et al.)"),
+    }
+
+    def __init__(self, **values):
+        super().__init__(**values)  # bounds checked there (ValueError naming the parameter)
+        if self.values["hard_contact"] not in (0.0, 1.0):
+            raise ParameterError("screened.hard_contact must be 0 or 1, got "
+                                 f"{self.values['hard_contact']:g}")
+        if self.values["charge_fraction"] <= 0.0:
+            raise ParameterError("screened.charge_fraction must be positive (bounds (0, 1.5]), "
+                                 f"got {self.values['charge_fraction']:g}")
+
+    # ---- float level (SI) -------------------------------------------------
+    def check(self, dna):
+        """Raise :class:`ParameterError` naming ``salt`` if the DNA has none."""
+        _si(dna)
+
+    def screening(self, dna):
+        """``(lambda_D [m], l_B [m], nu [1/m], nu^2 kT l_B [J/m])`` for the DNA's buffer."""
+        si = _si(dna)
+        return _screening(si.salt, si.temperature, si.kT, self.values["hard_core_radius"],
+                          self.values["charge_fraction"])
+
+    def _functions(self, dna):
+        si = _si(dna)
+        lam, _, _, pref = self.screening(si)
+        return si, lam, pref
+
+    def energy(self, alpha, radius, dna):
+        """``w(alpha, R)`` per unit DNA (= strand) length (J/m)."""
+        return self.partials(alpha, radius, dna)[0]
+
+    def partials(self, alpha, radius, dna):
+        """``(w, w_alpha, w_R)`` in (J/m, J/m, J/m^2); analytic under the quadrature."""
+        si, lam, pref = self._functions(dna)
+        f = _partials_function(si.bending_rigidity, si.kT, lam, pref,
+                               self.values["confinement"])
+        return f(np.asarray(alpha, float), np.asarray(radius, float))
+
+    def branch(self, dna):
+        """The tabulated stable branch (:class:`supercoil.core.dna.equilibrium.Branch`)."""
+        si, lam, pref = self._functions(dna)
+        return _branch(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
+                       self.values["hard_core_radius"])
+
+    def contact_branch(self, dna):
+        """The tabulated contact branch at R = a (:mod:`supercoil.core.dna.contact`) or None."""
+        if not self.values["hard_contact"]:
+            return None
+        si, lam, pref = self._functions(dna)
+        return _contact(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
+                        self.values["hard_core_radius"])
+
+    def equilibrium(self, tension, dna):
+        """Uniform plectoneme at each tension T (N): (GE1), (GE2) and the tension
+        equation with this ``w`` (:mod:`supercoil.core.dna.equilibrium`).
+
+        With ``hard_contact=1`` (default) a force may also be held by the contact state
+        R = a (:mod:`supercoil.core.dna.contact`); the state of lower torque wins.
+
+        Raises
+        ------
+        NoEquilibriumError
+            Naming the force: not positive, below the branch (no confinement: R beyond
+            1000 a), or, with ``hard_contact=0``, above the free branch's largest tension
+            (the strands would be pressed onto the hard core or pass through each other).
+        ParameterError
+            If the DNA has no salt.
+        """
+        si, lam, pref = self._functions(dna)
+        B, C = si.bending_rigidity, si.torsional_rigidity
+        partials = _partials_function(B, si.kT, lam, pref, self.values["confinement"])
+        force = np.asarray(tension, dtype=float)
+        alpha, R, M = _eq.solve_equilibrium(force, B, partials, self.branch(si),
+                                            self.contact_branch(si))
+        s, c = np.sin(alpha), np.cos(alpha)
+        kappa, tau = s * s / R, s * c / R
+        omega = M / C
+        w = partials(alpha, R)[0]
+        return PlectonemeState(
+            force=force, alpha=alpha, radius=R, pitch=2.0 * np.pi * R / np.tan(alpha),
+            omega=omega, torque=M, curvature=kappa, torsion=tau,
+            bending_energy=0.5 * B * kappa * kappa, twist_energy=0.5 * C * omega * omega,
+            interaction_energy=w)
+
+    # ---- unit level -------------------------------------------------------
+    def lengths(self, dna):
+        """Debye length, Bjerrum length (nm) and effective line charge (1/nm) as quantities."""
+        lam, lB, nu, _ = self.screening(dna)
+        return {"debye_length": quantity(lam * 1e9, U.nm),
+                "bjerrum_length": quantity(lB * 1e9, U.nm),
+                "effective_line_charge": quantity(nu * 1e-9, U.per_nm)}

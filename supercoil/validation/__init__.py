@@ -1,0 +1,183 @@
+"""Validation of the DNA models against published measurements (docs/theory/validation.md).
+
+:func:`load_published` reads the shipped table of published values
+(``published.csv``: one row per number read in a source, with the citation
+and whether it was read from a table, the text or digitised from a figure);
+:func:`validate` evaluates each model with the parameters of a bundled
+parameter set (never tuned per point) at the conditions of every row (force,
+salt, contour length where the row states them) and returns prediction and
+relative error per row; :func:`plot_validation` draws them.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+
+import numpy as np
+
+__all__ = ["DEFAULT_CONFIGS", "load_published", "plot_validation", "validate"]
+
+#: (model, parameter set, interaction): the paper's construction on the seed set,
+#: and the consistent and the Marko 2007 model on the 150 mM set
+DEFAULT_CONFIGS = (
+    ("li-zhao", "dna", "hard-core"),
+    ("free-energy", "dna_150mM_nacl", "screened"),
+    ("marko2007", "dna_150mM_nacl", None),
+)
+#: where a row gives no force (or zero force, where the models hold no plectoneme),
+#: the models are evaluated at this force (pN); the note of the row says so
+FALLBACK_FORCE_PN = {"plectoneme_radius": 0.2, "extension_jump_ratio": 2.0}
+_FRACTION_OF_BUCKLING = 0.3  # C_eff from the stretched-phase torque at 0.3 N_b
+
+
+def load_published():
+    """The published measurements: a DataFrame, ``attrs["units"]``, each row's unit in ``unit``."""
+    from supercoil.tables import read_csv
+
+    path = resources.files("supercoil.validation") / "published.csv"
+    with resources.as_file(path) as p:
+        df = read_csv(p)
+    for c in ("unit", "source", "location", "read_from", "notes"):
+        df[c] = df[c].fillna("").astype(str)
+    df.attrs.setdefault("provenance", {})["source_file"] = "supercoil/validation/published.csv"
+    return df
+
+
+def _molecule(set_name, row):
+    import supercoil as sc
+
+    dna = sc.load_parameters(set_name)
+    changes = {}
+    if np.isfinite(row["dna_length"]):
+        changes["length"] = row["dna_length"] * sc.ureg.um
+    if np.isfinite(row["salt"]) and dna.salt is not None:
+        changes["salt"] = row["salt"] * sc.ureg.mM
+    return dna.replace(**changes) if changes else dna
+
+
+def _predict(quantity, force_pn, dna, model, interaction, unit):
+    """One model prediction (magnitude in ``unit``) and a note, or (nan, reason)."""
+    from supercoil.dna.hat import resolve
+    from supercoil.units import ureg
+
+    si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, model,
+                                 interaction or "hard-core")
+    kT = si.kT
+    if quantity == "plectoneme_radius":
+        if not m.uses_interaction:
+            return np.nan, "the model has no plectoneme geometry"
+        return float(inter.equilibrium(f, si).radius[0]) * 1e9, ""
+    b = m.buckling(f, si, True, inter)
+    if quantity == "buckling_torque":
+        return float(b.torque[0]) * 1e21, ""
+    if quantity == "buckling_turns":
+        return float(b.turns[0]), ""
+    if quantity == "post_buckling_slope":
+        return abs(float(b.slope[0])) * 1e9, "magnitude of dz/dN"
+    if quantity == "effective_twist_persistence":
+        n = np.array([_FRACTION_OF_BUCKLING * float(b.turns[0])])
+        p = m.points(n, f, si, True, inter, None)
+        c_eff = float(p.torque[0]) * si.length / (2 * np.pi * n[0])  # N m^2
+        value = c_eff * 1e30 if unit == "pN nm^2" else c_eff / kT * 1e9
+        return value, f"stretched-phase torque at {_FRACTION_OF_BUCKLING:g} N_b"
+    if quantity == "extension_jump_ratio":
+        if "end_loop" not in getattr(m, "__dict__", {}):
+            return np.nan, "the model has no end loop"
+        m = m.replace(end_loop=True)
+        b = m.buckling(f, si, True, inter)
+        nb, eps = float(b.turns[0]), 1e-6
+        p = m.points(np.array([nb - eps, nb + eps]), np.repeat(f, 2), si, True, inter, None)
+        jump = float(p.extension[0] - p.extension[1])
+        return jump / abs(float(b.slope[0])), "end loop on"
+    return np.nan, f"no prediction for {quantity}"
+
+
+def validate(configs=DEFAULT_CONFIGS, published=None):
+    """Each model's prediction of every published row, with the relative error.
+
+    Parameters
+    ----------
+    configs : sequence of (model, parameter set, interaction)
+        Default :data:`DEFAULT_CONFIGS`.
+    published : DataFrame, optional
+        Default :func:`load_published`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (published row, config): ``quantity``, ``force`` [pN],
+        ``salt`` [mM], ``measured``, ``uncertainty``, ``unit``, ``model``,
+        ``parameter_set``, ``interaction``, ``predicted``, ``relative_error``
+        (``predicted / measured - 1``), ``source``, ``read_from``, ``note``.
+        Rows the model cannot predict have NaN and say why in ``note``.
+    """
+    import warnings
+
+    from supercoil.exceptions import SupercoilError, SupercoilWarning
+    from supercoil.tables import make_table, provenance
+
+    pub = load_published() if published is None else published
+    cols = {k: [] for k in ("quantity", "force", "salt", "measured", "uncertainty", "unit",
+                            "model", "parameter_set", "interaction", "predicted",
+                            "relative_error", "source", "read_from", "note")}
+    for _, row in pub.iterrows():
+        q = row["quantity"]
+        force = row["force"]
+        note0 = ""
+        if not (np.isfinite(force) and force > 0):
+            force = FALLBACK_FORCE_PN.get(q, np.nan)
+            note0 = (f"measured at {'zero force' if row['force'] == 0 else 'an unstated force'};"
+                     f" evaluated at {force:g} pN; ")
+        for model, set_name, interaction in configs:
+            dna = _molecule(set_name, row)
+            try:
+                with warnings.catch_warnings(record=True) as rec:
+                    warnings.simplefilter("always", SupercoilWarning)
+                    pred, note = _predict(q, force, dna, model, interaction, row["unit"])
+                if rec:
+                    note += "; warned: " + str(rec[0].message)[:120]
+            except SupercoilError as exc:
+                pred, note = np.nan, f"{type(exc).__name__}: {exc}"[:200]
+            measured = float(row["value"])
+            for k, v in (("quantity", q), ("force", force), ("salt", row["salt"]),
+                         ("measured", measured), ("uncertainty", row["uncertainty"]),
+                         ("unit", row["unit"]), ("model", model), ("parameter_set", set_name),
+                         ("interaction", interaction or ""), ("predicted", pred),
+                         ("relative_error", pred / measured - 1.0),
+                         ("source", row["source"]), ("read_from", row["read_from"]),
+                         ("note", (note0 + note).strip("; "))):
+                cols[k].append(v)
+    units = {k: "" for k in cols} | {"force": "pN", "salt": "mM"}
+    return make_table(cols, units, provenance(None, scene="validation against published "
+                                              "measurements", configs=[list(map(str, c))
+                                                                       for c in configs]))
+
+
+def plot_validation(table, path=None):
+    """One panel per quantity: measured values (with errors) and each model's prediction."""
+    import matplotlib.pyplot as plt
+
+    quantities = list(dict.fromkeys(table["quantity"]))
+    fig, axes = plt.subplots(1, len(quantities), figsize=(4.2 * len(quantities), 3.8),
+                             constrained_layout=True, squeeze=False)
+    markers = dict(zip(dict.fromkeys(table["model"]), "osd^v", strict=False))
+    for ax, q in zip(axes[0], quantities, strict=True):
+        t = table[table["quantity"] == q]
+        meas = t.drop_duplicates(["source", "force", "salt", "measured"])
+        ax.errorbar(np.arange(len(meas)), meas["measured"], yerr=meas["uncertainty"].fillna(0),
+                    fmt="k_", ms=14, capsize=3, label="measured")
+        for j, (model, g) in enumerate(t.groupby("model", sort=False)):
+            ax.plot(np.arange(len(g)) + 0.1 * (j + 1), g["predicted"], markers[model],
+                    label=model)
+        labels = [f"{f:g} pN" + (f", {s:g} mM" if np.isfinite(s) else "")
+                  for f, s in zip(meas["force"], meas["salt"], strict=True)]
+        ax.set_xticks(np.arange(len(meas)), labels, rotation=30, fontsize=7)
+        ax.set_title(q.replace("_", " "), fontsize=9)
+        ax.set_ylabel(meas["unit"].iloc[0] or "ratio")
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle("DNA models against published measurements (parameters from the bundled "
+                 "sets, not fitted)", fontsize=10)
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig

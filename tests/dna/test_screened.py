@@ -1,0 +1,418 @@
+"""Screened interaction and the generic uniform-plectoneme solver (issue 12).
+
+Independent references: K0 (parallel rods), a direct double integral over both strands
+(scipy cubature on 3-D strand positions), finite differences, the paper's Marko-Siggia
+solver (hard-core w plugged into the generic solver), the un-reduced (GE1), (GE2) and
+tension equations, a fixed-torque minimisation (second method), trends, unit
+invariance, named errors, and the published numbers listed with their citations.
+"""
+
+import pickle
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import cubature
+from scipy.optimize import minimize
+from scipy.special import k0
+
+import supercoil as sc
+from supercoil.core.dna import contact as ct
+from supercoil.core.dna import equilibrium as eq
+from supercoil.core.dna import marko_siggia as ms
+from supercoil.core.dna import moroz_nelson as mn
+from supercoil.core.dna import plectoneme as pl
+from supercoil.core.dna import screened as scr
+from supercoil.dna.interactions import Screened, get_interaction
+from supercoil.exceptions import NoEquilibriumError, ParameterError
+from supercoil.units import BOLTZMANN
+
+KT = BOLTZMANN * 298.15
+B50 = 50e-9 * KT
+FORCES = np.array([0.5, 1.0, 2.0, 4.0]) * 1e-12
+SALTS = [10.0, 50.0, 150.0, 500.0, 1000.0]
+
+
+@pytest.fixture(scope="module")
+def dna150():
+    return sc.load_parameters("dna_150mM_nacl")
+
+
+def _at_salt(dna, c, ureg=sc.ureg):
+    return dna.replace(salt=c * ureg.mM)
+
+
+# ---- the interaction -------------------------------------------------------
+
+
+@pytest.mark.parametrize("R", [1.0e-9, 2.5e-9, 8e-9])
+@pytest.mark.parametrize("lam", [0.304e-9, 0.96e-9, 3.04e-9])
+def test_parallel_rod_limit_k0(R, lam):
+    # alpha -> 0: two parallel line charges 2R apart, w = nu^2 kT l_B K0(2R/lambda)
+    w = scr.electrostatic(1e-5, R, lam, 1.0)
+    assert w == pytest.approx(k0(2 * R / lam), rel=1e-9)
+    assert scr.parallel_rods(R, lam, 1.0) == pytest.approx(k0(2 * R / lam), rel=1e-15)
+
+
+def test_small_tilt_helical_factor_is_one_plus_alpha_squared():
+    # saddle point at z = 0 for R >> lambda: g = w / (K0 limit) = 1 + alpha^2 + O(alpha^4)
+    R, lam = 30e-9, 0.304e-9
+    for a in (0.03, 0.06):
+        g = scr.electrostatic(a, R, lam, 1.0) / k0(2 * R / lam)
+        assert (g - 1) / a**2 == pytest.approx(1.0, rel=0.03)
+    # the helix always repels more than the straight pair (closer pitch neighbours)
+    a = np.radians([5, 15, 25, 35, 44])
+    g = scr.electrostatic(a, 2.5e-9, 0.78e-9, 1.0) / k0(2 * 2.5e-9 / 0.78e-9)
+    assert np.all(np.diff(g) > 0) and g[0] > 1
+
+
+def _direct_double_integral(alpha, R, lam):
+    """w from 3-D strand positions: one turn of strand 1 against all of strand 2."""
+    p = R / np.tan(alpha)
+    ds = R / np.sin(alpha)
+    phi_max = (2 * R + 45 * lam) / p
+
+    def f(x):
+        t1, t2 = x[:, 0], x[:, 0] + x[:, 1]
+        d = np.sqrt((R * np.cos(t1) + R * np.cos(t2)) ** 2
+                    + (R * np.sin(t1) + R * np.sin(t2)) ** 2 + (p * (t1 - t2)) ** 2)
+        return np.exp(-d / lam) / d * ds * ds
+
+    res = cubature(f, [0.0, -phi_max], [2 * np.pi, phi_max], rtol=1e-10, atol=0.0)
+    assert res.status == "converged"
+    return res.estimate / (2 * 2 * np.pi * ds)  # per DNA length: both strands of one turn
+
+
+@pytest.mark.parametrize(("alpha_deg", "R", "lam"),
+                         [(15, 2.5e-9, 0.78e-9), (30, 2.0e-9, 0.78e-9), (40, 5e-9, 3.04e-9)])
+def test_helical_interaction_against_direct_double_integral(alpha_deg, R, lam):
+    a = np.radians(alpha_deg)
+    assert scr.electrostatic(a, R, lam, 1.0) == pytest.approx(
+        _direct_double_integral(a, R, lam), rel=1e-8)
+
+
+@given(st.floats(3.0, 44.0), st.floats(1.1e-9, 10e-9), st.floats(0.3e-9, 3.1e-9))
+def test_partials_against_finite_differences(alpha_deg, R, lam):
+    a = np.radians(alpha_deg)
+    w, w_a, w_R = scr.electrostatic_partials(a, R, lam, 1.0)
+    assert w == pytest.approx(scr.electrostatic(a, R, lam, 1.0), rel=1e-14)
+    ha, hR = 1e-6 * a, 1e-6 * R
+    e = scr.electrostatic
+    fd_a = (e(a + ha, R, lam, 1.0) - e(a - ha, R, lam, 1.0)) / (2 * ha)
+    fd_R = (e(a, R + hR, lam, 1.0) - e(a, R - hR, lam, 1.0)) / (2 * hR)
+    assert w_a == pytest.approx(fd_a, rel=1e-6, abs=1e-9 * abs(w) / a)
+    assert w_R == pytest.approx(fd_R, rel=1e-6)
+    _, c_a, c_R = scr.confinement_partials(a, R, B50, KT)
+    fd_ca = (scr.confinement(a + ha, R, B50, KT) - scr.confinement(a - ha, R, B50, KT)) / (2 * ha)
+    fd_cR = (scr.confinement(a, R + hR, B50, KT) - scr.confinement(a, R - hR, B50, KT)) / (2 * hR)
+    assert c_a == pytest.approx(fd_ca, rel=1e-6)
+    assert c_R == pytest.approx(fd_cR, rel=1e-6)
+
+
+def test_confinement_is_the_papers_entropic_term():
+    # the paper's w (Li, Zhao et al., Example III):
+    # w_MS = hard core + B^(-1/3) [1 + x^(-2/3)] kT^(4/3) / R^(2/3)
+    a = np.radians(np.linspace(5, 44, 9))
+    R, r0 = 2.3e-9, 1.75e-9
+    x = np.pi / np.tan(a)
+    hard = (1 + x**-12.0) * KT / r0 * (R / r0) ** -12
+    assert scr.confinement(a, R, B50, KT) == pytest.approx(
+        ms.interaction(a, R, B50, KT, r0) - hard, rel=1e-12)
+
+
+def test_closest_approach_is_2R_up_to_45_degrees():
+    a = np.radians([5.0, 30.0, 45.0])
+    assert scr.closest_approach(a, 2e-9) == pytest.approx(4e-9, rel=1e-12)
+    assert scr.closest_approach(np.radians(70.0), 2e-9) < 4e-9  # pitch neighbours closer
+
+
+# ---- the generic solver ----------------------------------------------------
+
+
+def test_generic_solver_reproduces_the_papers_hard_core_solver():
+    kT = BOLTZMANN * 300.0
+    B, C, r0 = 48e-9 * kT, 86e-9 * kT, 1.75e-9
+
+    def partials(a, R):
+        return (ms.interaction(a, R, B, kT, r0), *ms.interaction_partials(a, R, B, kT, r0))
+
+    branch = eq.branch_table(B, partials, 0.5 * r0, 1e4 * r0, points=400)
+    F = np.geomspace(0.1e-12, 20e-12, 9)
+    alpha, R, M = eq.solve_equilibrium(F, B, partials, branch)
+    ref = pl.equilibrium(F, B, C, kT, r0, rtol=1e-13)
+    assert alpha == pytest.approx(ref.alpha, rel=1e-10)
+    assert R == pytest.approx(ref.radius, rel=1e-10)
+    assert M == pytest.approx(ref.torque, rel=1e-10)
+
+
+@pytest.mark.parametrize("c", SALTS)
+def test_screened_state_solves_ge1_ge2_and_tension(dna150, c):
+    dna = _at_salt(dna150, c)
+    inter = Screened(hard_contact=0)  # free branch only: (GE2) holds everywhere
+    F = np.geomspace(0.2e-12, 5e-12, 7)
+    s = inter.equilibrium(F, dna.si)
+    part = lambda a, R: inter.partials(a, R, dna.si)  # noqa: E731
+    si = dna.si
+    for res in eq.equilibrium_residuals(F, s.alpha, s.radius, s.omega, si.bending_rigidity,
+                                        si.torsional_rigidity, part):
+        assert np.max(np.abs(res)) < 1e-10
+    assert np.all(s.radius > 1e-9) and np.all(s.alpha < np.pi / 4)
+
+
+@settings(max_examples=6)
+@given(st.floats(5.0, 2000.0), st.floats(0.002, 0.998), st.booleans())
+def test_every_force_on_the_branch_solves_the_equations(dna150, salt, frac, conf):
+    si = _at_salt(dna150, salt).si
+    inter = Screened(confinement=float(conf), hard_contact=0)
+    br = inter.branch(si)
+    lo = 0.0 if br.ends_at_zero else br.tension[-1]
+    F = np.array([lo + frac * (br.tension[0] - lo)])
+    s = inter.equilibrium(F, si)
+    part = lambda a, R: inter.partials(a, R, si)  # noqa: E731
+    res = eq.equilibrium_residuals(F, s.alpha, s.radius, s.omega, si.bending_rigidity,
+                                   si.torsional_rigidity, part)
+    assert max(np.max(np.abs(r)) for r in res) < 1e-10
+    assert s.radius[0] >= br.radius[0] * (1 - 1e-12) and 0 < s.alpha[0] < np.pi / 4
+
+
+def test_state_is_the_minimum_of_f_at_its_torque(dna150):
+    # second method: minimise f = B kappa^2/2 + w - M tau over (alpha, R); T = -f_min
+    si = dna150.si
+    inter = Screened()
+    s = inter.equilibrium(np.array([1e-12]), si)
+    M, B = s.torque[0], si.bending_rigidity
+
+    def f(x):
+        a, R = x[0], x[1] * 1e-9
+        kap, tau = np.sin(a) ** 2 / R, np.sin(a) * np.cos(a) / R
+        return (0.5 * B * kap**2 + inter.energy(a, R, si) - M * tau) * 1e12
+
+    x0 = [s.alpha[0] * 1.05, s.radius[0] * 1e9 * 0.95]
+    res = minimize(f, x0, method="Nelder-Mead", options=dict(xatol=1e-11, fatol=1e-16,
+                                                             maxiter=4000))
+    assert res.x[0] == pytest.approx(s.alpha[0], rel=1e-6)
+    assert res.x[1] * 1e-9 == pytest.approx(s.radius[0], rel=1e-6)
+    assert -res.fun * 1e-12 == pytest.approx(1e-12, rel=1e-9)
+
+
+# ---- trends and the li-zhao construction ------------------------------------
+
+
+def _li_zhao(si, s, F):
+    """Buckling turns and post-buckling slope of the paper's thermal construction."""
+    B, C, kT, L = si.bending_rigidity, si.torsional_rigidity, si.kT, si.length
+    ratio = mn.twist_rigidity_ratio(F, B, C, kT)
+    D = s.torsion - (ratio - 1) * s.omega
+    Nb = s.torque * ratio * L / (2 * np.pi * C)
+    return Nb, -2 * np.pi * mn.long_tail_factor(F, s.torque, B, kT) / D, -2 * np.pi / s.torsion
+
+
+def test_public_li_zhao_buckling_and_slope_use_the_screened_state(dna150, ureg):
+    # the li-zhao model receives the interaction and calls interaction.equilibrium(T, dna)
+    si = dna150.si
+    s = Screened().equilibrium(FORCES, si)
+    Nb, slope, slope0 = _li_zhao(si, s, FORCES)
+    F = FORCES * 1e12 * ureg.pN
+    assert sc.buckling_turns(dna150, F, interaction="screened").m_as("turn") == \
+        pytest.approx(Nb, rel=1e-12)
+    assert sc.post_buckling_slope(dna150, F, interaction="screened").m_as("m/turn") == \
+        pytest.approx(slope, rel=1e-12)
+    assert sc.post_buckling_slope(dna150, F, interaction="screened", thermal=False).m_as(
+        "m/turn") == pytest.approx(slope0, rel=1e-12)
+    eq_pub = sc.plectoneme_equilibrium(dna150, F, interaction=Screened())
+    assert eq_pub.radius.m_as("m") == pytest.approx(s.radius, rel=1e-14)
+
+
+def test_radius_torque_turns_slope_fall_with_salt_and_radius_with_force(dna150):
+    rows = []
+    for c in SALTS:
+        si = _at_salt(dna150, c).si
+        s = Screened().equilibrium(FORCES, si)
+        Nb, slope, slope0 = _li_zhao(si, s, FORCES)
+        rows.append((s.radius, s.torque, Nb, -slope, -slope0))
+        assert np.all(np.diff(s.radius) < 0)  # R decreases as the force rises
+    for k in range(4):  # R, torque, N_b, athermal |slope| all fall as salt rises
+        q = np.array([r[k if k < 3 else 4] for r in rows])
+        assert np.all(np.diff(q, axis=0) < 0), k
+    # thermal |slope| falls with salt at 0.5-2 pN; at 4 pN and 10 mM the state sits close
+    # to the fold (5.39 pN) and the thermal slope is not monotone there (documented)
+    thermal = np.array([r[3] for r in rows])
+    assert np.all(np.diff(thermal[:, :3], axis=0) < 0)
+    assert np.all(np.diff(thermal[1:, 3]) < 0)
+
+
+def test_hat_curve_and_cli_with_the_screened_interaction(dna150, ureg, tmp_path, capsys):
+    import warnings
+
+    from supercoil.cli import main
+
+    F = [1.0, 2.0] * ureg.pN
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.ValidityWarning)  # denaturation at N < 0
+        df = sc.hat_curve(dna150, F, np.linspace(0, 120, 25), interaction="screened")
+    nb = sc.buckling_turns(dna150, F, interaction="screened").m_as("turn")
+    for (_, g), n_b in zip(df.groupby("force", sort=True), nb, strict=True):
+        post = g[g["turns"] > n_b + 2]
+        assert set(post["phase"]) <= {"plectoneme", "fully coiled"}
+        assert np.all(np.diff(post["extension"]) < 0)  # plectoneme grows, z falls
+    code = main(["hat", "--params", "dna_150mM_nacl", "--interaction", "screened",
+                 "--force", "1pN", "--turns=0:60:5", "--out", str(tmp_path), "--no-plot"])
+    assert code == 0 and "35.54" in capsys.readouterr().out
+    assert main(["hat", "--params", "dna", "--interaction", "screened", "--force", "1pN",
+                 "--out", str(tmp_path), "--no-plot"]) == 2
+    assert "salt" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("c", [10.0, 150.0])
+def test_free_energy_model_with_screened_interaction_obeys_maxwell(dna150, c):
+    # the free-energy construction is Maxwell-consistent for any interaction whose states
+    # obey dT = tau dM; a wrong screened torque or tension would break dz/dN = -2 pi dM/dF
+    from supercoil.dna.models import get_model
+
+    si = _at_salt(dna150, c).si
+    model, inter = get_model("free-energy"), Screened()
+    F = 1e-12
+    nb = model.buckling(np.array([F]), si, True, inter).turns[0]
+    N = np.array([0.5 * nb, nb + 20.0])  # stretched and plectoneme phase
+    hN, hF = 1e-4, 1e-5
+
+    def pts(n, f):
+        return model.points(n, np.full(n.shape, f), si, True, inter, None)
+
+    dz = (pts(N + hN, F).extension - pts(N - hN, F).extension) / (2 * hN)
+    dM = (pts(N, F * (1 + hF)).torque - pts(N, F * (1 - hF)).torque) / (2 * hF * F)
+    assert dz / (-2 * np.pi * dM) == pytest.approx([1.0, 1.0], rel=1e-5)
+    # athermal free-energy is the athermal li-zhao construction exactly
+    lz = get_model("li-zhao").buckling(np.array([F]), si, False, inter)
+    fe0 = model.buckling(np.array([F]), si, False, inter)
+    assert fe0.turns == pytest.approx(lz.turns, rel=1e-10)
+    assert fe0.slope == pytest.approx(lz.slope, rel=1e-10)
+
+
+def test_reduced_charge_fraction_narrows_the_plectoneme(dna150):
+    si = dna150.si
+    full = Screened().equilibrium(FORCES, si)
+    low = Screened(charge_fraction=0.4).equilibrium(FORCES, si)  # Maffeo et al. 2010
+    assert np.all(low.radius < full.radius) and np.all(low.torque < full.torque)
+
+
+def test_without_confinement_clauvelin_variant_solves(dna150):
+    si = dna150.si
+    s = Screened(confinement=0).equilibrium(FORCES, si)
+    part = lambda a, R: Screened(confinement=0).partials(a, R, si)  # noqa: E731
+    res = eq.equilibrium_residuals(FORCES, s.alpha, s.radius, s.omega, si.bending_rigidity,
+                                   si.torsional_rigidity, part)
+    assert max(np.max(np.abs(r)) for r in res) < 1e-10
+    # no entropic term: the plectoneme exists at every small positive force (R grows)
+    low = Screened(confinement=0).equilibrium(np.array([0.01e-12]), si)
+    assert low.radius[0] > s.radius[0]
+
+
+def test_published_zero_force_superhelix_diameter_100mM(dna150):
+    # Hammermann et al., J. Appl. Cryst. 33, 526 (2000), abstract (text): SANS superhelix
+    # diameter 9.0 +/- 0.7 nm at 100 mM Na+ (plasmids, no force). Model: the state at T -> 0+
+    br = Screened().branch(_at_salt(dna150, 100.0).si)
+    assert br.ends_at_zero
+    R0 = np.interp(0.0, br.tension[::-1], br.radius[::-1])
+    assert 2 * R0 * 1e9 == pytest.approx(9.0, abs=2 * 0.7)
+
+
+# ---- units, errors, object behaviour ----------------------------------------
+
+
+def test_unit_invariance(dna150, ureg):
+    si = dna150.si
+    ref = Screened().equilibrium(FORCES, si)
+    for inter in (Screened(hard_core_radius=10 * ureg.angstrom),
+                  Screened(hard_core_radius=1e-9), get_interaction("screened")):
+        assert inter == Screened()
+    other = dna150.replace(salt=0.15 * ureg.molar, temperature=ureg.Quantity(25.0, "degC"),
+                           bending_persistence=0.05 * ureg.um)
+    got = Screened().equilibrium(FORCES, other.si)
+    assert got.radius == pytest.approx(ref.radius, rel=1e-12)
+    assert got.torque == pytest.approx(ref.torque, rel=1e-12)
+
+
+def test_needs_salt(dna):
+    with pytest.raises(ParameterError, match="salt"):
+        Screened().equilibrium(FORCES, dna.si)
+    with pytest.raises(ParameterError, match="salt"):
+        Screened().energy(0.3, 2e-9, dna)
+
+
+def test_named_errors_where_no_state_exists(dna150):
+    low_salt = _at_salt(dna150, 10.0).si
+    free_only = Screened(hard_contact=0)
+    with pytest.raises(NoEquilibriumError, match=r"6 pN.*hard core"):
+        free_only.equilibrium(np.array([1e-12, 6e-12]), low_salt)  # above the fold
+    with pytest.raises(NoEquilibriumError, match=r"40 pN.*pass through each other"):
+        free_only.equilibrium(np.array([40e-12]), dna150.si)  # R would drop below a
+    with pytest.raises(NoEquilibriumError, match="positive"):
+        Screened().equilibrium(np.array([-1e-12]), dna150.si)
+    # with confinement T(R) crosses zero, so every positive force has a state; without
+    # it T -> 0+ only as R -> inf and the table ends where (GE2) loses its root
+    assert Screened().equilibrium(np.array([1e-18]), dna150.si).radius[0] > 3e-9
+    with pytest.raises(NoEquilibriumError, match="below"):
+        Screened(confinement=0).equilibrium(np.array([1e-17]), dna150.si)
+
+
+def test_contact_holds_the_strands_where_the_free_branch_ends(dna150):
+    # 150 mM: above T(R = a) = 29.6 pN the strands touch; R, alpha, M continuous there
+    si = dna150.si
+    inter = Screened()
+    T_a = inter.branch(si).tension[0]
+    st = inter.equilibrium(np.array([T_a * (1 - 1e-7), T_a * (1 + 1e-7), 40e-12]), si)
+    assert st.radius[0] > 1e-9 and st.radius[1] == 1e-9 and st.radius[2] == 1e-9
+    assert st.torque[1] == pytest.approx(st.torque[0], rel=1e-5)
+    assert st.alpha[1] == pytest.approx(st.alpha[0], rel=1e-5)
+    # contact states satisfy (GE1) and the tension equation; the reaction presses (N >= 0)
+    part = lambda a, R: inter.partials(a, R, si)  # noqa: E731
+    ge1, _, ten = eq.equilibrium_residuals(st.force, st.alpha, st.radius, st.omega,
+                                           si.bending_rigidity, si.torsional_rigidity, part)
+    assert np.max(np.abs(ge1)) < 1e-10 and np.max(np.abs(ten)) < 1e-10
+    _, _, N = ct.normal_reaction(st.alpha[1:], 1e-9, si.bending_rigidity, part)
+    assert np.all(N > 0)
+
+
+def test_low_salt_first_order_jump_to_contact_is_the_lower_torque(dna150):
+    # 10 mM: between T(R = a) = 3.13 pN and the fold (5.39 pN) a free and a contact state
+    # coexist; the equilibrium is the one of lower torque (the global minimum of f)
+    si = _at_salt(dna150, 10.0).si
+    F = np.array([4.0e-12, 5.0e-12])
+    both = Screened().equilibrium(F, si)
+    free = Screened(hard_contact=0).equilibrium(F, si)
+    assert both.radius[0] == free.radius[0] > 2e-9  # free wins at 4 pN
+    assert both.radius[1] == 1e-9 and both.torque[1] < free.torque[1]  # contact at 5 pN
+    # second method: minimise f = B kappa^2/2 + w - M tau over alpha and R >= a at the
+    # 5 pN state's torque from both basins; the lower minimum is the contact state
+    B, M = si.bending_rigidity, both.torque[1]
+    inter = Screened()
+
+    def f(x):
+        a, R = x[0], x[1] * 1e-9
+        kap, tau = np.sin(a) ** 2 / R, np.sin(a) * np.cos(a) / R
+        return (0.5 * B * kap**2 + inter.energy(a, R, si) - M * tau) * 1e12
+
+    runs = [minimize(f, x0, method="L-BFGS-B", bounds=[(0.05, 0.78), (1.0, 20.0)],
+                     options=dict(ftol=1e-15, gtol=1e-12))
+            for x0 in ([both.alpha[1], 1.2], [free.alpha[1], free.radius[1] * 1e9])]
+    best = min(runs, key=lambda r: r.fun)
+    assert best.x[1] == pytest.approx(1.0, abs=1e-6)
+    assert -best.fun * 1e-12 == pytest.approx(5e-12, rel=1e-6)
+
+
+@pytest.mark.parametrize("kw", [dict(charge_fraction=0.0), dict(charge_fraction=1.6),
+                                dict(hard_core_radius=-1e-9), dict(confinement=2.0),
+                                dict(hard_contact=0.5)])
+def test_parameter_bounds(kw):
+    with pytest.raises(ValueError, match=f"screened.{next(iter(kw))}"):
+        Screened(**kw)
+
+
+def test_immutable_and_picklable():
+    inter = Screened(charge_fraction=0.4)
+    assert pickle.loads(pickle.dumps(inter)) == inter
+    assert inter.replace(charge_fraction=1.0) == Screened()
+    with pytest.raises(AttributeError):
+        inter.values = {}
