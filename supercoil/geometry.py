@@ -1,6 +1,6 @@
 """Helix geometry with units: thin wrappers over :mod:`supercoil.core.geometry`.
 
-MODEL.md section 1. Every function checks dimensions at the boundary (a wrong
+docs/theory/geometry.md. Every function checks dimensions at the boundary (a wrong
 dimension raises :class:`pint.DimensionalityError` naming the argument) and
 values (NaN, inf, a negative radius, pitch or slack, a tilt outside
 [0, pi/2] raise ValueError naming the argument and the limit), converts once

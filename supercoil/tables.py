@@ -119,7 +119,7 @@ def write_csv(df, path) -> Path:
     return path
 
 
-def _header_hint(header):
+def header_hint(header):
     """A hint for a header line that does not follow the ``name [unit]``, comma convention."""
     hints = []
     if ";" in header or "\t" in header:
@@ -195,13 +195,18 @@ def read_csv(path, text_columns=("molecule",)) -> pd.DataFrame:
         comment lines, with a hint when the header does not look like
         ``name [unit]`` with commas); a column named twice.
     """
-    df, src = _read(path, text_columns)
+    df, src = read_csv_source(path, text_columns)
     src.close()
     return df
 
 
-def _read(path, text_columns=("molecule",)):
-    """:func:`read_csv` and the open :class:`~supercoil._csvfile.CsvFile` (caller closes it)."""
+def read_csv_source(path, text_columns=("molecule",)):
+    """:func:`read_csv` and the open :class:`~supercoil._csvfile.CsvFile` (the caller closes it).
+
+    For readers that also need the file line of every row
+    (:meth:`~supercoil._csvfile.CsvFile.data_lines`), e.g.
+    :func:`supercoil.read_tweezers_csv`.
+    """
     src = CsvFile(path)
     try:
         df = _parse(src, text_columns)
@@ -231,7 +236,7 @@ def _parse(src, text_columns):
         return DataError(
             f"{path}, line {n_comment + where}: {got} fields, but the header (line "
             f"{src.header_line}) has {n_fields} (a decimal comma, e.g. 1,68 for 1.68, or an "
-            f"unquoted comma in a label splits a value){_header_hint(header_text)}")
+            f"unquoted comma in a label splits a value){header_hint(header_text)}")
 
     n_fields = None
     try:
@@ -254,7 +259,7 @@ def _parse(src, text_columns):
             raise err from None
         # pandas counts lines from the header: shift by the comment lines above it
         msg = re.sub(r"line (\d+)", lambda m: f"line {int(m.group(1)) + n_comment}", str(exc))
-        raise DataError(f"{path}: cannot parse the table: {msg}{_header_hint(header_text)}"
+        raise DataError(f"{path}: cannot parse the table: {msg}{header_hint(header_text)}"
                         ) from None
     if not isinstance(df.index, pd.RangeIndex):
         # every row had more fields than the header: pandas made the first an index.

@@ -1,4 +1,4 @@
-"""Helix geometry of one strand of a double helix (MODEL.md section 1). Float-only kernel.
+"""Helix geometry of one strand of a double helix (docs/theory/geometry.md). Float-only kernel.
 
 All arguments are floats or numpy arrays in SI units (m, rad); everything
 broadcasts. Nothing here imports pint.

@@ -25,7 +25,7 @@ _PN_NM2 = U.pN * U.nm**2
 def effective_twist_rigidity(dna, force):
     """Moroz-Nelson effective torsional rigidity of the fluctuating tail.
 
-    ``1/C_eff = 1/C + kT / (4 B sqrt(B T))`` [MODEL.md s.6].
+    ``1/C_eff = 1/C + kT / (4 B sqrt(B T))`` [docs/theory/li-zhao.md#moroz-nelson].
 
     Returns
     -------
@@ -48,7 +48,7 @@ def extension_factor(dna, force, torque, tail_length):
     """Moroz-Nelson extension factor zeta of a tail of length l carrying torque M_3.
 
     ``zeta = 1 - (1/2) Q^(-1/2) + B kT / (l (B T - M_3^2/4))`` with the bracket
-    ``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` [MODEL.md s.6]; the tail's
+    ``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` [docs/theory/li-zhao.md#moroz-nelson]; the tail's
     end-to-end distance is ``zeta l``. Arguments broadcast.
 
     Raises

@@ -42,7 +42,7 @@ import pint
 
 from supercoil._checks import check_flag
 from supercoil.exceptions import DataError, DataWarning
-from supercoil.tables import _header_hint, _read
+from supercoil.tables import header_hint, read_csv_source
 from supercoil.units import U, ureg
 
 __all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
@@ -117,7 +117,7 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
         if col not in df.columns:
             raise DataError(
                 f"{header}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
-                + _header_hint(",".join(map(str, df.columns)))
+                + header_hint(",".join(map(str, df.columns)))
             )
     if len(df) == 0:
         raise DataError(f"{source}: the table has no data rows")
@@ -254,7 +254,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     if not isinstance(path, str | Path) and not hasattr(path, "__fspath__"):
         raise TypeError(f"path must be a str or a path, got {type(path).__name__}")
     path = Path(path)
-    df, src = _read(path)
+    df, src = read_csv_source(path)
     with src:
         lines = src.data_lines(len(df))
         header_line = src.header_line
@@ -268,7 +268,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
         if col not in df.columns:
             raise DataError(
                 f"{hdr}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
-                + _header_hint(",".join(map(str, df.columns)))
+                + header_hint(",".join(map(str, df.columns)))
             )
     for col in (*REQUIRED_COLUMNS, "sigma"):
         if col in df.columns:

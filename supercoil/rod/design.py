@@ -1,4 +1,4 @@
-"""Example II: design the twisting schedule for a chosen pitch profile (MODEL.md s.4).
+"""Example II: design the twisting schedule for a chosen pitch profile (docs/theory/design.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.design`.
 """
@@ -39,7 +39,7 @@ def sinusoidal_pitch(p0, p1, wavenumber):
     ----------
     p0, p1 : Quantity [length]
         Mean pitch and amplitude (paper: 16 mm and 4 mm; the figure caption's
-        "cm" is a typo, MODEL.md s.4).
+        "cm" is a typo, docs/theory/corrections.md#typos).
     wavenumber : Quantity [1/length]
         k (paper: ``2 pi / (10 P0)``).
     """

@@ -1,4 +1,4 @@
-"""Case I, smooth surface: the uniform double helix (MODEL.md section 3).
+"""Case I, smooth surface: the uniform double helix (docs/theory/smooth.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.smooth`.
 """
@@ -157,8 +157,8 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         ``-2 pi |N|`` to infinity, so every ``|N| > 0`` gives exactly one helix
         in contact; only ``N = 0`` gives none (alpha = 0: a flat hairpin of
         parallel strands, infinite pitch). The model ignores the loop at the head
-        and the buckling threshold (MODEL.md s.7), so a small |N| gives a real,
-        very loose helix here.
+        and the buckling threshold (docs/theory/limits.md#not-modelled), so a small
+        |N| gives a real, very loose helix here.
     SingularityError
         When alpha comes within ``cos 2 alpha < cos2a_min`` of pi/4 (large
         |N| r / L): the tension ~ B / (4 r^2 cos 2 alpha) diverges.

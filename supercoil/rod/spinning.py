@@ -1,4 +1,4 @@
-"""Twist-spinning comparison: beta and pitch versus head tension T' (MODEL.md s.5).
+"""Twist-spinning comparison: beta and pitch versus head tension T' (docs/theory/spinning.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.spinning`, whose module
 docstring holds the derivation of the stationarity equations [f4, f5] from
@@ -76,7 +76,7 @@ class TwistSpinningHelix:
 def twist_spinning(rod, turns, head_tension):
     """beta and pitch of a twist-spun helix versus head tension T'.
 
-    The model of the paper's Discussion (MODEL.md s.5): a smooth rod of length
+    The model of the paper's Discussion (docs/theory/spinning.md): a smooth rod of length
     L twisted by N turns, ends held apart, a short helix (S' << L) at the head
     pulled by T' along its axis. Stationarity of
     ``E_p = (1/2) B kappa^2 S' + (1/2) C omega^2 L - T' h`` in alpha and S' at

@@ -1,4 +1,6 @@
-"""Moroz-Nelson thermal corrections of a fluctuating DNA tail (MODEL.md section 6). Float-only.
+"""Moroz-Nelson thermal corrections of a fluctuating DNA tail. Float-only.
+
+docs/theory/li-zhao.md#moroz-nelson.
 
 * Effective torsional rigidity of the tail under tension T:
   ``1/C_eff = 1/C + kT / (4 B sqrt(B T))``.

@@ -1,10 +1,10 @@
-"""Plectoneme equilibrium of DNA at fixed force (MODEL.md sections 2 and 6). Float-only kernel.
+"""Plectoneme equilibrium of DNA at fixed force (docs/theory/plectoneme.md). Float-only kernel.
 
 Equations
 ---------
 For a uniform double helix of tilt alpha and radius R with the Marko-Siggia
 interaction ``w`` (:mod:`supercoil.core.dna.marko_siggia`), stationarity of the
-energy [Eq Ep1] gives (MODEL.md s.2)
+energy [Eq Ep1] gives (docs/theory/plectoneme.md#equations)
 
 * (GE1) ``C omega = (B kappa kappa_alpha + w_alpha) / tau_alpha``  (the torque M_3),
 * (GE2) ``tau_R (B kappa kappa_alpha + w_alpha) - tau_alpha (B kappa kappa_R + w_R) = 0``,
@@ -73,6 +73,7 @@ from typing import NamedTuple
 import numpy as np
 
 from supercoil.core import geometry as _g
+from supercoil.core.blocks import in_blocks
 from supercoil.core.dna import marko_siggia as _ms
 from supercoil.exceptions import NoEquilibriumError
 
@@ -460,17 +461,9 @@ def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
             f"{_format_force(f_max)} the superhelix radius would fall below "
             f"r0/2 (alpha -> pi/4)"
         )
-    if force.size <= BLOCK:
-        return _equilibrium_block(force, B, C, kT, r0, b, rtol)
-    # large inputs in blocks: the solver's temporaries (~30 arrays) stay bounded
-    # by BLOCK, and only the output is of the input's size (issue 9, item 12)
-    flat = force.reshape(-1)
-    out = {k: np.empty(flat.size) for k in PlectonemeState._fields if k != "force"}
-    for start in range(0, flat.size, BLOCK):
-        st = _equilibrium_block(flat[start:start + BLOCK], B, C, kT, r0, b, rtol)
-        for k, v in out.items():
-            v[start:start + BLOCK] = getattr(st, k)
-    return PlectonemeState(force=force, **{k: v.reshape(force.shape) for k, v in out.items()})
+    # in blocks: the solver's ~30 temporaries are bounded by BLOCK, not the input
+    return in_blocks(lambda f: _equilibrium_block(f, B, C, kT, r0, b, rtol), force, BLOCK,
+                     keep="force")
 
 
 def _equilibrium_block(force, B, C, kT, r0, b, rtol):
@@ -507,7 +500,7 @@ def _equilibrium_block(force, B, C, kT, r0, b, rtol):
 def equilibrium_residuals(force, alpha, radius, omega, B, C, kT, r0):
     """Relative residuals ``(GE1, GE2, tension)`` of a solution, from the general equations.
 
-    Uses the un-reduced forms of MODEL.md s.2 and s.3 (geometry partials of
+    Uses the un-reduced forms of docs/theory/plectoneme.md#equations (geometry partials of
     :mod:`supercoil.core.geometry`, ``w`` and its partials of
     :mod:`supercoil.core.dna.marko_siggia`), each divided by the sum of the
     magnitudes of its terms. Independent of the reduced forms the solver uses.
