@@ -257,6 +257,33 @@ def test_complex_inputs_are_named(dna, rod):
         dna.replace(length=(1 + 1j) * u.um)
 
 
+# ---- item 10: no silent non-finite output ----
+
+@pytest.mark.parametrize("model", sc.available_models())
+@pytest.mark.parametrize("turns", [[np.nan], [0, np.inf], [-np.inf]])
+def test_non_finite_turns_are_refused_by_every_model(dna, model, turns):
+    with pytest.raises(ValueError, match=r"turns must be finite"):
+        sc.hat_curve(dna, 1 * u.pN, turns, model=model)  # marko2007 on main: silent NaN
+    with pytest.raises(ValueError, match=r"turns must be finite"):
+        sc.free_energy(dna, 1 * u.pN, turns, thermal=False, model=model)
+
+
+@pytest.mark.parametrize("model", sc.available_models())
+def test_more_turns_than_helical_turns_is_a_validity_error(dna, model):
+    lk0 = dna.si.length / 3.57e-9  # 210 turns for 750 nm
+    validity_messages(lambda: sc.hat_curve(dna, 1 * u.pN, [0.99 * lk0], thermal=False,
+                                           model=model))  # allowed (maybe flagged)
+    with pytest.raises(ValidityError, match=r"Lk0 = L/h = 210\.08"):
+        sc.hat_curve(dna, 1 * u.pN, [1.01 * lk0], model=model)
+    with pytest.raises(ValidityError, match=r"sigma"):
+        sc.hat_curve(dna, 1 * u.pN, [-1e300], model=model)  # main: overflow / inf force
+
+
+def test_empty_turns_are_named(dna):
+    with pytest.raises(ValueError, match=r"turns is empty"):
+        sc.hat_curve(dna, 1 * u.pN, [], model="marko2007")  # main: numpy reduction error
+
+
 def test_curvature_error_at_a_huge_slope_is_finite_and_exact():
     e = sc.geometry.curvature_error(1e200)  # main: inf
     assert e.m == pytest.approx(1e200 / (2 * np.pi), rel=1e-15)
@@ -270,6 +297,8 @@ def test_geometry_overflow_is_a_named_error():
     with pytest.raises(ValidityError, match=r"curvature is inf"):
         sc.geometry.curvature(1 * u.rad, 1e-320 * u.m)
 
+
+# ---- item 12: large inputs in bounded memory ----
 
 @pytest.mark.parametrize("block", [7, 64, 1 << 22])
 def test_loader_row_lines_match_the_record_by_record_reading(tmp_path, monkeypatch, block):
