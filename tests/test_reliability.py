@@ -381,3 +381,13 @@ def test_plectoneme_peak_memory_is_bounded(dna, monkeypatch):
     monkeypatch.setattr(kernel, "BLOCK", 4096)
     m = plectoneme_memory(200_000)  # main: ~277 bytes per force beyond the output
     assert m["bytes_per_force"] <= 64
+
+
+def test_memory_benchmark_table():
+    from supercoil.benchmark import memory
+
+    table = memory.run(sizes=(5000,), log=lambda *a: None)
+    assert table.attrs["units"]["bytes_per_force"] == "B"
+    row = table.iloc[0]
+    assert row["elements"] == 5000 and row["loader_s"] > 0 and row["pandas_s"] > 0
+    assert np.isfinite(row["bytes_per_force"])
