@@ -111,3 +111,4 @@ def test_through_a_process_pool(dna):
     np.testing.assert_array_equal(radius.m, here.radius.m)
     assert radius._REGISTRY is u and eq.torque._REGISTRY is u
     assert longer == dna.replace(length=1500 * u.nm)
+
