@@ -46,6 +46,8 @@ class CsvFile:
     """
 
     def __init__(self, path):
+        if not isinstance(path, str | Path) and not hasattr(path, "__fspath__"):
+            raise TypeError(f"path must be a str or a path, got {type(path).__name__}")
         self.path = Path(path)
         try:
             fh = open(self.path, "rb")  # closed below on error, else by close()

@@ -217,6 +217,10 @@ def test_a_list_of_angles_in_any_unit_counts_turns(values):
         assert_same(ref, got, rtol=1e-12)
 
 
+def test_ci_profile_is_derandomized():
+    assert settings.get_profile("ci").derandomize
+
+
 # ---------------------------------------------------------------------------
 # bad inputs
 # ---------------------------------------------------------------------------

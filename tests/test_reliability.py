@@ -105,6 +105,16 @@ def test_duplicated_csv_column_is_a_data_error(tmp_path, header):
         sc.read_tweezers_csv(p)
 
 
+@pytest.mark.parametrize("reader", [sc.read_csv, sc.read_tweezers_csv])
+def test_readers_name_a_bad_path(reader, tmp_path):
+    with pytest.raises(TypeError, match=r"path must be a str or a path, got NoneType"):
+        reader(None)
+    with pytest.raises(DataError, match=r"cannot read"):
+        reader(tmp_path)  # a directory
+    with pytest.raises(DataError, match=r"no such file"):
+        reader(tmp_path / "missing.csv")
+
+
 # ---- item 6: boolean flags are checked by one helper ----
 
 def test_drop_incomplete_rejects_strings(tmp_path):

@@ -34,7 +34,6 @@ of every row, ``attrs["lines"]``).
 from __future__ import annotations
 
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -294,10 +293,8 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     'um'
     """
     drop_incomplete = check_flag(drop_incomplete, "drop_incomplete")
-    if not isinstance(path, str | Path) and not hasattr(path, "__fspath__"):
-        raise TypeError(f"path must be a str or a path, got {type(path).__name__}")
-    path = Path(path)
     df, src = read_csv_source(path)
+    path = src.path
     with src:
         lines = src.data_lines(len(df))
         header_line = src.header_line
