@@ -177,7 +177,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
               interaction=DEFAULT_INTERACTION):
     """Hat curves: extension, torque and phase versus turns at fixed forces.
 
-    Built exactly as MODEL.md section 6: stretched phase (torque
+    Built as docs/theory/li-zhao.md#hat-curve (default model): stretched phase (torque
     ``C_eff 2 pi N / L``, ``z = zeta L``), buckling where the torques match,
     plectoneme phase from the linking balance
     ``2 pi |N| = (C/C_eff) omega (L - S) + (omega + tau) S`` with
