@@ -163,6 +163,8 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
     ModelError
         For models without one free energy (the thermal ``"li-zhao"``
         construction).
+    ValueError, ValidityError
+        Turns not finite or empty; ``|N| > L / h`` (see :func:`hat_curve`).
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     n = _v.checked_turns(turns, si)
@@ -216,9 +218,17 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
 
     Raises
     ------
+    TypeError
+        ``dna`` not a DNA, ``thermal`` not True/False, turns or force not
+        real numbers (text, None, complex), a list mixing quantities and
+        plain numbers.
+    ValueError
+        Turns or force not finite; turns empty or not 1-D.
     NoEquilibriumError
         Naming the force, where no plectoneme equilibrium exists.
     ValidityError
+        ``|N|`` above the molecule's helical turns ``Lk0 = L / h`` (h = 3.57
+        nm, supercoiling density ``|sigma| > 1``), where no model applies;
         (thermal) naming force and torque where zeta's bracket is not positive:
         for the seed set in the plectoneme phase below 0.0954 pN, and above
         43.95 pN, where the plectoneme torque exceeds what the fluctuating tail
