@@ -44,12 +44,27 @@ def check_dna(dna):
 
 
 def checked_forces(force, one_d=True):
-    """Force magnitudes in N (finite; 1-D if ``one_d``), ValueError naming ``force``."""
+    """Force magnitudes in N (finite, positive; 1-D if ``one_d``), errors naming ``force``.
+
+    Raises
+    ------
+    ValueError
+        Not finite; not 1-D (``one_d``).
+    NoEquilibriumError
+        A force <= 0 (a ValueError too): every DNA model describes a molecule
+        stretched by a positive tension (models differ in what else they need).
+    """
+    from supercoil.exceptions import NoEquilibriumError
+
     f = magnitude(force, U.N, "force")
     if np.iscomplexobj(f):
         raise TypeError("force must be real")
     if not np.all(np.isfinite(f)):
         raise ValueError(f"force must be finite, got {force}")
+    if np.any(f <= 0):
+        bad = float(np.asarray(f)[np.asarray(f) <= 0].flat[0])
+        raise NoEquilibriumError(f"no equilibrium at force {bad * 1e12:.6g} pN: the force "
+                                 "must be positive (a molecule stretched by a tension)")
     if one_d:
         f = np.atleast_1d(f)
         if f.ndim != 1:
