@@ -412,3 +412,29 @@ def test_memory_benchmark_table():
     row = table.iloc[0]
     assert row["elements"] == 5000 and row["loader_s"] > 0 and row["pandas_s"] > 0
     assert np.isfinite(row["bytes_per_force"])
+
+
+def test_a_model_giving_nan_is_caught_by_the_shared_layer(dna):
+    from supercoil.dna.models import Buckling, DNAModel, HatPoints
+
+    class Broken(DNAModel):  # not registered: passed as an instance
+        name = "broken-test-model"
+        summary = "returns NaN past 3 turns, never buckles"
+        uses_interaction = False
+
+        def buckling(self, force, dna, thermal, interaction):
+            inf = np.full(np.shape(force), np.inf)  # never buckles: allowed
+            return Buckling(inf, inf, np.zeros(np.shape(force)))
+
+        def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+            z = np.where(np.abs(turns) > 3, np.nan, dna.length)
+            zeros = np.zeros(np.shape(turns))
+            return HatPoints(z, zeros, zeros, zeros.astype(np.int8), zeros.astype(bool),
+                             z / dna.length)
+
+    model = Broken()
+    assert np.isinf(sc.buckling_turns(dna, 1 * u.pN, model=model).m).all()
+    sc.hat_curve(dna, 1 * u.pN, [0, 3], model=model)
+    with pytest.raises(ValidityError, match=r"'broken-test-model' gives extension = .*nan.* "
+                                            r"at force 1 pN, turns 4"):
+        sc.hat_curve(dna, 1 * u.pN, [0, 4], model=model)

@@ -92,6 +92,7 @@ def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DE
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     b = m.buckling(f, si, thermal, inter)
+    _v.check_finite_output(m, f, {"buckling turns": b.turns}, allow_inf=True)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(b.turns, U.turn)
 
@@ -145,6 +146,7 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
     hp = m.points(N, F, si, thermal, inter, short)
+    _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
     msgs = (_v.force_messages(f) + _v.denaturation_messages(F, N) + inter.messages(si)
             + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
             + m.validity(N, F, hp, si, thermal))
@@ -171,6 +173,7 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
     g = m.free_energy(N, F, si, thermal, inter)
+    _v.check_finite_output(m, F, {"free energy": g}, N)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(np.asarray(g) * 1e21, U.pN_nm)
 
