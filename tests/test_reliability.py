@@ -400,7 +400,7 @@ def test_plectoneme_peak_memory_is_bounded(dna, monkeypatch):
     from supercoil.core.dna import plectoneme as kernel
 
     monkeypatch.setattr(kernel, "BLOCK", 4096)
-    m = plectoneme_memory(200_000)  # main: ~277 bytes per force beyond the output
+    m = plectoneme_memory(100_000)  # main: ~277 bytes per force beyond the output
     assert m["bytes_per_force"] <= 64
 
 
