@@ -21,7 +21,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="supercoil",
         description="Double helices of twisted filaments: rubber rods and DNA plectonemes "
-        "(Li, Zhao et al.; see MODEL.md).",
+        "(Li, Zhao et al.; theory in docs/theory/index.md).",
     )
     parser.add_argument("--version", action="version", version=f"supercoil {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -37,8 +37,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    from supercoil.commands._common import join_negative_values
+
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # "--turns -20:20:0.1" and "--turns=-20:20:0.1" mean the same (argparse alone would
+    # take "-20:20:0.1" for an option)
+    args = parser.parse_args(join_negative_values(parser, argv))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
