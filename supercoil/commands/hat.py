@@ -4,10 +4,17 @@ Example::
 
     supercoil hat --params dna --force 0.4pN --force 1.2pN --turns=-20:20:0.1 --out DIR
 
-writes ``DIR/hat_curve.csv`` (units in the headers, provenance in ``#`` lines)
-and ``DIR/hat_curve.png``. Forces and lengths are read with their units by
-:data:`supercoil.ureg`. With no option, the seed DNA set at 0.4, 1.2 and
-3.0 pN (the paper's DNA figure) is computed.
+writes ``DIR/hat_curve.csv`` (units in the headers, provenance in ``#`` lines),
+``DIR/buckling.csv`` (buckling turns, buckling torque and post-buckling slope per
+force; docs/theory/models.md#buckling) and ``DIR/hat_curve.png``. Forces and lengths
+are read with their units by :data:`supercoil.ureg`; ``--turns -20:20:0.1`` and
+``--turns=-20:20:0.1`` are the same.
+
+With no option (the main job), the seed DNA set is computed at 0.4, 1.2 and 3.0 pN
+(the paper's DNA figure): from -40 to 40 turns at 0.4 pN, and from 0 to 40 turns at
+the forces above 0.8 pN, where real DNA melts under negative supercoiling
+(docs/theory/limits.md) and the model, which ignores melting, would have to warn.
+Warnings of a run the user asked for are printed once each, in plain words.
 """
 
 from __future__ import annotations
@@ -17,13 +24,15 @@ import sys
 
 import numpy as np
 
+from supercoil.core.dna.hat import DENATURATION_FORCE
+
 DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
 #: default turns at forces up to DENATURATION_PN, and above it (positive turns only: real
 #: DNA melts under negative supercoiling there and the model ignores it, so the default
 #: job computes no point that it would have to warn about)
 DEFAULT_TURNS = "-40:40:0.1"
 DEFAULT_TURNS_HIGH_FORCE = "0:40:0.1"
-DENATURATION_PN = 0.8
+DENATURATION_PN = DENATURATION_FORCE * 1e12  # 0.8 pN
 #: what to do when the denaturation warning is shown (the user asked for those points)
 DENATURATION_HINT = "give --turns=0:40 to compute positive turns only"
 
@@ -135,7 +144,7 @@ def _curves(dna, force, turns, thermal, short_tail, mi):
     if turns is not None:
         return hat_curve(dna, force, turns, thermal=thermal, short_tail_length=short_tail,
                          **mi)
-    low = force.m_as("pN") <= DENATURATION_PN
+    low = force.m_as("N") <= DENATURATION_FORCE  # the library's own test, in SI
     parts = [hat_curve(dna, force[mask], parse_turns(grid), thermal=thermal,
                        short_tail_length=short_tail, **mi)
              for mask, grid in ((low, DEFAULT_TURNS), (~low, DEFAULT_TURNS_HIGH_FORCE))

@@ -177,3 +177,13 @@ def test_join_negative_values_only_joins_single_value_options():
     # several values (nargs="+") and words after "--" are left alone
     argv = ["rod", "--slack", "-1cm", "2cm", "--", "--turns", "-3"]
     assert join_negative_values(parser, argv) == argv
+
+
+def test_default_turns_switch_exactly_at_the_denaturation_force(tmp_path, capsys):
+    """0.8 pN itself keeps negative turns (the library warns above 0.8 pN only)."""
+    assert main(["hat", "--force", "0.8pN", "--force", "0.81pN", "--out", str(tmp_path),
+                 "--no-plot"]) == 0
+    assert capsys.readouterr().err == ""
+    df = sc.read_csv(tmp_path / "hat_curve.csv")
+    assert df[df.force == 0.8]["turns"].min() == -40
+    assert df[df.force == 0.81]["turns"].min() == 0
