@@ -121,3 +121,23 @@ def test_docs_figures_is_a_docs_action():
     with redirect_stderr(io.StringIO()) as err:
         assert main(["docs", "figures", "--root", str(ROOT / "docs")]) == 2
     assert "not a source checkout" in err.getvalue()
+
+
+def test_copy_figures_takes_the_shown_ones_and_the_main_job_figure(tmp_path):
+    from supercoil.commands.docs_figures import copy_figures
+
+    root, work = tmp_path / "repo", tmp_path / "work"
+    (root / "docs" / "figures").mkdir(parents=True)
+    (root / "README.md").write_text("![a](docs/figures/a.png) ![h](docs/figures/hat_curves.png)")
+    (root / "docs" / "figures" / "b.png").write_bytes(b"old b")  # shown by the gallery
+    for folder, name, data in (("examples/x", "a.png", b"a"), ("examples/x", "b.png", b"b"),
+                               ("examples/x", "c.png", b"c"),
+                               ("examples/x", "hat_curves.png", b"the example's"),
+                               ("main-job/li-zhao", "hat_curve.png", b"main job")):
+        (work / folder).mkdir(parents=True, exist_ok=True)
+        (work / folder / name).write_bytes(data)
+    folders = {"examples/x": work / "examples/x", "main-job/li-zhao": work / "main-job/li-zhao"}
+    assert copy_figures(root, folders, print) == ["a.png", "b.png", "hat_curves.png"]
+    figures = root / "docs" / "figures"
+    assert (figures / "hat_curves.png").read_bytes() == b"main job"
+    assert (figures / "b.png").read_bytes() == b"b" and not (figures / "c.png").exists()
