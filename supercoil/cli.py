@@ -33,17 +33,16 @@ def build_parser() -> argparse.ArgumentParser:
                 continue  # subcommand not built yet
             raise
         module.register(sub)
-    return parser
+    from supercoil.commands._common import allow_negative_values
+
+    # "--turns -20:20:0.1" and "--turns=-20:20:0.1" mean the same (argparse alone would
+    # take "-20:20:0.1" for an option)
+    return allow_negative_values(parser)
 
 
 def main(argv=None) -> int:
-    from supercoil.commands._common import join_negative_values
-
     parser = build_parser()
-    argv = list(sys.argv[1:] if argv is None else argv)
-    # "--turns -20:20:0.1" and "--turns=-20:20:0.1" mean the same (argparse alone would
-    # take "-20:20:0.1" for an option)
-    args = parser.parse_args(join_negative_values(parser, argv))
+    args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()
         return 0

@@ -1,9 +1,8 @@
 """Helpers shared by the ``supercoil`` subcommands.
 
-* :func:`join_negative_values`: argparse reads ``--turns -20:20:0.1`` as two
-  options (``-20:20:0.1`` looks like a flag), so :func:`supercoil.cli.main` rewrites
-  ``--flag -VALUE`` into ``--flag=-VALUE`` before parsing, for every option that
-  takes exactly one value. Both spellings then mean the same.
+* :func:`allow_negative_values`: argparse reads ``--turns -20:20:0.1`` as two
+  options (``-20:20:0.1`` looks like a flag); :func:`supercoil.cli.build_parser`
+  applies this so that ``--turns -20:20:0.1`` and ``--turns=-20:20:0.1`` mean the same.
 * :func:`parse_range`: ``start:stop:step`` (both ends included), ``start:stop``
   (a default step) or ``a,b,c``, with an error message that names the flag.
 * :func:`plain_warnings`: run a computation, collect its warnings and return them
@@ -18,49 +17,30 @@ import warnings
 
 import numpy as np
 
-#: a value that starts with a minus and then a digit or a point: -20, -0.5, -20:20:0.1,
-#: -3e2, -40turn (argparse itself only accepts plain negative numbers such as -20)
-_NEGATIVE_VALUE = re.compile(r"^-\.?\d")
+#: a word that starts with a minus and then a digit or a point is a value, never an option:
+#: -20, -0.5, -.5, -20:20:0.1, -3e2, -40turn, "-10 cm" (argparse's own pattern accepts plain
+#: negative numbers only; written to work whether argparse calls match or fullmatch)
+NEGATIVE_VALUE = re.compile(r"-\.?\d.*", re.S)
 
 
-def _single_value_options(parser: argparse.ArgumentParser) -> set[str]:
-    """Option strings (of ``parser`` and all its subparsers) that take exactly one value."""
-    found: set[str] = set()
+def allow_negative_values(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Let every option of ``parser`` and its subparsers take values that start with ``-``.
+
+    argparse reads ``--turns -20:20:0.1`` as two options, because ``-20:20:0.1`` is not a
+    plain negative number; after this call it reads it as ``--turns=-20:20:0.1`` does,
+    also for options with several values (``--slack -1cm 2cm``). No option of the
+    package's parsers starts with ``-`` and a digit, so nothing else changes.
+    """
     stack = [parser]
     while stack:
         p = stack.pop()
-        for action in p._actions:  # argparse has no public API for its actions
+        # argparse has no public hook: its parsers decide "option or value" with this
+        # pattern (argparse.ArgumentParser._parse_optional)
+        p._negative_number_matcher = NEGATIVE_VALUE
+        for action in p._actions:
             if isinstance(action, argparse._SubParsersAction):
                 stack.extend(action.choices.values())
-            elif action.option_strings and action.nargs is None:
-                found.update(s for s in action.option_strings if s.startswith("--"))
-    return found
-
-
-def join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
-    """``[..., "--turns", "-20:20:0.1", ...]`` -> ``[..., "--turns=-20:20:0.1", ...]``.
-
-    Only for options of ``parser`` that take exactly one value, and only when the next
-    word starts with ``-`` followed by a digit or a point (a negative number, range or
-    quantity); everything else is passed on unchanged. Options that take several values
-    (``nargs="+"``) are left alone: ``--flag=VALUE`` would give them one value only.
-    """
-    options = _single_value_options(parser)
-    out: list[str] = []
-    i = 0
-    while i < len(argv):
-        word = argv[i]
-        if word == "--":
-            out.extend(argv[i:])
-            break
-        if (word in options and i + 1 < len(argv)
-                and _NEGATIVE_VALUE.match(argv[i + 1])):
-            out.append(f"{word}={argv[i + 1]}")
-            i += 2
-            continue
-        out.append(word)
-        i += 1
-    return out
+    return parser
 
 
 def parse_range(text: str, flag: str, default_step: float = 0.1) -> np.ndarray:

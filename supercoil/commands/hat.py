@@ -48,12 +48,14 @@ def _quantity(kind, unit_name):
         except Exception as exc:  # pint raises several parser errors
             raise argparse.ArgumentTypeError(f"cannot read {kind} {text!r}: {exc}") from None
         try:
-            magnitude(q, getattr(U, unit_name), kind)
+            value = magnitude(q, getattr(U, unit_name), kind)
         except pint.DimensionalityError:
             raise argparse.ArgumentTypeError(
                 f"{kind} {text!r} is not a {kind} (give a unit, e.g. "
                 f"{'0.4pN' if kind == 'force' else '750nm'})"
             ) from None
+        if kind == "length" and not (np.isfinite(value) and value > 0):
+            raise argparse.ArgumentTypeError(f"length {text!r} must be positive and finite")
         return q
 
     return parse

@@ -111,7 +111,8 @@ def test_negative_ranges_in_both_spellings(tmp_path, spelling):
 
 @pytest.mark.parametrize("argv", [["--turns", "-20:x"], ["--turns=-20:-30:1"],
                                   ["--turns", "-1:1:0"], ["--turns", "-inf:1"],
-                                  ["--force", "-0.4nm"], ["--length", "-5pN"]])
+                                  ["--force", "-0.4nm"], ["--length", "-5pN"],
+                                  ["--length", "-5nm"], ["--short-tail=0nm"]])
 def test_bad_values_exit_2_naming_the_flag(argv, tmp_path, capsys):
     with pytest.raises(SystemExit) as exc:
         main(["hat", *argv, "--out", str(tmp_path)])
@@ -166,17 +167,17 @@ def test_hat_command_with_each_registered_model_equals_the_library(tmp_path, dna
     assert df.attrs["provenance"]["model"] == model
 
 
-def test_join_negative_values_only_joins_single_value_options():
+def test_values_starting_with_a_minus_are_values_and_flags_stay_flags():
     from supercoil.cli import build_parser
-    from supercoil.commands._common import join_negative_values
 
     parser = build_parser()
-    argv = ["hat", "--turns", "-1:1", "--athermal", "--force", "-.4pN", "--out", "-x"]
-    assert join_negative_values(parser, argv) == [
-        "hat", "--turns=-1:1", "--athermal", "--force=-.4pN", "--out", "-x"]
-    # several values (nargs="+") and words after "--" are left alone
-    argv = ["rod", "--slack", "-1cm", "2cm", "--", "--turns", "-3"]
-    assert join_negative_values(parser, argv) == argv
+    args = parser.parse_args(["hat", "--turns", "-1:1", "--athermal", "--force", "-.4pN"])
+    assert list(args.turns) == pytest.approx(np.arange(-1, 1.05, 0.1))
+    assert args.athermal and args.force[0].magnitude == -0.4
+    args = parser.parse_args(["rod", "--turns", "-4", "--slack", "-1cm", "-2 cm", "--out", "o"])
+    assert args.turns == "-4" and args.slack == ["-1cm", "-2 cm"]
+    with pytest.raises(SystemExit):  # "-x" is still an (unknown) option
+        parser.parse_args(["rod", "--turns", "-x", "--out", "o"])
 
 
 def test_default_turns_switch_exactly_at_the_denaturation_force(tmp_path, capsys):
