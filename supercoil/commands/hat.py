@@ -37,7 +37,9 @@ DENATURATION_PN = DENATURATION_FORCE * 1e12  # 0.8 pN
 DENATURATION_HINT = "give --turns=0:40 to compute positive turns only"
 
 
-def _quantity(kind, unit_name):
+def _quantity(kind, unit_name, allow_zero=False):
+    """An argparse type: a pint quantity of dimension ``unit_name``; lengths positive."""
+
     def parse(text):
         import pint
 
@@ -54,8 +56,10 @@ def _quantity(kind, unit_name):
                 f"{kind} {text!r} is not a {kind} (give a unit, e.g. "
                 f"{'0.4pN' if kind == 'force' else '750nm'})"
             ) from None
-        if kind == "length" and not (np.isfinite(value) and value > 0):
-            raise argparse.ArgumentTypeError(f"length {text!r} must be positive and finite")
+        if kind == "length" and not (np.isfinite(value) and (value > 0 or
+                                                             (allow_zero and value == 0))):
+            raise argparse.ArgumentTypeError(
+                f"length {text!r} must be {'>= 0' if allow_zero else 'positive'} and finite")
         return q
 
     return parse
@@ -89,9 +93,9 @@ def register(sub):
                    "turns)")
     p.add_argument("--length", type=_quantity("length", "m"), default=None,
                    help="override the contour length L, e.g. 750nm")
-    p.add_argument("--short-tail", type=_quantity("length", "m"), default=None,
+    p.add_argument("--short-tail", type=_quantity("length", "m", allow_zero=True), default=None,
                    help="tail length below which points are flagged short_tail "
-                   "(default: 3 bending persistence lengths)")
+                   "(default: 3 bending persistence lengths; 0: flag none)")
     p.add_argument("--athermal", action="store_true",
                    help="no Moroz-Nelson corrections (C_eff = C, zeta = 1)")
     p.add_argument("--model", default="li-zhao", metavar="NAME",

@@ -112,7 +112,7 @@ def test_negative_ranges_in_both_spellings(tmp_path, spelling):
 @pytest.mark.parametrize("argv", [["--turns", "-20:x"], ["--turns=-20:-30:1"],
                                   ["--turns", "-1:1:0"], ["--turns", "-inf:1"],
                                   ["--force", "-0.4nm"], ["--length", "-5pN"],
-                                  ["--length", "-5nm"], ["--short-tail=0nm"]])
+                                  ["--length", "-5nm"], ["--short-tail=-1nm"]])
 def test_bad_values_exit_2_naming_the_flag(argv, tmp_path, capsys):
     with pytest.raises(SystemExit) as exc:
         main(["hat", *argv, "--out", str(tmp_path)])
@@ -178,6 +178,12 @@ def test_values_starting_with_a_minus_are_values_and_flags_stay_flags():
     assert args.turns == "-4" and args.slack == ["-1cm", "-2 cm"]
     with pytest.raises(SystemExit):  # "-x" is still an (unknown) option
         parser.parse_args(["rod", "--turns", "-x", "--out", "o"])
+
+
+def test_short_tail_zero_flags_no_point(tmp_path):
+    assert main(["hat", "--force", "1pN", "--turns=0:40:10", "--short-tail", "0nm",
+                 "--out", str(tmp_path), "--no-plot"]) == 0
+    assert not sc.read_csv(tmp_path / "hat_curve.csv")["short_tail"].any()
 
 
 def test_default_turns_switch_exactly_at_the_denaturation_force(tmp_path, capsys):
