@@ -20,8 +20,6 @@ Parsing a unit string costs 10-100 us per call in pint, and even
 
 from __future__ import annotations
 
-from typing import ClassVar
-
 import numpy as np
 import pint
 
@@ -287,79 +285,3 @@ def _is_angle(units) -> bool:
 def quantity(mag, unit: pint.Unit) -> pint.Quantity:
     """Attach ``unit`` (a prebuilt :class:`U` member) to a float or array."""
     return Q_(mag, unit)
-
-
-def require_finite(name: str, arr, positive: bool = False, nonnegative: bool = False):
-    """Raise ValueError naming ``name`` if ``arr`` has non-finite (or non-positive) entries."""
-    a = np.asarray(arr, dtype=float)
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name} must be finite, got {arr!r}")
-    if positive and not np.all(a > 0):
-        raise ValueError(f"{name} must be positive, got {arr!r}")
-    if nonnegative and not np.all(a >= 0):
-        raise ValueError(f"{name} must be non-negative, got {arr!r}")
-    return arr
-
-
-def _rebuild_record(cls, si):
-    """Unpickle a :class:`QuantityRecord` (module level, so pickle can find it)."""
-    return cls(**si)
-
-
-class QuantityRecord:
-    """Immutable record of named quantities, each built on first access.
-
-    Result objects of the public API (e.g.
-    :class:`supercoil.dna.plectoneme.PlectonemeEquilibrium`) hold the kernel's SI
-    arrays and attach units only to the fields that are read: a scene pays for
-    no quantity it does not use (building one costs ~3 us). Subclasses declare
-    ``FIELDS = {name: (unit, factor)}`` (display unit and SI-to-display factor,
-    in field order). Records iterate like named tuples, in field order.
-    """
-
-    __slots__ = ("_cache", "_si")
-    FIELDS: ClassVar[dict] = {}
-
-    def __init__(self, **si):
-        missing = set(self.FIELDS) - set(si)
-        if missing:
-            raise TypeError(f"{type(self).__name__} needs fields {sorted(missing)}")
-        object.__setattr__(self, "_si", si)
-        object.__setattr__(self, "_cache", {})
-
-    def __getattr__(self, name):
-        spec = type(self).FIELDS.get(name)
-        if spec is None:
-            raise AttributeError(f"{type(self).__name__!s} has no field {name!r}")
-        cache = self._cache
-        q = cache.get(name)
-        if q is None:
-            unit, factor = spec
-            mag = self._si[name]
-            q = cache[name] = Q_(mag * factor if factor != 1.0 else mag, unit)
-        return q
-
-    def __setattr__(self, name, value):
-        raise AttributeError(f"{type(self).__name__} is immutable")
-
-    def __reduce__(self):
-        # pickled as (class, SI arrays): the slots are immutable, so the default
-        # slot-state protocol (setattr after __new__) cannot restore them
-        return (_rebuild_record, (type(self), dict(self._si)))
-
-    @property
-    def _fields(self):
-        return tuple(self.FIELDS)
-
-    def _asdict(self):
-        return {name: getattr(self, name) for name in self.FIELDS}
-
-    def __iter__(self):
-        return (getattr(self, name) for name in self.FIELDS)
-
-    def __len__(self):
-        return len(self.FIELDS)
-
-    def __repr__(self):
-        body = ", ".join(f"{k}={getattr(self, k):~P}" for k in self.FIELDS)
-        return f"{type(self).__name__}({body})"

@@ -9,18 +9,16 @@ Every function takes a :class:`~supercoil.dna.material.DNA` and pint quantities 
 
 from __future__ import annotations
 
-from typing import ClassVar
-
 import numpy as np
 
 from supercoil.dna import validity as _v
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
-from supercoil.units import QuantityRecord, U
+from supercoil.records import Record
 
 __all__ = ["PlectonemeEquilibrium", "plectoneme_equilibrium"]
 
 
-class PlectonemeEquilibrium(QuantityRecord):
+class PlectonemeEquilibrium(Record):
     """Plectoneme equilibrium at fixed force (quantities of the force's shape).
 
     Fields (built on first access from the kernel's SI arrays): ``force`` (pN),
@@ -33,19 +31,9 @@ class PlectonemeEquilibrium(QuantityRecord):
     """
 
     __slots__ = ()
-    FIELDS: ClassVar[dict] = {
-        "force": (U.pN, 1e12),
-        "alpha": (U.rad, 1.0),
-        "radius": (U.nm, 1e9),
-        "pitch": (U.nm, 1e9),
-        "omega": (U.per_nm, 1e-9),
-        "torque": (U.pN_nm, 1e21),
-        "curvature": (U.per_nm, 1e-9),
-        "torsion": (U.per_nm, 1e-9),
-        "bending_energy": (U.pN, 1e12),
-        "twist_energy": (U.pN, 1e12),
-        "interaction_energy": (U.pN, 1e12),
-    }
+    DOMAIN = "dna"
+    FIELDS = ("force", "alpha", "radius", "pitch", "omega", "torque", "curvature", "torsion",
+              "bending_energy", "twist_energy", "interaction_energy")
 
 
 def plectoneme_equilibrium(dna, force, interaction=DEFAULT_INTERACTION):

@@ -6,14 +6,13 @@ Public unit wrapper over :mod:`supercoil.core.rod.rough` and
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 import pandas as pd
 
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import rough as _rh
 from supercoil.exceptions import DataError, ValidityError
+from supercoil.records import Record
 from supercoil.rod.material import check_rod
 from supercoil.rod.smooth import checked_turns
 from supercoil.rod.validity import check_finite, warn_hard_contact, warn_no_friction
@@ -49,8 +48,7 @@ _SCALE = {  # SI -> display unit factor
 }
 
 
-@dataclasses.dataclass(frozen=True)
-class RoughHelix:
+class RoughHelix(Record):
     """The frozen helix of a rough rod (result of :func:`rough_helix`).
 
     Attributes
@@ -97,17 +95,10 @@ class RoughHelix:
         ``ode_method``, ``rtol``, ``atol``, ``nfev`` (ODE) or ``{}`` (closed form).
     """
 
-    alpha0: object
-    s_max: object
-    slip_onset: object
-    method: str
-    profile: object
-    curvature_error_onset: object
-    curvature_tolerance: float
-    turns: object
-    end: str
-    solver: dict
-    s_end: object = None
+    __slots__ = ()
+    DOMAIN = "rod"
+    FIELDS = ("alpha0", "s_max", "slip_onset", "curvature_error_onset", "turns", "s_end")
+    EXTRA = ("method", "profile", "curvature_tolerance", "end", "solver")
 
 
 def _is_table(x):
@@ -410,14 +401,11 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
         warn_no_friction("rough helix", "slip_onset is None and friction_torque_available is NaN")
     profile = _profile_table(res, rod, n0, method, twist_rate, curvature_tolerance)
 
-    def mm(x):
-        return None if x is None else quantity(x * 1e3, U.mm)
-
     return RoughHelix(
-        alpha0=quantity(res.alpha0, U.rad), s_max=mm(res.s_max), slip_onset=mm(res.slip_onset),
-        method=method, profile=profile, curvature_error_onset=mm(res.curvature_error_onset),
-        curvature_tolerance=float(curvature_tolerance), turns=quantity(n0, U.turn),
-        end=res.end, solver=res.solver, s_end=mm(res.s_end))
+        alpha0=res.alpha0, s_max=res.s_max, slip_onset=res.slip_onset,
+        curvature_error_onset=res.curvature_error_onset, turns=float(n0), s_end=res.s_end,
+        method=method, profile=profile, curvature_tolerance=float(curvature_tolerance),
+        end=res.end, solver=res.solver)
 
 
 def _check_count(value, name, least, what):

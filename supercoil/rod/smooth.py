@@ -5,17 +5,16 @@ Public unit wrapper over :mod:`supercoil.core.rod.smooth`.
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 
 from supercoil._checks import broadcast_shape
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import smooth as _sm
+from supercoil.records import Record, si_value
 from supercoil.rod.material import check_rod
 from supercoil.rod.validity import check_finite, warn_hard_contact
-from supercoil.tables import make_table, provenance
-from supercoil.units import U, as_turns, magnitude, quantity
+from supercoil.tables import provenance
+from supercoil.units import U, as_turns, magnitude
 
 __all__ = ["SmoothHelix", "smooth_helix"]
 
@@ -44,8 +43,7 @@ def checked_turns(turns, name="turns"):
     return n
 
 
-@dataclasses.dataclass(frozen=True)
-class SmoothHelix:
+class SmoothHelix(Record):
     """The uniform hard-contact helix of a smooth rod at turns N and slack S.
 
     All fields are quantities broadcast to the common shape of (turns, slack).
@@ -80,30 +78,12 @@ class SmoothHelix:
         returns that unsigned magnitude).
     """
 
-    turns: object
-    slack: object
-    alpha: object
-    pitch: object
-    omega: object
-    curvature: object
-    torsion: object
-    tension: object
-    torque: object
-    normal_force: object
-    twist: object
-    writhe: object
-    linking_number: object
-    superhelical_turns: object
-    provenance: dict = dataclasses.field(repr=False, compare=False, default_factory=dict)
-
-    def to_table(self):
-        """The solution as a flat table (one row per (N, S) pair) in the package convention."""
-        units = {"turns": "turn", "slack": "mm", "alpha": "rad", "pitch": "mm", "omega": "1/mm",
-                 "curvature": "1/mm", "torsion": "1/mm", "tension": "N", "torque": "N*mm",
-                 "normal_force": "N/m", "twist": "turn", "writhe": "turn", "linking_number": "turn",
-                 "superhelical_turns": "turn"}
-        cols = {k: np.ravel(getattr(self, k).magnitude) for k in units}
-        return make_table(cols, units, self.provenance)
+    __slots__ = ()
+    DOMAIN = "rod"
+    FIELDS = ("turns", "slack", "alpha", "pitch", "omega", "curvature", "torsion", "tension",
+              "torque", "normal_force", "twist", "writhe", "linking_number",
+              "superhelical_turns")
+    EXTRA = ("provenance",)
 
 
 def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
@@ -177,30 +157,13 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
     n_b = np.broadcast_to(np.asarray(n, float), shape)
     S_b = np.broadcast_to(np.asarray(S, float), shape)
 
-    def q(x, unit, scale=1.0):
-        x = np.asarray(x, float) * scale
-        return quantity(float(x) if x.ndim == 0 else x, unit)
-
     with np.errstate(over="ignore"):
         check_finite({"pitch [mm]": st["pitch"] * 1e3, "omega [1/mm]": st["omega"],
                               "tension [N]": st["tension"], "torque [N mm]": st["torque"] * 1e3,
                               "normal_force [N/m]": st["normal_force"]},
                              f"turns up to {float(np.max(np.abs(n_b), initial=0)):.6g}")
     warn_hard_contact(st["alpha"], "smooth helix")
-    return SmoothHelix(
-        turns=q(n_b, U.turn),
-        slack=q(S_b, U.mm, 1e3),
-        alpha=q(st["alpha"], U.rad),
-        pitch=q(st["pitch"], U.mm, 1e3),
-        omega=q(st["omega"], U.per_mm, 1e-3),
-        curvature=q(st["curvature"], U.per_mm, 1e-3),
-        torsion=q(st["torsion"], U.per_mm, 1e-3),
-        tension=q(st["tension"], U.N),
-        torque=q(st["torque"], U.N_mm, 1e3),
-        normal_force=q(st["normal_force"], U.N_per_m),
-        twist=q(st["twist"], U.turn),
-        writhe=q(st["writhe"], U.turn),
-        linking_number=q(st["linking_number"], U.turn),
-        superhelical_turns=q(st["superhelical_turns"], U.turn),
-        provenance=provenance(rod, scene="smooth_helix"),
-    )
+    fields = {k: si_value(st[k]) for k in SmoothHelix.FIELDS[2:]}
+    return SmoothHelix(turns=si_value(n_b), slack=si_value(S_b), **fields,
+                       provenance=provenance(rod, scene="smooth_helix"))
+

@@ -7,24 +7,22 @@ the stated energy, what is held fixed, and the T' = 0 limit.
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 
 from supercoil._checks import broadcast_shape
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import spinning as _ts
+from supercoil.records import Record, si_value
 from supercoil.rod.material import check_rod
 from supercoil.rod.smooth import checked_turns
 from supercoil.rod.validity import check_finite, warn_hard_contact
-from supercoil.tables import make_table, provenance
-from supercoil.units import U, magnitude, quantity
+from supercoil.tables import provenance
+from supercoil.units import U, magnitude
 
 __all__ = ["TwistSpinningHelix", "twist_spinning"]
 
 
-@dataclasses.dataclass(frozen=True)
-class TwistSpinningHelix:
+class TwistSpinningHelix(Record):
     """Short smooth helix under a head tension (result of :func:`twist_spinning`).
 
     All attributes are quantities broadcast over turns and head_tension.
@@ -51,25 +49,11 @@ class TwistSpinningHelix:
         behind once T' is released.
     """
 
-    turns: object
-    head_tension: object
-    alpha: object
-    beta: object
-    pitch: object
-    omega: object
-    alpha_slacking: object
-    pitch_slacking: object
-    pitch_increase: object
-    provenance: dict = dataclasses.field(repr=False, compare=False, default_factory=dict)
-
-    def to_table(self):
-        """Flat table (one row per (N, T') pair) in the package convention."""
-        units = {"turns": "turn", "head_tension": "N", "alpha": "rad", "beta": "rad",
-                 "pitch": "mm", "omega": "1/mm", "alpha_slacking": "rad",
-                 "pitch_slacking": "mm", "pitch_increase": ""}
-        cols = {k: np.ravel(np.broadcast_to(getattr(self, k).magnitude, self.alpha.shape))
-                for k in units}
-        return make_table(cols, units, self.provenance)
+    __slots__ = ()
+    DOMAIN = "rod"
+    FIELDS = ("turns", "head_tension", "alpha", "beta", "pitch", "omega", "alpha_slacking",
+              "pitch_slacking", "pitch_increase")
+    EXTRA = ("provenance",)
 
 
 def twist_spinning(rod, turns, head_tension):
@@ -127,10 +111,6 @@ def twist_spinning(rod, turns, head_tension):
         p0 = 2 * np.pi * r / np.tan(a0)
     sign = np.broadcast_to(np.sign(n), shape)
 
-    def q(x, unit, scale=1.0):
-        x = np.asarray(x, float) * scale
-        return quantity(float(x) if x.ndim == 0 else x, unit)
-
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         check_finite({"pitch [mm]": st["pitch"] * 1e3,
                               "pitch_slacking [mm]": p0 * 1e3,
@@ -139,14 +119,11 @@ def twist_spinning(rod, turns, head_tension):
 
     warn_hard_contact(st["alpha"], "twist-spinning helix")
     return TwistSpinningHelix(
-        turns=q(np.broadcast_to(n, shape), U.turn),
-        head_tension=q(np.broadcast_to(Tp, shape), U.N),
-        alpha=q(st["alpha"], U.rad),
-        beta=q(st["beta"], U.rad),
-        pitch=q(st["pitch"], U.mm, 1e3),
-        omega=q(sign * st["omega"], U.per_mm, 1e-3),
-        alpha_slacking=q(a0, U.rad),
-        pitch_slacking=q(p0, U.mm, 1e3),
-        pitch_increase=q(st["pitch"] / p0 - 1.0, U.dimensionless),
-        provenance=provenance(rod, scene="twist_spinning"),
-    )
+        turns=si_value(np.broadcast_to(n, shape)),
+        head_tension=si_value(np.broadcast_to(Tp, shape)),
+        alpha=si_value(st["alpha"]), beta=si_value(st["beta"]),
+        pitch=si_value(st["pitch"]), omega=si_value(sign * st["omega"]),
+        alpha_slacking=si_value(a0), pitch_slacking=si_value(p0),
+        pitch_increase=si_value(st["pitch"] / p0 - 1.0),
+        provenance=provenance(rod, scene="twist_spinning"))
+

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import warnings
 
 import numpy as np
@@ -36,8 +35,7 @@ def smooth_map(rod, quick):
             h, exc, warns = call(lambda n=n, sf=sf: sc.smooth_helix(rod, n, sf * L * u.m))
             problems = []
             if h is not None:
-                vals = {f.name: getattr(h, f.name).magnitude for f in dataclasses.fields(h)
-                        if f.name != "provenance"}
+                vals = {name: q.magnitude for name, q in h._asdict().items()}
                 problems = finite_problems(vals)
                 if not problems:
                     with np.errstate(all="ignore"):
