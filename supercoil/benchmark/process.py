@@ -1,0 +1,128 @@
+"""Headline measurements in fresh interpreters: import time and the CLI main job.
+
+* :func:`import_time`: wall time of ``import supercoil`` inside a fresh
+  ``python`` process (timed by the child around the import statement, so the
+  interpreter's own start-up is left out and reported separately), median of
+  ``repeat`` processes;
+* :func:`cli_hat_phases`: the CLI main job ``supercoil hat --params dna --out
+  DIR`` (``python -m supercoil.cli``): its whole wall time as a subprocess
+  (median), and in a second fresh interpreter the same job split into
+  ``startup`` (interpreter start-up and exit: the wall time of the process
+  minus the time inside the script), ``import`` (``import supercoil.cli``), ``compute``
+  (argument parsing to the end of writing ``hat_curve.csv``: parameters, hat
+  curve, buckling, slope, CSV), ``plot`` (from there to the end of
+  ``plot_hat_curves``: matplotlib import, figure, PNG) and ``rest`` (the printed
+  table: one more plectoneme equilibrium). The split wraps
+  ``supercoil.tables.write_csv`` and ``supercoil.dna.hat.plot_hat_curves`` (the
+  command imports both at run time) with clocks.
+
+The children import this checkout of supercoil (its parent folder first on
+``PYTHONPATH``) with ``MPLBACKEND=Agg``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+_IMPORT = """
+import time
+t0 = time.perf_counter()
+import supercoil
+print(time.perf_counter() - t0)
+"""
+
+_PHASES = """
+import json, sys, time
+t_start = time.perf_counter()
+import supercoil.cli as cli
+t_import = time.perf_counter()
+import supercoil.dna.hat as hat_layer
+import supercoil.tables as tables
+marks = {}
+_write, _plot = tables.write_csv, hat_layer.plot_hat_curves
+def write_csv(*a, **k):
+    out = _write(*a, **k)
+    marks["csv"] = time.perf_counter()
+    return out
+def plot_hat_curves(*a, **k):
+    out = _plot(*a, **k)
+    marks["plot"] = time.perf_counter()
+    return out
+tables.write_csv, hat_layer.plot_hat_curves = write_csv, plot_hat_curves
+import contextlib, io
+with contextlib.redirect_stdout(io.StringIO()):
+    code = cli.main(["hat", "--params", "dna", "--out", sys.argv[1]])
+t_end = time.perf_counter()
+print(json.dumps({"code": code, "import": t_import - t_start,
+                  "compute": marks["csv"] - t_import, "plot": marks["plot"] - marks["csv"],
+                  "rest": t_end - marks["plot"], "inside": t_end - t_start}))
+"""
+
+
+def _env():
+    root = str(Path(__file__).resolve().parents[2])
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
+    env["MPLBACKEND"] = "Agg"
+    return env
+
+
+def _run(args, env):
+    t0 = time.perf_counter()
+    proc = subprocess.run([sys.executable, *args], env=env, capture_output=True, text=True,
+                          check=False, timeout=120)
+    wall = time.perf_counter() - t0
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)} failed ({proc.returncode}): {proc.stderr[-500:]}")
+    return proc.stdout, wall
+
+
+def import_time(repeat=5):
+    """Median in-process wall seconds of ``import supercoil``; interpreter start-up beside.
+
+    Returns
+    -------
+    dict
+        ``import`` (s, median), ``samples`` (list) and ``startup`` (median wall of
+        ``python -c pass``, s).
+    """
+    env = _env()
+    samples, startups = [], []
+    for _ in range(repeat):  # interleaved: start-up, import, start-up, import, ...
+        startups.append(_run(["-c", "pass"], env)[1])
+        samples.append(float(_run(["-c", _IMPORT], env)[0].split()[-1]))
+    return {"import": float(np.median(samples)), "samples": samples,
+            "startup": float(np.median(startups))}
+
+
+def cli_hat_phases(repeat=3):
+    """Wall seconds of ``supercoil hat --params dna --out DIR``, whole and by phase.
+
+    Returns
+    -------
+    dict
+        ``wall`` (median of ``repeat`` subprocess runs of ``python -m
+        supercoil.cli hat --params dna --out DIR``; with ``repeat=0`` the wall
+        time of the hooked run), and from one hooked run
+        ``startup``, ``import``, ``compute``, ``plot``, ``rest`` (s).
+    """
+    env = _env()
+    with tempfile.TemporaryDirectory() as tmp:
+        walls = [_run(["-m", "supercoil.cli", "hat", "--params", "dna", "--out", tmp], env)[1]
+                 for _ in range(repeat)]
+        out, wall = _run(["-c", _PHASES, tmp], env)
+        if not (Path(tmp) / "hat_curve.png").is_file():
+            raise RuntimeError("supercoil hat wrote no hat_curve.png")
+    phases = json.loads(out.strip().splitlines()[-1])
+    if phases["code"] != 0:
+        raise RuntimeError(f"supercoil hat returned {phases['code']}")
+    return {"wall": float(np.median(walls)) if walls else wall, "startup": wall - phases["inside"],
+            **{k: phases[k] for k in ("import", "compute", "plot", "rest")}}
