@@ -144,8 +144,9 @@ def _fit_rows(r):
         _row(f"public sc.fit_many, {m['pooled']} molecules: wall time serial / "
              "ProcessPoolExecutor(2)", m["speedup"], "x", ">= 1.8x", m["speedup"] >= 1.8,
              f"wall: serial {m['serial_wall']:.3g} s, pool {m['pool_wall']:.3g} s; serial CPU "
-             f"{m['serial_cpu'] * 1e3:.3g} ms per molecule; load average "
-             f"{r['load_start']:.1f} on {os.cpu_count()} cores"),
+             f"{m['serial_cpu'] * 1e3:.3g} ms per molecule; the workers got "
+             f"{m['pool_workers_cpu'] / m['pool_wall']:.2g} cores (their CPU / pool wall); "
+             f"load average {r['load_start']:.1f} on {os.cpu_count()} cores"),
     ]
     return rows
 
