@@ -5,13 +5,11 @@ Public unit wrapper over :mod:`supercoil.core.rod.design`.
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import design as _dh
-from supercoil.exceptions import ValidityWarning
+from supercoil.rod.validity import warn_hard_contact, warn_no_friction
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, magnitude, quantity
 
@@ -156,10 +154,8 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
                              f"s = {s[i] * 1e3:.9g} mm")
     out = _dh.schedule(s, P, dP, r, L, B, C, cos2a_min)
     a = out["alpha"]
-    msg = _sc.contact_warning(a, "designed helix, pitch down to "
-                                 f"{float(np.min(out['pitch'])) * 1e3:.6g} mm")
-    if msg:
-        warnings.warn(msg, ValidityWarning, stacklevel=2)
+    warn_hard_contact(a, "designed helix, pitch down to "
+                         f"{float(np.min(out['pitch'])) * 1e3:.6g} mm")
     omega = _sc.twist_density(a, r, B, C)
     cols = {
         "slack": out["slack"] * 1e3,
@@ -176,10 +172,8 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     if mu is not None:
         cols["friction_torque_available"] = _sc.friction_torque_available(a, r, B, mu)
     else:
-        warnings.warn(
-            "rod.friction_coefficient is None: the no-slip condition of the designed helix "
-            "is not checked; the schedule has no friction_torque_available column",
-            ValidityWarning, stacklevel=2)
+        warn_no_friction("designed helix", "the schedule has no friction_torque_available "
+                         "column")
         units.pop("friction_torque_available")
     return make_table(cols, units, provenance(rod, scene="design_twist_schedule",
                                               slack_max=f"{S_end:.12g} m", n_points=n_points))

@@ -6,17 +6,19 @@ Public unit wrapper over :mod:`supercoil.core.rod.smooth`.
 from __future__ import annotations
 
 import dataclasses
-import warnings
 
 import numpy as np
 
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import smooth as _sm
-from supercoil.exceptions import ValidityError, ValidityWarning
+from supercoil.rod.validity import check_finite, warn_hard_contact
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, as_turns, magnitude, quantity
 
 __all__ = ["SmoothHelix", "smooth_helix"]
+
+#: Old name of :func:`supercoil.rod.validity.check_finite` (kept for importers).
+check_finite_results = check_finite
 
 
 def checked_turns(turns, name="turns"):
@@ -38,21 +40,6 @@ def checked_turns(turns, name="turns"):
         bad = a[~np.isfinite(a)].reshape(-1)[0]
         raise ValueError(f"{name} must be finite, got {float(bad)!r}")
     return n
-
-
-def check_finite_results(fields, where):
-    """Raise :class:`ValidityError` if a result array has NaN/inf (float range exceeded).
-
-    ``fields`` maps names to arrays in their display units; ``where`` names the
-    inputs (e.g. the turns) for the message.
-    """
-    for name, x in fields.items():
-        x = np.asarray(x, float)
-        if not np.all(np.isfinite(x)):
-            bad = float(x[~np.isfinite(x)].reshape(-1)[0])
-            raise ValidityError(
-                f"result {name!r} is {bad!r} ({where}): the inputs leave the floating-point "
-                "range (e.g. a pitch beyond 1e308); no finite result exists")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -192,13 +179,11 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         return quantity(float(x) if x.ndim == 0 else x, unit)
 
     with np.errstate(over="ignore"):
-        check_finite_results({"pitch [mm]": st["pitch"] * 1e3, "omega [1/mm]": st["omega"],
+        check_finite({"pitch [mm]": st["pitch"] * 1e3, "omega [1/mm]": st["omega"],
                               "tension [N]": st["tension"], "torque [N mm]": st["torque"] * 1e3,
                               "normal_force [N/m]": st["normal_force"]},
                              f"turns up to {float(np.max(np.abs(n_b), initial=0)):.6g}")
-    msg = _sc.contact_warning(st["alpha"], "smooth helix")
-    if msg:
-        warnings.warn(msg, ValidityWarning, stacklevel=2)
+    warn_hard_contact(st["alpha"], "smooth helix")
     return SmoothHelix(
         turns=q(n_b, U.turn),
         slack=q(S_b, U.mm, 1e3),

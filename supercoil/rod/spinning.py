@@ -8,14 +8,13 @@ the stated energy, what is held fixed, and the T' = 0 limit.
 from __future__ import annotations
 
 import dataclasses
-import warnings
 
 import numpy as np
 
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import spinning as _ts
-from supercoil.exceptions import ValidityWarning
-from supercoil.rod.smooth import check_finite_results, checked_turns
+from supercoil.rod.smooth import checked_turns
+from supercoil.rod.validity import check_finite, warn_hard_contact
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, magnitude, quantity
 
@@ -130,14 +129,12 @@ def twist_spinning(rod, turns, head_tension):
         return quantity(float(x) if x.ndim == 0 else x, unit)
 
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        check_finite_results({"pitch [mm]": st["pitch"] * 1e3,
+        check_finite({"pitch [mm]": st["pitch"] * 1e3,
                               "pitch_slacking [mm]": p0 * 1e3,
                               "pitch_increase": st["pitch"] / p0 - 1.0},
                              "twist_spinning: tiny |N| or huge head_tension")
 
-    msg = _sc.contact_warning(st["alpha"], "twist-spinning helix")
-    if msg:
-        warnings.warn(msg, ValidityWarning, stacklevel=2)
+    warn_hard_contact(st["alpha"], "twist-spinning helix")
     return TwistSpinningHelix(
         turns=q(np.broadcast_to(n, shape), U.turn),
         head_tension=q(np.broadcast_to(Tp, shape), U.N),

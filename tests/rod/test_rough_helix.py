@@ -1,9 +1,9 @@
-"""Case II, rough surface (MODEL.md s.4): physics checks of supercoil.rough_helix."""
+"""Case II, rough surface (docs/theory/rough.md): physics checks of supercoil.rough_helix."""
 
 import numpy as np
 import pint
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import supercoil as sc
@@ -290,6 +290,10 @@ def test_profile_table_convention():
 
 @settings(max_examples=25)
 @given(N=st.floats(2.0, 300.0), r_mm=st.floats(0.3, 3.0), L_cm=st.floats(30.0, 300.0))
+# issue 9 item 11: DOP853 ended 5.4e-7 (relative) short of s_max here (the case as
+# reported, rounded, and an unrounded neighbour that reproduced it)
+@example(N=2.3326, r_mm=2.00001, L_cm=59.507)
+@example(N=2.3330754336164494, r_mm=2.0000874659683334, L_cm=59.5262881778452)
 def test_s_max_event_matches_formula_property(N, r_mm, L_cm):
     rod = sc.ElasticRod(r_mm * u.mm, L_cm * u.cm, 4.2 * u.MPa, 1.51 * u.MPa, 0.5)
     r, L, B, C = _si(rod)
@@ -302,7 +306,7 @@ def test_s_max_event_matches_formula_property(N, r_mm, L_cm):
         assert it.reason == "s_stop" and it.s_end < smax
         return
     assert it.reason == "alpha->0"
-    assert it.s_end == pytest.approx(smax, rel=1e-8)
+    assert it.s_end == pytest.approx(smax, rel=1e-10)  # measured worst 3e-12 (391 rods)
     assert 0 < smax < L / 2
 
 

@@ -74,6 +74,7 @@ import numpy as np
 
 from supercoil.core import geometry as _g
 from supercoil.core.dna import marko_siggia as _ms
+from supercoil.core.numerics import safe_newton as _safe_newton
 from supercoil.exceptions import NoEquilibriumError
 
 __all__ = [
@@ -201,35 +202,8 @@ def reduced_torque(alpha, rho, b):
 
 
 # ---------------------------------------------------------------------------
-# safeguarded Newton (vectorised)
+# (GE2) tilt by safeguarded Newton (supercoil.core.numerics.safe_newton)
 # ---------------------------------------------------------------------------
-
-
-def _safe_newton(fun, x, lo, hi, xtol, maxiter=100):
-    """Root of an increasing ``fun`` in ``[lo, hi]`` (``fun(lo) <= 0 <= fun(hi)``).
-
-    ``fun(x) -> (f, df)``. Newton steps that leave the current bracket, or are
-    not finite, are replaced by bisection; the bracket shrinks with every sign
-    evaluation, so the iteration cannot fail once bracketed.
-    """
-    x = np.array(x, dtype=float, copy=True)
-    lo = np.array(lo, dtype=float, copy=True)
-    hi = np.array(hi, dtype=float, copy=True)
-    for _ in range(maxiter):
-        f, df = fun(x)
-        neg = f < 0.0
-        lo = np.where(neg, x, lo)
-        hi = np.where(neg, hi, x)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xn = x - f / df
-        ok = (xn >= lo) & (xn <= hi)
-        xn = np.where(ok, xn, 0.5 * (lo + hi))
-        xn = np.where(f == 0.0, x, xn)
-        dx = np.abs(xn - x)
-        x = xn
-        if np.all(dx <= xtol * (1.0 + np.abs(x))):
-            break
-    return x
 
 
 def solve_tilt(rho, b, alpha0=None, xtol=1e-15):

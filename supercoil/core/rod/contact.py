@@ -64,7 +64,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil.core.numerics import bisect_increasing
 from supercoil.exceptions import NoHelixError, SingularityError
+
+__all__ = ["bisect_increasing"]  # re-exported from supercoil.core.numerics (old home)
 
 TWO_PI = 2.0 * np.pi
 QUARTER_PI = 0.25 * np.pi
@@ -176,43 +179,6 @@ def check_scalar(value, name, lo=-np.inf, hi=np.inf, lo_open=True, hi_open=True,
     return x
 
 
-def bisect_increasing(fun, lo, hi, n_iter=1100, xtol=0.0):
-    """Vectorised bisection for the sign change of an increasing function.
-
-    Parameters
-    ----------
-    fun : callable
-        ``fun(x) -> array`` broadcasting like ``lo``; ``fun(lo) <= 0 <= fun(hi)``
-        elementwise, with exactly one sign change in between (only the sign is
-        used, so ``fun`` may be any positive multiple of a monotone function).
-    lo, hi : array_like
-        Brackets (broadcast together).
-    n_iter : int
-        Maximum halvings; stops early once every bracket has collapsed to
-        adjacent floats (or is narrower than ``xtol``). The default 1100 lets a
-        bracket [0, x] reach a root anywhere down to the smallest subnormal
-        (about 1075 halvings from 1 to 5e-324, plus 53 for the mantissa); a
-        root near the top of the bracket takes about 55.
-
-    Returns
-    -------
-    numpy.ndarray
-        Midpoints of the final brackets (accurate to about one float spacing).
-    """
-    lo, hi = np.broadcast_arrays(np.asarray(lo, float), np.asarray(hi, float))
-    lo, hi = lo.copy(), hi.copy()
-    for _ in range(n_iter):
-        mid = 0.5 * (lo + hi)
-        f = np.asarray(fun(mid), float)
-        up = f > 0
-        hi = np.where(up, mid, hi)
-        lo = np.where(up, lo, mid)
-        mid2 = 0.5 * (lo + hi)
-        if np.all((mid2 == lo) | (mid2 == hi) | (hi - lo <= xtol)):
-            break
-    return 0.5 * (lo + hi)
-
-
 # --- variables -------------------------------------------------------------
 
 
@@ -252,8 +218,9 @@ def initial_tilt(turns_abs, r, L, B, C):
     """alpha_0 of [eq ini]: ``(1 - cos 2a0) tan 2a0 = (C/B) 4 pi r |N_0| / L``.
 
     This is (HC) with the uniform twist ``omega = 2 pi N_0 / L`` of the straight
-    rod at S = 0. Solved by vectorised bisection in ``(0, pi/4)`` on the regular
-    form ``(1 - c) sin 2a - rhs c = 0`` (increasing in alpha).
+    rod at S = 0. Solved by vectorised bisection
+    (:func:`supercoil.core.numerics.bisect_increasing`) in ``(0, pi/4)`` on the
+    regular form ``(1 - c) sin 2a - rhs c = 0`` (increasing in alpha).
 
     Raises
     ------

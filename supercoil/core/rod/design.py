@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import cumulative_simpson
 
+from supercoil.core.numerics import finite_difference as derivative  # noqa: F401 (old home)
 from supercoil.core.rod import contact as sc
 from supercoil.exceptions import SingularityError
 
@@ -110,26 +111,3 @@ def schedule(s, pitch, dpitch_ds, r, L, B, C, cos2a_min=sc.COS2A_MIN):
         "turns": turns,
         "tension": sc.tension(alpha, r, B),
     }
-
-
-def derivative(fun, x, h, lo, hi):
-    """4th-order finite-difference derivative of a vectorised ``fun`` on [lo, hi].
-
-    Central 5-point stencil inside, one-sided 5-point stencils within 2 h of
-    the ends (so ``fun`` is never evaluated outside [lo, hi]).
-    """
-    x = np.asarray(x, float)
-    d = np.empty_like(x)
-    mid = (x - 2 * h >= lo) & (x + 2 * h <= hi)
-    left = (~mid) & (x - 2 * h < lo)
-    right = (~mid) & ~left
-    if np.any(mid):
-        xm = x[mid]
-        d[mid] = (fun(xm - 2 * h) - 8 * fun(xm - h) + 8 * fun(xm + h) - fun(xm + 2 * h)) / (12 * h)
-    for sel, sgn in ((left, 1.0), (right, -1.0)):
-        if np.any(sel):
-            xs = x[sel]
-            hh = sgn * h
-            d[sel] = (-25 * fun(xs) + 48 * fun(xs + hh) - 36 * fun(xs + 2 * hh)
-                      + 16 * fun(xs + 3 * hh) - 3 * fun(xs + 4 * hh)) / (12 * hh)
-    return d

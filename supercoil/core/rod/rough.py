@@ -1,6 +1,6 @@
 """Case II, rough surface: the frozen non-uniform hard-contact helix. Float-only kernel.
 
-MODEL.md section 4, paper [eq da/ds, eq ini, eq tension, eq example k=0] and
+docs/theory/rough.md, paper [eq da/ds, eq ini, eq tension, eq example k=0] and
 Appendix C. SI floats (m, N, N m^2, rad); nothing here imports pint.
 
 The ODE in a regular variable
@@ -46,24 +46,37 @@ difference is <= 1e-8 rad (at s_max (1 - 1e-8) it grows to ~2e-8 rad).
 
 from __future__ import annotations
 
-import math
+from typing import NamedTuple
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from supercoil.core.geometry import curvature, torsion
+from supercoil.core.numerics import cumulative_integrals, first_crossing
 from supercoil.core.rod import contact as sc
-from supercoil.exceptions import NoHelixError, SingularityError, ValidityError
+from supercoil.core.rod.rough_ode import (
+    ATOL,
+    MAX_NFEV,
+    RTOL,
+    TAIL_FRACTION_MIN,
+    Y_SWITCH,
+    Integration,
+    RoughSolution,
+    dy_ds,
+    integrate,
+)
+from supercoil.exceptions import NoHelixError
+
+__all__ = ["ATOL", "MAX_NFEV", "RTOL", "TAIL_FRACTION_MIN", "Y_SWITCH", "ClosedForm",
+           "Integration", "RoughProfile", "RoughSolution", "cumulative_integrals", "dy_ds",
+           "first_crossing", "integrate", "rough_profile"]
 
 TWO_PI = 2.0 * np.pi
-
-#: Default ODE tolerances of :func:`integrate` (relative, absolute on y).
-RTOL = 1e-10
-ATOL = 1e-12
-#: Default end of the integration when no terminal event fires: the tail keeps
-#: this fraction of L (the ODE has a 1/(L - 2s) factor at S = L).
-TAIL_FRACTION_MIN = 1e-6
+#: Uniform points of the internal grid on which :func:`rough_profile` locates the
+#: slip and curvature-error onsets and breaks the Tw, Wr, N quadratures (plus 60
+#: points clustered toward s_max and the nodes of a twist-rate table).
+INTERNAL_POINTS = 801
+#: Profile points evaluated at once (bounds the working memory of a long profile).
+CHUNK = 1 << 12
 
 
 # --- closed form, k = 0 ------------------------------------------------------
@@ -145,278 +158,210 @@ def k0_dy_ds(s, y, L, B, C):
     return -2.0 * C / (B * (L - 2.0 * np.asarray(s, float))) * c * c * (1.0 + c) / (c * c + c + 1.0)
 
 
-# --- general twist rate: the ODE ---------------------------------------------
+class ClosedForm:
+    """Interpolant of the k = 0 helix: y(s) of [eq example k=0] (:func:`k0_y_of_s`)."""
+
+    kind = "closed form"
+
+    def __init__(self, alpha0, L, B, C):
+        self.p = (alpha0, L, B, C)
+
+    def __call__(self, s):
+        return k0_y_of_s(s, *self.p)
 
 
-def dy_ds(s, y, k, r, L, B, C):
-    """Right side of [eq da/ds] in ``y = 1 - cos 2a`` (1/m); ``k = k(2s)`` in rad/m."""
-    # trial stages of explicit solvers may step outside [0, 1]: keep the right
-    # side finite there (the error control rejects such steps)
-    y = np.clip(np.asarray(y, float), 0.0, 1.5)
-    k = np.asarray(k, float)
-    c = 1.0 - y
-    yy = np.maximum(y, 1e-30)
-    bracket = (2.0 - y) - np.where(k == 0.0, 0.0, 2.0 * r * k * np.sqrt((2.0 - y) / yy))
-    return -2.0 * C / (B * (L - 2.0 * np.asarray(s, float))) * c * c / (c * c + c + 1.0) * bracket
+# --- the algorithm: solution, grids, integrals, onsets, columns ----------------
 
 
-#: Phase switch of :func:`integrate`: below this y (alpha ~ 0.022 rad), while y
-#: decreases, the ODE is integrated as s(y) instead of y(s).
-Y_SWITCH = 1e-3
+class RoughProfile(NamedTuple):
+    """Float-level result of :func:`rough_profile` (SI units).
 
-
-def _dy_ds_scalar(s, y, k, r, L, B, C):
-    """Scalar (math-module) twin of :func:`dy_ds` for the solver's right side."""
-    y = min(max(y, 0.0), 1.5)
-    c = 1.0 - y
-    bracket = 2.0 - y
-    if k != 0.0:
-        bracket -= 2.0 * r * k * math.sqrt((2.0 - y) / max(y, 1e-30))
-    return -2.0 * C / (B * (L - 2.0 * s)) * c * c / (c * c + c + 1.0) * bracket
-
-
-class Integration:
-    """Result of :func:`integrate`: piecewise dense solution, end point, why it ended.
-
-    ``segments`` is a list of ``(kind, lo, hi, sol)``: kind ``"y(s)"`` covers
-    s in [lo, hi] with ``sol(s) -> y``; kind ``"s(y)"`` covers s in [lo, hi]
-    with ``sol(y) -> s`` for y decreasing from ``sol.y_start`` to ``sol.y_end``.
+    ``columns`` holds every profile column (SI, signed with N_0, the flag as
+    bool); ``s_max`` is None when the helix end is unknown (see
+    :class:`supercoil.rod.rough.RoughHelix`); ``alpha_max`` is the largest tilt
+    on [0, s_end] (internal grid and the head), for the hard-contact check.
     """
 
-    def __init__(self, segments, s_end, reason, nfev, ode_method, rtol, atol, kfun, r, L, B, C):
-        self.segments = segments
-        self.s_end = s_end
-        self.reason = reason  # "alpha->0", "s_stop"
-        self.nfev = nfev
-        self.ode_method = ode_method
-        self.rtol = rtol
-        self.atol = atol
-        self._k = kfun
-        self._p = (r, L, B, C)
-
-    def y(self, s):
-        """y(s) from the dense outputs (s(y) segments inverted by bisection), >= 0."""
-        s = np.asarray(s, float)
-        out = np.full(s.shape, np.nan)
-        flat_s, flat_o = s.reshape(-1), out.reshape(-1)
-        for kind, lo, hi, sol in self.segments:
-            m = (flat_s >= lo) & (flat_s <= hi) & np.isnan(flat_o)
-            if not np.any(m):
-                continue
-            x = flat_s[m]
-            if kind == "y(s)":
-                flat_o[m] = sol(x)[0]
-            else:  # invert the monotone map y -> s on [y_end, y_start]
-                flat_o[m] = self._invert(sol, x)
-        if np.any(np.isnan(out)):
-            raise NoHelixError(f"s outside the integrated helix [0, {self.s_end:.9g} m]")
-        out = np.clip(out, 0.0, None)
-        return float(out) if out.ndim == 0 else out
-
-    def dy(self, s, y):
-        s = np.asarray(s, float)
-        k = np.asarray(self._k(2.0 * s), float)
-        if not np.all(np.isfinite(k)):
-            bad = np.flatnonzero(~np.isfinite(np.broadcast_to(k, s.shape)).reshape(-1))[0]
-            raise _nonfinite_rate(float(np.broadcast_to(k, s.shape).reshape(-1)[bad]),
-                                  2.0 * float(np.reshape(s, -1)[bad]))
-        return dy_ds(s, y, k, *self._p)
-
-    def _invert(self, sol, x):
-        """y with ``sol(y) = x`` on an s(y) segment: Newton (ds/dy = 1/(dy/ds)), safeguarded."""
-        lo = np.full(x.shape, sol.y_end)
-        hi = np.full(x.shape, sol.y_start)
-        # start from linear interpolation between the two ends of the segment
-        s_hi, s_lo = float(sol(sol.y_start)[0]), float(sol(sol.y_end)[0])
-        t = np.clip((x - s_hi) / (s_lo - s_hi), 0.0, 1.0) if s_lo != s_hi else np.zeros(x.shape)
-        y = sol.y_start + t * (sol.y_end - sol.y_start)
-        for _ in range(60):
-            f = x - sol(y)[0]  # increasing in y
-            hi = np.where(f > 0, y, hi)
-            lo = np.where(f > 0, lo, y)
-            slope = -1.0 / self.dy(x, y)  # d(x - s(y))/dy = -ds/dy > 0
-            with np.errstate(divide="ignore", invalid="ignore"):
-                y_new = y - f / slope
-            bad = ~np.isfinite(y_new) | (y_new < lo) | (y_new > hi)
-            y_new = np.where(bad, 0.5 * (lo + hi), y_new)
-            if np.all(np.abs(y_new - y) <= 1e-15 + 1e-13 * np.abs(y)):
-                return y_new
-            y = y_new
-        return sc.bisect_increasing(lambda yy: x - sol(yy)[0], lo, hi)
+    alpha0: float
+    s_end: float
+    s_max: float | None
+    end: str
+    method: str
+    solver: dict
+    columns: dict
+    slip_onset: float | None
+    curvature_error_onset: float | None
+    alpha_max: float
+    solution: RoughSolution
 
 
-def _zero_rate(S):
-    return np.zeros_like(np.asarray(S, float))
+def _solve(alpha0, kfun, k_zero, method, r, L, B, C, s_user, s_table, ode):
+    """The helix y(s): ``(solution, dy(s, y), end, solver dict, s_max)`` (s in m)."""
+    s_rod = 0.5 * L * (1.0 - TAIL_FRACTION_MIN)  # the helix takes the whole rod
+    with np.errstate(over="ignore", under="ignore"):
+        s_max_k0 = float(k0_s_max(alpha0, L, B, C)) if k_zero else None
+    if method == "closed_form":
+        s_end, end = s_max_k0, "alpha->0"
+        if s_end > s_rod:
+            s_end, end = s_rod, "s_stop"
+        if s_user is not None and s_user < s_end:
+            s_end, end = s_user, "s_stop"
+        sol = RoughSolution([0.0, s_end], [ClosedForm(alpha0, L, B, C)])
+        dy, solver = (lambda x, y: k0_dy_ds(x, y, L, B, C)), {}
+    else:
+        rtol, atol, ode_method, max_nfev, cos2a_min = ode
+        rtol = sc.check_scalar(rtol, "rtol", 0.0, 0.1, hi_open=False,
+                               what=" (looser ODE steps leave y = 1 - cos 2 alpha in [0, 1])")
+        atol = sc.check_scalar(atol, "atol", 0.0, np.inf, what=" (absolute ODE tolerance on y)")
+        if ode_method == "auto":
+            ode_method = "DOP853" if k_zero else "LSODA"
+        # a tiny initial tilt (tiny N_0) must still be resolved relatively: cap atol
+        # at rtol y_0 (no effect unless y_0 = 1 - cos 2 alpha_0 < atol / rtol)
+        atol = min(atol, rtol * float(sc.y_of_alpha(alpha0)))
+        s_stop = min(x for x in (s_rod, s_user, s_table) if x is not None)
+        with np.errstate(all="ignore"):  # e.g. scipy's error norm at y ~ 1e-200; the
+            # outcome is checked: solver status, events, finite profile columns
+            integ = integrate(alpha0, None if k_zero else kfun, r, L, B, C, s_stop=s_stop,
+                              ode_method=ode_method, rtol=rtol, atol=atol,
+                              cos2a_min=cos2a_min, max_nfev=max_nfev)
+        sol, dy, end = integ.solution, integ.dy, integ.reason
+        solver = {"ode_method": ode_method, "rtol": rtol, "atol": atol, "nfev": int(integ.nfev)}
+    s_end = sol.t_max
+    if end == "alpha->0" or s_end >= s_rod:  # the true end, never where the run stopped
+        s_max = s_end
+    else:
+        s_max = min(s_max_k0, s_rod) if k_zero else None
+    return sol, dy, end, solver, s_max
 
 
-def _nonfinite_rate(k, S):
-    return ValidityError(
-        f"twisting rate k = {k!r} rad/m at slack S = {float(S):.9g} m is not finite: "
-        "[eq da/ds] is undefined there (twist_rate must be finite)"
-    )
+def _profile_points(grid, s_end, end, n_points):
+    """The profile grid (m): the default one, or ``grid`` checked to lie on the helix."""
+    n_end, include = (60, False) if end == "alpha->0" else (0, True)
+    if grid is None:
+        return profile_grid(s_end, n_points, n_end, include_end=include)
+    if grid[0] < 0 or grid[-1] > s_end or (end == "alpha->0" and grid[-1] >= s_end):
+        raise NoHelixError(
+            f"profile grid s outside the helix [0, s_max = {s_end * 1e3:.9g} mm)"
+            + (": alpha = 0 and the pitch is infinite at s_max" if end == "alpha->0" else
+               f" (integrated up to s_end = {s_end * 1e3:.9g} mm)"))
+    return grid
 
 
-def _singular(s_sing, cos2a_min):
-    return SingularityError(
-        f"tilt alpha -> pi/4 (cos 2 alpha < {cos2a_min:g}) at s = {s_sing:.6g} m "
-        f"(slack S = {2 * s_sing:.6g} m): the tension diverges; the twisting rate "
-        "k(S) is too large for a hard-contact helix"
-    )
+def _integrals_at(x, inner, ints_in, y_at, kfun, r, B, C):
+    """``(int omega, int tau, int k(2s))`` from the head at the sorted points x.
+
+    Points on an internal node take the internal integrals ``ints_in``; the
+    others add the integral from their node below, taken as a difference of
+    running integrals over those nodes and points (one quadrature per chunk).
+    """
+    idx = np.searchsorted(inner, x, side="right") - 1
+    out = ints_in[:, idx]
+    off = inner[idx] != x
+    if np.any(off):
+        breaks = np.unique(np.concatenate([inner[idx[off]], x[off]]))
+        # absolute budget: 1e-12 of the integrals over the whole helix (a relative one
+        # on a short chunk sits below the integrand's rounding noise)
+        run = strand_integrals(breaks, y_at, kfun, r, B, C,
+                               atol=1e-12 * np.max(np.abs(ints_in), axis=1))
+        out[:, off] += (run[:, np.searchsorted(breaks, x[off])]
+                        - run[:, np.searchsorted(breaks, inner[idx[off]])])
+    return out
 
 
-def integrate(alpha0, kfun, r, L, B, C, s_stop=None, ode_method="DOP853",
-              rtol=RTOL, atol=ATOL, cos2a_min=sc.COS2A_MIN, y_switch=Y_SWITCH):
-    """Integrate [eq da/ds] from s = 0 with ``solve_ivp``, in two phases.
+def _onsets(inner, y_in, dy_in, y_at, dy_at, r, B, mu, tol):
+    """``(slip_onset, curvature_error_onset)`` (m or None) searched on the internal grid."""
+    slip = None
+    if mu is not None:
+        g_slip = (sc.friction_torque_required_y(y_in, dy_in, r, B)
+                  - sc.friction_torque_available(sc.alpha_of_y(y_in), r, B, mu))
+        slip = first_crossing(inner, g_slip, slip_function(y_at, dy_at, r, B, mu))
+    err_in = np.abs(curvature_error_y(y_in, dy_in, r) - 1.0)
+    ce = first_crossing(inner, err_in - tol, curvature_error_function(y_at, dy_at, r, tol))
+    return slip, ce
 
-    Phase "y(s)": y = 1 - cos 2 alpha as a function of s (regular for k = 0 and
-    wherever y is not small). Phase "s(y)": once y falls below ``y_switch``
-    while decreasing, s is integrated as a function of y down to y = 0,
-    ``ds/dy = 1 / (dy/ds)``. Near the end dy/ds is finite (k = 0) or diverges
-    like ``y^(-1/2)`` (k < 0, untwisting while slacking), so ds/dy is regular
-    in both cases and the end s_max = s(y = 0) is reached without an event
-    search on a singular right side. If dy/ds rises to half its value at the
-    switch in phase "s(y)" (a turning point ahead: k > 0 re-tilting the helix)
-    the integration goes back to phase "y(s)" with the switch level halved.
 
-    Parameters
-    ----------
-    alpha0 : float
-        Initial tilt from [eq ini] (rad).
-    kfun : callable or None
-        ``kfun(S) -> k`` twisting rate in rad/m as a function of slack S (m),
-        vectorised, in the frame where N_0 > 0. None: k = 0.
-    r, L, B, C : float
-        Rod radius, length (m), rigidities (N m^2).
-    s_stop : float, optional
-        Last s to integrate to if the helix does not end first; default
-        ``(L/2)(1 - TAIL_FRACTION_MIN)``.
-    ode_method : str
-        Any ``solve_ivp`` method ("RK45", "DOP853", "Radau", "LSODA", ...).
-    rtol, atol : float
-        Tolerances (defaults 1e-10, 1e-12): on y in phase "y(s)"; on s in
-        phase "s(y)" with ``atol * L`` as absolute tolerance (metres).
-    cos2a_min : float
-        alpha -> pi/4 guard: terminal event at ``cos 2a = cos2a_min``.
-    y_switch : float
-        Phase switch threshold in y (default 1e-3).
+ORDER = ("s", "slack", "alpha", "pitch", "omega", "curvature", "torsion", "tension", "torque",
+         "normal_force", "friction_torque_required", "friction_torque_available",
+         "curvature_error", "curvature_error_flag", "turns", "twist", "writhe")
+
+
+def _fill_columns(out, sl, x, sol, dy, inner, ints_in, kfun, n0, r, L, B, C, mu, tol):
+    """Profile columns at the points ``x`` (one chunk) written into ``out[c][sl]``."""
+    y = np.asarray(sol(x), float)
+    ints = _integrals_at(x, inner, ints_in, sol, kfun, r, B, C)
+    cols = profile_columns(x, y, dy(x, y), abs(n0) + ints[2] / np.pi, ints[0], ints[1],
+                           r, L, B, C, mu)
+    cols["torque"] = C * cols["omega"]
+    sign = 1.0 if n0 >= 0 else -1.0
+    for key in ("omega", "torque", "twist", "writhe", "turns"):
+        cols[key] = sign * cols[key]
+    cols["curvature_error_flag"] = np.abs(cols["curvature_error"] - 1.0) > tol
+    if mu is None:
+        cols["friction_torque_available"] = np.nan
+    for c in ORDER:
+        if c != "s":
+            out[c][sl] = cols[c]
+
+
+def rough_profile(n0, r, L, B, C, mu=None, *, kfun=None, k_zero=True, method="closed_form",
+                  grid=None, n_points=801, slack_max=None, slack_table=None, k_nodes=(),
+                  curvature_tolerance=0.01, ode_method="auto", rtol=RTOL, atol=ATOL,
+                  cos2a_min=sc.COS2A_MIN, max_nfev=MAX_NFEV):
+    """The frozen rough helix of N_0 turns: solution, profile columns and onsets (SI).
+
+    The algorithm behind :func:`supercoil.rod.rough.rough_helix` (see there
+    for the physics and every argument, here in SI floats: ``slack_max`` and
+    ``slack_table`` (the last slack of a twist-rate table) in m or None,
+    ``kfun(S)`` in rad/m in the frame N_0 > 0, ``grid`` a checked increasing
+    array in m or None, ``k_nodes`` the table's slack nodes in m). Steps:
+    alpha_0 from [eq ini]; y(s) in closed form or by :func:`integrate` (one
+    :class:`RoughSolution`); the profile grid; ``int omega``, ``int tau`` and
+    ``int k`` from the head on the internal grid (:data:`INTERNAL_POINTS` plus
+    the table nodes) by :func:`strand_integrals`, and from the nearest internal
+    node to every profile point; the slip and curvature-error onsets on the
+    internal grid; the columns, :data:`CHUNK` points at a time, so the memory
+    beyond the output columns stays bounded for any number of points.
 
     Returns
     -------
-    Integration
+    RoughProfile
 
     Raises
     ------
-    SingularityError
-        If the tilt reaches pi/4 (cos 2 alpha = cos2a_min) at some s, or a
-        solver fails (message from solve_ivp).
+    NoHelixError, SingularityError, ValidityError
+        See :func:`supercoil.rod.rough.rough_helix`.
     """
-    if s_stop is None:
-        s_stop = 0.5 * L * (1.0 - TAIL_FRACTION_MIN)
-
-    if kfun is None:
-        kfun = _zero_rate
-
-        def kscalar(S):
-            return 0.0
-    else:
-
-        def kscalar(S):
-            k = float(np.asarray(kfun(S)).reshape(-1)[0])
-            if not math.isfinite(k):  # never integrate on: a NaN/inf k stalls the solver
-                raise _nonfinite_rate(k, S)
-            return k
-
-    def ydot(s, y):
-        return _dy_ds_scalar(float(s), float(y), kscalar(2.0 * s), r, L, B, C)
-
-    def fun_y(s, yv):
-        return np.array([ydot(s, yv[0])])
-
-    def fun_s(y, sv):
-        return np.array([1.0 / ydot(sv[0], y)])
-
-    def ev_zero(s, yv):
-        return yv[0]
-
-    ev_zero.terminal, ev_zero.direction = True, -1
-
-    def ev_sing(s, yv):
-        return (1.0 - yv[0]) - cos2a_min
-
-    ev_sing.terminal, ev_sing.direction = True, -1
-
-    def ev_stop(y, sv):
-        return sv[0] - s_stop
-
-    ev_stop.terminal, ev_stop.direction = True, 1
-
-    def done(segments, s_end, reason):
-        return Integration(segments, s_end, reason, nfev, ode_method, rtol, atol, kfun,
-                           r, L, B, C)
-
-    segments, nfev = [], 0
-    s0, y0 = 0.0, float(sc.y_of_alpha(alpha0))
-    y_sw = float(y_switch)
-    if y0 <= y_sw and ydot(s0, y0) < 0:
-        mode, ydot_sw = "s(y)", float(ydot(s0, y0))
-    else:
-        mode = "y(s)"
-        y_sw = y_sw if y0 > y_sw else 0.5 * y0
-    for _ in range(50):
-        if mode == "s(y)":
-
-            def ev_turn(y, sv, ref=ydot_sw):  # dy/ds rising toward 0 (turning point ahead)
-                return ydot(sv[0], y) - 0.5 * ref
-
-            ev_turn.terminal, ev_turn.direction = True, 1
-            sol = solve_ivp(fun_s, (y0, 0.0), [s0], method=ode_method, rtol=rtol,
-                            atol=atol * L, events=(ev_turn, ev_stop), dense_output=True)
-            nfev += sol.nfev
-            if sol.status == -1:
-                raise SingularityError(f"rough-helix ODE ({ode_method}, s(y)) failed: "
-                                       f"{sol.message}")
-            dense = sol.sol
-            dense.y_start = y0
-            if sol.t_events[1].size:  # reached s_stop
-                dense.y_end = float(sol.t_events[1][0])
-                segments.append(("s(y)", s0, s_stop, dense))
-                return done(segments, s_stop, "s_stop")
-            if sol.t_events[0].size:  # slope flattening: back to y(s), lower switch level
-                dense.y_end = float(sol.t_events[0][0])
-                s_end = float(sol.y_events[0][0][0])
-                segments.append(("s(y)", s0, s_end, dense))
-                s0, y0, mode, y_sw = s_end, dense.y_end, "y(s)", 0.5 * dense.y_end
-                continue
-            dense.y_end = 0.0
-            s_end = float(sol.y[0, -1])
-            segments.append(("s(y)", s0, s_end, dense))
-            return done(segments, s_end, "alpha->0")
-
-        def ev_switch(s, yv, level=y_sw):
-            return yv[0] - level
-
-        ev_switch.terminal, ev_switch.direction = True, -1
-        sol = solve_ivp(fun_y, (s0, s_stop), [y0], method=ode_method, rtol=rtol, atol=atol,
-                        events=(ev_zero, ev_sing, ev_switch), dense_output=True)
-        nfev += sol.nfev
-        if sol.status == -1:
-            raise SingularityError(f"rough-helix ODE ({ode_method}) failed: {sol.message}")
-        if sol.t_events[1].size:
-            raise _singular(float(sol.t_events[1][0]), cos2a_min)
-        if sol.t_events[0].size:
-            s_end = float(sol.t_events[0][0])
-            segments.append(("y(s)", s0, s_end, sol.sol))
-            return done(segments, s_end, "alpha->0")
-        if sol.t_events[2].size:
-            s_sw = float(sol.t_events[2][0])
-            segments.append(("y(s)", s0, s_sw, sol.sol))
-            s0, y0, mode = s_sw, y_sw, "s(y)"
-            ydot_sw = float(ydot(s0, y0))
-            continue
-        segments.append(("y(s)", s0, float(sol.t[-1]), sol.sol))
-        return done(segments, float(sol.t[-1]), "s_stop")
-    raise SingularityError("rough-helix ODE: more than 50 phase switches (alpha oscillating "
-                           "around the switch threshold)")
+    with np.errstate(over="ignore", under="ignore"):
+        alpha0 = float(sc.initial_tilt(abs(n0), r, L, B, C))
+    sc.check_tilt(alpha0, f"initial tilt [eq ini], N_0 = {n0:g}, N_0 r / L = "
+                  f"{abs(n0) * r / L:.3g}", cos2a_min)
+    kfun = kfun if kfun is not None else (lambda S: np.zeros_like(np.asarray(S, float)))
+    sol, dy, end, solver, s_max = _solve(
+        alpha0, kfun, k_zero, method, r, L, B, C,
+        None if slack_max is None else 0.5 * slack_max,
+        None if slack_table is None else 0.5 * slack_table,
+        (rtol, atol, ode_method, max_nfev, cos2a_min))
+    s_end = sol.t_max
+    pts = _profile_points(grid, s_end, end, n_points)
+    inner = profile_grid(s_end, INTERNAL_POINTS, 60 if end == "alpha->0" else 0,
+                         include_end=(end != "alpha->0"))
+    nodes = 0.5 * np.asarray(k_nodes, float)
+    inner = np.unique(np.concatenate([inner, nodes[(nodes > 0) & (nodes < inner[-1])]]))
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        y_in = np.asarray(sol(inner), float)
+        dy_in = np.asarray(dy(inner, y_in), float)
+        ints_in = strand_integrals(inner, sol, kfun, r, B, C)
+        slip, ce = _onsets(inner, y_in, dy_in, sol, dy, r, B, mu, curvature_tolerance)
+        out = {c: np.empty(pts.shape, bool if c == "curvature_error_flag" else float)
+               for c in ORDER if c != "s"}
+        out["s"] = pts
+        for i in range(0, pts.size, CHUNK):
+            sl = slice(i, i + CHUNK)
+            _fill_columns(out, sl, pts[sl], sol, dy, inner, ints_in, kfun, n0, r, L, B, C,
+                          mu, curvature_tolerance)
+    alpha_max = float(np.max(sc.alpha_of_y(np.concatenate([[sc.y_of_alpha(alpha0)], y_in]))))
+    return RoughProfile(alpha0, s_end, s_max, end, method, solver, {c: out[c] for c in ORDER},
+                        slip, ce, alpha_max, sol)
 
 
 # --- grids and profile columns -------------------------------------------------
@@ -430,85 +375,19 @@ def profile_grid(s_end, n_points=801, n_end=60, include_end=False):
     The grid stops at ``s_max (1 - 1e-7)``: closer to the end alpha(s) is so
     ill-conditioned (d alpha/ds ~ 1/alpha) that no solver resolves it, and the
     slowly-varying-pitch model has long failed there (|e - 1| ~ 1e8). ``include_end`` adds
-    s_end itself (use it when the end is not alpha = 0).
+    s_end itself (use it when the end is not alpha = 0). Points closer than
+    ``1e-12 s_end`` to their left neighbour are dropped (they would repeat in mm).
     """
     base = np.linspace(0.0, s_end, int(n_points))[:-1]
     tail = s_end * (1.0 - np.geomspace(1e-2, 1e-7, int(n_end))) if n_end else np.empty(0)
     grid = np.unique(np.concatenate([base, tail, [s_end] if include_end else []]))
-    return grid[grid <= s_end]
+    grid = grid[grid <= s_end]
+    # drop near-duplicates (a uniform point a few float spacings from a clustered
+    # one): they would collapse into one value in the table's mm column
+    return grid[np.concatenate([[True], np.diff(grid) > 1e-12 * s_end])]
 
 
-#: Gauss-Legendre rules of :func:`cumulative_integrals` (8 points, and 4 for the error estimate).
-_GL8 = np.polynomial.legendre.leggauss(8)
-_GL4 = np.polynomial.legendre.leggauss(4)
-
-
-def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000):
-    """Running integrals ``int_{b_0}^{b_j} f ds`` of a vector integrand at sorted breakpoints.
-
-    Adaptive composite Gauss-Legendre quadrature: every panel between two
-    breakpoints is integrated with 8 points; the 4-point rule gives a
-    (pessimistic) error estimate. A panel is accepted when its estimate is below
-    its share of ``rtol`` times the integral of ``|f|`` (in proportion to its
-    width); the rest are halved, level by level, until the estimates of all
-    panels together are below that budget (so rounding noise of the integrand
-    does not force endless halving), at most ``max_depth`` times and while
-    fewer than ``max_panels`` panels are pending. The 8-point rule is exact for
-    polynomials of degree 15, so smooth integrands converge at once, and a jump
-    of a twisting-rate callable is localised by the halving.
-
-    Parameters
-    ----------
-    fun : callable
-        ``fun(x) -> array (m, x.size)``, vectorised over a 1-D array x.
-    breaks : array_like
-        Strictly increasing breakpoints (1-D, at least one).
-
-    Returns
-    -------
-    numpy.ndarray, shape (m, breaks.size)
-        The integrals from ``breaks[0]``, 0 in the first column.
-    """
-    b = np.asarray(breaks, float)
-    if b.size < 2:
-        m = np.asarray(fun(b[:1])).shape[0]
-        return np.zeros((m, b.size))
-    x8, w8 = _GL8
-    x4, w4 = _GL4
-    lo, hi = b[:-1], b[1:]
-    owner = np.arange(lo.size)
-    span = b[-1] - b[0]
-    totals = budget = spent = None
-    for depth in range(max_depth + 1):
-        half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
-        nodes = np.concatenate([(mid[:, None] + half[:, None] * x8).ravel(),
-                                (mid[:, None] + half[:, None] * x4).ravel()])
-        f = np.asarray(fun(nodes), float)
-        m, n8 = f.shape[0], lo.size * 8
-        f8 = f[:, :n8].reshape(m, lo.size, 8)
-        i8 = (f8 @ w8) * half
-        err = np.abs(i8 - (f[:, n8:].reshape(m, lo.size, 4) @ w4) * half)
-        if totals is None:
-            totals = np.zeros((m, b.size - 1))
-            budget = rtol * np.sum((np.abs(f8) @ w8) * half, axis=1)
-            spent = np.zeros(m)
-        ok = np.all(err <= (budget / span)[:, None] * (hi - lo), axis=0)
-        ok |= ~np.all(np.isfinite(i8), axis=0)  # NaN/inf: no refinement helps; caller checks
-        if (depth == max_depth or np.count_nonzero(~ok) > max_panels
-                or np.all(spent + err.sum(axis=1) <= budget)):
-            ok[:] = True
-        np.add.at(totals, (slice(None), owner[ok]), i8[:, ok])
-        spent = spent + np.where(np.isfinite(err), err, 0.0)[:, ok].sum(axis=1)
-        if np.all(ok):
-            break
-        lo, hi, owner = lo[~ok], hi[~ok], owner[~ok]
-        mid = 0.5 * (lo + hi)
-        lo, hi, owner = (np.concatenate([lo, mid]), np.concatenate([mid, hi]),
-                         np.concatenate([owner, owner]))
-    return np.concatenate([np.zeros((totals.shape[0], 1)), np.cumsum(totals, axis=1)], axis=1)
-
-
-def strand_integrals(breaks, y_at, kfun, r, B, C):
+def strand_integrals(breaks, y_at, kfun, r, B, C, atol=0.0):
     """``(int omega ds, int tau ds, int k(2s) ds)`` from s = breaks[0] at every breakpoint.
 
     ``y_at(s)`` gives ``y = 1 - cos 2 alpha`` along the helix and ``kfun(S)``
@@ -519,7 +398,8 @@ def strand_integrals(breaks, y_at, kfun, r, B, C):
         Wr = (1/pi) int_0^s tau,      N = N_0 + (1/pi) int_0^s k(2s') ds',
 
     and ``Tw + Wr = N`` holds for the exact solution of [eq da/ds] (its
-    derivative is the ODE). See :func:`cumulative_integrals` for the quadrature.
+    derivative is the ODE). See :func:`cumulative_integrals` for the quadrature
+    (relative tolerance 1e-12; ``atol`` its absolute budget per row).
     """
 
     def f(x):
@@ -527,7 +407,7 @@ def strand_integrals(breaks, y_at, kfun, r, B, C):
         k = np.broadcast_to(np.asarray(kfun(2.0 * x), float), x.shape)
         return np.vstack([sc.twist_density(alpha, r, B, C), torsion(alpha, r), k])
 
-    return cumulative_integrals(f, breaks)
+    return cumulative_integrals(f, breaks, atol=atol)
 
 
 def profile_columns(s, y, dyds, turns_abs, omega_int, tau_int, r, L, B, C, mu=None):
@@ -583,28 +463,6 @@ def curvature_error_y(y, dyds, r):
         s2 = np.sqrt(np.clip(y * (2.0 - y), 0.0, None))
         x = np.where(y > 0, r * np.asarray(dyds, float) / s2 / y, np.inf)
         return np.hypot(1.0, x)
-
-
-def first_crossing(s, g, g_at):
-    """First s where ``g`` (tabulated on grid ``s``) turns positive, refined by brentq.
-
-    ``g_at(s_scalar)`` evaluates the same function anywhere. Returns None if
-    ``g <= 0`` on the whole grid, ``s[0]`` if already positive there: pass a
-    grid that starts at the head, s = 0 (the caller's internal grid), or the
-    onset of a helix that fails from its head would be reported at ``s[0] > 0``.
-    """
-    g = np.asarray(g, float)
-    idx = np.flatnonzero(g > 0)
-    if idx.size == 0:
-        return None
-    i = int(idx[0])
-    if i == 0:
-        return float(s[0])
-    a, b = float(s[i - 1]), float(s[i])
-    try:
-        return float(brentq(g_at, a, b, xtol=1e-15, rtol=1e-13))
-    except ValueError:  # sign change not reproduced by g_at (grid rounding)
-        return b
 
 
 def slip_function(y_at, dy_at, r, B, mu):
