@@ -13,8 +13,8 @@ subprocess or a process pool makes wall time by nature (import, CLI, pool
 speed-up), which say so. The targets are benchmarks, never test assertions.
 
 :func:`markdown` renders the table (with the machine and its load average) and
-:func:`update_readme` replaces the table between the ``<!-- headline:start -->``
-and ``<!-- headline:end -->`` markers of a README with it.
+:func:`update_readme` replaces the table of the "## Speed and accuracy" section
+of a README with it.
 """
 
 from __future__ import annotations
@@ -188,10 +188,14 @@ def target_rows(r):
 
 def markdown(head, machine, load=None):
     """The headline table as markdown, with the machine (and the load average)."""
+    def cell(text):  # a "|" (as in |N| <= 25) would end the cell
+        return str(text).replace("|", "\\|")
+
     lines = ["| measurement | value | target | met | note |", "|---|---|---|---|---|"]
     for _, row in head.iterrows():
-        lines.append(f"| {row['measurement']} | {row['value']:.3g} {row['unit']} | "
-                     f"{row['target']} | {'yes' if row['met'] else 'no'} | {row['note']} |")
+        lines.append(f"| {cell(row['measurement'])} | {row['value']:.3g} {row['unit']} | "
+                     f"{cell(row['target'])} | {'yes' if row['met'] else 'no'} | "
+                     f"{cell(row['note'])} |")
     lines.append("")
     where = f"Measured on: {machine}"
     if load is not None:
@@ -200,22 +204,27 @@ def markdown(head, machine, load=None):
     return "\n".join(lines) + "\n"
 
 
-_MARKERS = re.compile(r"(<!-- headline:start -->\n).*?(<!-- headline:end -->)", re.S)
+#: the headline block of a README: from the table's header row to its "Measured on:" line,
+#: inside the "## Speed and accuracy" section
+_BLOCK = re.compile(r"(^## Speed and accuracy[^\n]*\n(?:(?!^## ).)*?)"
+                    r"^\| measurement \|.*?^Measured on:[^\n]*\n", re.S | re.M)
 
 
 def update_readme(readme, table_md):
-    """Replace the text between the headline markers of ``readme`` by ``table_md``.
+    """Replace the headline table of ``readme`` by ``table_md`` (from :func:`markdown`).
+
+    The table replaced is the one of the "## Speed and accuracy" section: from
+    its ``| measurement |`` header row to its ``Measured on:`` line.
 
     Raises
     ------
     ValueError
-        If the file has no ``<!-- headline:start -->`` ... ``<!-- headline:end -->``
-        pair.
+        If the file has no such section and table.
     """
     path = Path(readme)
     text = path.read_text()
-    if not _MARKERS.search(text):
-        raise ValueError(f"{path}: no <!-- headline:start --> ... <!-- headline:end --> "
-                         "markers around the speed table")
-    path.write_text(_MARKERS.sub(lambda mo: mo.group(1) + table_md + mo.group(2), text))
+    if not _BLOCK.search(text):
+        raise ValueError(f"{path}: no '## Speed and accuracy' section with a "
+                         "'| measurement |' table ending in a 'Measured on:' line")
+    path.write_text(_BLOCK.sub(lambda mo: mo.group(1) + table_md, text, count=1))
     return path

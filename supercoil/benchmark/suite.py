@@ -71,8 +71,9 @@ def _headline_table(rows, machine):
 def run(out, quick=False, log=print, readme=None):
     """Run every benchmark, write charts and tables into ``out``; returns the headline table.
 
-    ``readme``: a README path whose speed table (between the headline markers,
-    :func:`supercoil.benchmark.headline.update_readme`) is replaced by the new one.
+    ``readme``: a README path whose headline table (in its "Speed and accuracy"
+    section, :func:`supercoil.benchmark.headline.update_readme`) is replaced by the
+    new one.
     """
     import matplotlib
 

@@ -17,8 +17,8 @@ def register(sub):
     p.add_argument("--quick", action="store_true",
                    help="fewer tolerances and smaller sizes (the row names give the sizes)")
     p.add_argument("--readme", default=None, metavar="PATH",
-                   help="also replace the speed table of this README (between "
-                   "<!-- headline:start --> and <!-- headline:end -->) by the new one")
+                   help="also replace the headline table of this README's 'Speed and "
+                   "accuracy' section by the new one")
     p.set_defaults(func=run)
 
 

@@ -10,6 +10,7 @@ counting, the replaying executor).
 import re
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import supercoil as sc
@@ -164,15 +165,23 @@ def test_replay_executor_runs_the_function_once():
     assert first.result() is not second.result()
 
 
-def test_update_readme_replaces_only_the_marked_table(tmp_path):
-    from supercoil.benchmark.headline import update_readme
+def test_update_readme_replaces_only_the_headline_table(tmp_path):
+    from supercoil.benchmark.headline import markdown, update_readme
 
+    old = ("| measurement | value | target | met |\n|---|---|---|---|\n| a | 1 | <= 2 | yes |\n"
+           "\nMeasured on: old machine.\n")
+    other = "| measurement | other table |\n\nMeasured on: elsewhere.\n"
     readme = tmp_path / "README.md"
-    readme.write_text("intro\n<!-- headline:start -->\nold table\n<!-- headline:end -->\nrest\n")
-    update_readme(readme, "| new |\n")
-    assert readme.read_text() == ("intro\n<!-- headline:start -->\n| new |\n"
-                                  "<!-- headline:end -->\nrest\n")
+    readme.write_text(f"# x\n\n{other}\n## Speed and accuracy\n\nintro\n\n{old}\ncaption\n"
+                      "\n## Next\n\ntext\n")
+    table = pd.DataFrame({"measurement": ["hat points, |N| <= 25"], "value": [2.5],
+                          "unit": ["x"], "target": ["<= 3x"], "met": [True], "note": [""]})
+    new = markdown(table, "new machine")
+    assert "\\|N\\| <= 25" in new  # a pipe inside a cell is escaped
+    update_readme(readme, new)
+    assert readme.read_text() == (f"# x\n\n{other}\n## Speed and accuracy\n\nintro\n\n{new}"
+                                  "\ncaption\n\n## Next\n\ntext\n")
     bare = tmp_path / "bare.md"
-    bare.write_text("no markers\n")
-    with pytest.raises(ValueError, match="headline:start"):
-        update_readme(bare, "| new |\n")
+    bare.write_text(f"# x\n\n{other}")  # a table outside the section is not the headline
+    with pytest.raises(ValueError, match="Speed and accuracy"):
+        update_readme(bare, new)
