@@ -85,7 +85,9 @@ def _dna_rows(r):
              "pass np.multiply(turns, 2.0) over the same array", h["public_ratio"], "x",
              "<= 10x", h["public_ratio"] <= 10,
              f"{h['public'] * 1e3:.3g} ms vs {h['numpy_pass'] * 1e3:.3g} ms; returns a "
-             "9-column DataFrame"),
+             f"9-column DataFrame of {r['hat_mem'].get(n, {}).get('result', float('nan')) / n:.3g}"
+             f" B per point; the pass reads and writes {16 * n / 1e6:.3g} MB (it can stay in "
+             "the CPU cache)"),
         _row(f"kernel supercoil.core.dna.hat.hat_curve_points, {n:.0e} points: CPU per call / "
              "the same numpy pass", h["kernel_ratio"], "x", "<= 5x", h["kernel_ratio"] <= 5,
              f"{h['kernel'] * 1e3:.3g} ms"),
@@ -126,10 +128,13 @@ def _fit_rows(r):
     n2, n1 = max(m["replayed"]), min(m["replayed"])
     rows = [
         _row("public sc.fit_hat_curves, 3 forces x 110 points (examples/fit_tweezers_data.py)"
-             ": CPU per fit", f["fit"] * 1e3, "ms", "about 10-15 ms", f["fit"] <= 15e-3,
-             f"{f['kernel_calls']} kernel calls (nfev {f['nfev']:.0f})"),
+             f": CPU per fit{', BLAS on 1 thread' if f['blas_limited'] else ''}",
+             f["fit"] * 1e3, "ms", "about 10-15 ms", f["fit"] <= 15e-3,
+             f"{f['kernel_calls']} kernel calls (nfev {f['nfev']:.0f}); with the default "
+             f"BLAS threads {f['fit_default_threads'] * 1e3:.3g} ms CPU"),
         _row("public sc.fit_hat_curves: CPU per fit / (kernel calls x CPU of "
-             "supercoil.core.dna.hat.hat_curve_points on the fit's arguments)", f["ratio"],
+             "supercoil.core.dna.hat.hat_curve_points on the fit's arguments), both on the "
+             "same BLAS threads", f["ratio"],
              "x", "<= 2x", f["ratio"] <= 2,
              f"{f['call_sizes']}; lower bound {f['lower_bound'] * 1e3:.3g} ms"),
         _row(f"public sc.fit_many, {n2} molecules: parent CPU per molecule, replaying "

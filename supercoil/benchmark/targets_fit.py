@@ -6,7 +6,9 @@
   calls per fit (``supercoil.core.dna.hat.hat_curve_points`` wrapped with a
   counter for one fit; the fit's own ``nfev`` beside it) and the CPU cost of one
   such kernel call on the arguments the fit passed, timed interleaved with the
-  fit. The lower bound of a fit is calls x kernel cost.
+  fit, both with BLAS limited to one thread (``threadpoolctl``), and the fit
+  again with the default BLAS threads. The lower bound of a fit is calls x
+  kernel cost.
 * :func:`fit_many_cost`: the parent's CPU time per molecule of the public
   ``sc.fit_many``: with a real ``ProcessPoolExecutor(2)`` (the parent prepares,
   pickles, submits, collects and builds the table while the workers fit), and
@@ -18,6 +20,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import time
 from concurrent.futures import Future, ProcessPoolExecutor
@@ -77,7 +80,10 @@ def fit_cost(samples=9):
     Returns
     -------
     dict
-        ``fit`` (CPU s per fit, median), ``kernel_calls`` (counted in one fit),
+        ``fit`` (CPU s per fit, median, BLAS on one thread when ``blas_limited``),
+        ``fit_default_threads`` (the same with the default BLAS threads: on a
+        multi-core machine the idle BLAS threads' spinning adds CPU time),
+        ``kernel_calls`` (counted in one fit),
         ``nfev`` (the fit result's, or NaN if it has none), ``call_sizes``
         (text: how many calls of each size), ``lower_bound`` (the sum over the
         calls of the CPU cost of a kernel call of that size, timed on the
@@ -100,12 +106,30 @@ def fit_cost(samples=9):
     funcs = {"fit": lambda: sc.fit_hat_curves(data, seed_set, vary=vary)}
     for n, (args, kwargs, _) in groups.items():
         funcs[n] = lambda args=args, kwargs=kwargs: kernel(*args, **kwargs)
-    t = interleaved_cpu(funcs, samples=samples)
+    limit, limited = blas_single_thread()
+    with limit:  # the fit and its kernel calls on one BLAS thread
+        t = interleaved_cpu(funcs, samples=samples)
+    # the same fit with the process's default BLAS threads (idle threads spin on CPU time)
+    default = interleaved_cpu({"fit": funcs["fit"]}, samples=samples)["fit"]
     lower = sum(count * t[n] for n, (_, _, count) in groups.items())
     sizes = ", ".join(f"{count} x {n} points" for n, (_, _, count) in groups.items())
-    return {"fit": t["fit"], "kernel_calls": len(counter.calls),
+    return {"fit": t["fit"], "fit_default_threads": default, "blas_limited": limited,
+            "kernel_calls": len(counter.calls),
             "nfev": float(getattr(result, "nfev", float("nan"))), "call_sizes": sizes,
             "lower_bound": lower, "ratio": t["fit"] / lower}
+
+
+def blas_single_thread():
+    """``(context manager, limited)``: BLAS/OpenMP pools limited to one thread if possible.
+
+    Uses ``threadpoolctl`` when it is installed (``limited`` True); otherwise a
+    no-op context (``limited`` False) and the numbers include the BLAS threads.
+    """
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - threadpoolctl is optional
+        return contextlib.nullcontext(), False
+    return threadpool_limits(1), True
 
 
 class ReplayExecutor:
