@@ -22,8 +22,10 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import tempfile
 import time
 from concurrent.futures import Future, ProcessPoolExecutor
+from pathlib import Path
 
 import numpy as np
 
@@ -165,7 +167,7 @@ def _warm_pool(pool, workers):
         fut.result()
 
 
-def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2):
+def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2, read_back=200):
     """Parent CPU per molecule of ``sc.fit_many``, and the pool's speed-up.
 
     Parameters
@@ -175,6 +177,10 @@ def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2):
         (if ``serial``) serially in this process.
     replayed : tuple of int
         Molecule counts of the replaying-executor runs.
+    read_back : int
+        Molecules of one more replaying run on the data written with
+        ``sc.write_csv`` and read back with ``sc.read_tweezers_csv`` (the
+        table then carries the file line of every row in its attrs); 0: none.
 
     Returns
     -------
@@ -183,7 +189,8 @@ def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2):
         ``pool_workers_cpu`` (s, all workers together), ``serial_wall``,
         ``serial_cpu`` (s per molecule), ``speedup`` (serial wall / pool wall),
         ``all_ok`` (every real fit succeeded), and ``replay_parent_cpu_<n>`` (s
-        per molecule) for each ``n`` in ``replayed``.
+        per molecule) for each ``n`` in ``replayed``, ``replay_read_back_cpu`` (s
+        per molecule, if ``read_back``).
     """
     import supercoil as sc
 
@@ -204,6 +211,12 @@ def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2):
         _, cpu, _ = cpu_once(lambda sub=sub: sc.fit_many(sub, seed_set, vary=list(VARY),
                                                           executor=replay))
         out[f"replay_parent_cpu_{n}"] = cpu / n
+    if read_back:  # the same molecules written as CSV and read by sc.read_tweezers_csv
+        with tempfile.TemporaryDirectory() as tmp:
+            back = sc.read_tweezers_csv(sc.write_csv(first(read_back), Path(tmp) / "m.csv"))
+        _, cpu, _ = cpu_once(lambda: sc.fit_many(back, seed_set, vary=list(VARY),
+                                                 executor=replay))
+        out["replay_read_back_cpu"] = cpu / read_back
     sub = first(pooled)
     children = _children_cpu()
     with ProcessPoolExecutor(max_workers=workers) as pool:

@@ -49,6 +49,7 @@ def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
     for needle in ("public sc.hat_curve", "kernel supercoil.core.dna.hat.hat_curve_points",
                    "peak traced memory / memory of its result", "sc.fit_hat_curves",
                    "kernel calls x CPU", "sc.fit_many", "ProcessPoolExecutor(2)",
+                   "molecules read by sc.read_tweezers_csv",
                    "sc.plectoneme_equilibrium", "beyond its output, per force",
                    "import supercoil", "supercoil hat --params dna", "sc.read_tweezers_csv",
                    "model free-energy / li-zhao"):
