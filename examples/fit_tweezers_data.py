@@ -31,7 +31,7 @@ import numpy as np
 
 import supercoil as sc
 from supercoil.cli import example_arguments
-from supercoil.dna.fitting.fit import simulate_rotation_curves
+from supercoil.dna.fitting import simulate_rotation_curves
 
 FORCES = (0.3, 0.5, 0.7)  # pN
 
@@ -97,8 +97,25 @@ def main(argv=None):
                    "twist_persistence_stderr", "radius", "radius_stderr", "turns_offset"]].copy()
     shown["noise_estimate_nm"] = np.sqrt(table["reduced_chi_square"])
     print(shown.to_string(index=False))
+    # ---- model comparison: every registered model fitted to the same data -----------------
+    import warnings
+
+    from supercoil.dna.fitting.plot import plot_comparison
+
+    with warnings.catch_warnings():  # wrong models warn (runs test, limits): the table says it
+        warnings.simplefilter("ignore")
+        comparison, fits = sc.compare_models(data, seed_set, sc.available_models(), vary=vary,
+                                             return_results=True)
+    print("\nmodel comparison (lmfit's AIC and BIC; the data were made by li-zhao):")
+    print(comparison[["model", "nparams", "chi_square", "aic", "delta_aic", "delta_bic",
+                      "goodness_p"]].to_string(index=False))
+    sc.write_csv(comparison, out / "fit_comparison.csv")
+    fig = plot_comparison(fits)
+    fig.savefig(out / "fit_comparison.png", dpi=120)
+    plt.close(fig)
     print(f"wrote {out / 'fit.png'}, {out / 'fit_report.txt'}, {out / 'fit_parameters.csv'}, "
-          f"{out / 'fit_molecules.csv'}")
+          f"{out / 'fit_molecules.csv'}, {out / 'fit_comparison.csv'}, "
+          f"{out / 'fit_comparison.png'}")
 
 
 if __name__ == "__main__":

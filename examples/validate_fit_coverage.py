@@ -33,7 +33,7 @@ import numpy as np
 
 import supercoil as sc
 from supercoil.cli import example_arguments, example_parser
-from supercoil.dna.fitting.fit import simulate_rotation_curves
+from supercoil.dna.fitting import simulate_rotation_curves
 from supercoil.tables import make_table, provenance
 
 FORCES = (0.3, 0.5, 0.7)  # pN

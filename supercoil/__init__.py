@@ -14,10 +14,14 @@ package's single unit registry :data:`supercoil.ureg`::
 __version__ = "0.1.0"
 
 from supercoil import geometry
-from supercoil.dna.fitting.fit import (
+from supercoil.dna.fitting import (
+    FitParameter,
+    FitParameters,
     FitResult,
+    compare_models,
     fit_hat_curves,
     fit_many,
+    fit_parameters,
     simulate_rotation_curves,
 )
 from supercoil.dna.hat import buckling_turns, free_energy, hat_curve, post_buckling_slope
@@ -61,6 +65,8 @@ __all__ = [
     "DataWarning",
     "ElasticRod",
     "FitError",
+    "FitParameter",
+    "FitParameters",
     "FitResult",
     "FitWarning",
     "ModelError",
@@ -78,11 +84,13 @@ __all__ = [
     "available_models",
     "available_parameter_sets",
     "buckling_turns",
+    "compare_models",
     "design_twist_schedule",
     "effective_twist_rigidity",
     "extension_factor",
     "fit_hat_curves",
     "fit_many",
+    "fit_parameters",
     "free_energy",
     "geometry",
     "hat_curve",

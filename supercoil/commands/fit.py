@@ -84,17 +84,19 @@ def register(sub):
     p = sub.add_parser(
         "fit",
         help="fit hat curves to magnetic-tweezers rotation curves (CSV)",
-        description="Fit the DNA hat-curve model (MODEL.md section 6) to extension-versus-turns "
+        description="Fit a DNA hat-curve model (docs/theory/fitting.md) to extension-versus-turns "
         "data at several forces: shared physical parameters, per-molecule turns and extension "
-        "offsets, least squares with uncertainties.",
+        "offsets, least squares with uncertainties. Repeat --model to compare models (AIC, "
+        "BIC).",
     )
     p.add_argument("data", help="CSV: force [pN], turns, extension [um], optional molecule, "
                    "sigma [nm]")
     p.add_argument("--params", default="dna", help="DNA parameter set (start values and fixed "
                    "values; default: dna)")
     p.add_argument("--vary", nargs="+", default=["twist_persistence", "radius"],
-                   metavar="NAME", help="DNA fields to fit: length, bending_persistence, "
-                   "twist_persistence, radius (default: twist_persistence radius)")
+                   metavar="NAME", help="parameters to fit: DNA fields (length, "
+                   "bending_persistence, twist_persistence, radius) and the parameters the "
+                   "model and the interaction declare (default: twist_persistence radius)")
     p.add_argument("--fix", action="append", type=_assignment, default=[], metavar="NAME=VALUE",
                    help="hold a parameter fixed, e.g. --fix length=760nm or --fix turns_offset=0")
     p.add_argument("--start", action="append", type=_assignment, default=[],
@@ -109,6 +111,11 @@ def register(sub):
                    help="do not fit the extension offset")
     p.add_argument("--athermal", action="store_true",
                    help="athermal hat curve (C_eff = C, zeta = 1)")
+    p.add_argument("--model", action="append", default=None, metavar="NAME",
+                   help="DNA model (default li-zhao); repeat to fit several models to the same "
+                   "data and compare them (writes fit_comparison.csv and .png)")
+    p.add_argument("--interaction", default="hard-core", metavar="NAME",
+                   help="plectoneme interaction (default hard-core)")
     p.add_argument("--drop-incomplete", action="store_true",
                    help="drop rows with empty cells (listed in a warning) instead of failing")
     p.add_argument("--global", dest="global_fit", action="store_true",
@@ -136,10 +143,10 @@ def _bounds(items):
 def run(args) -> int:
     from pathlib import Path
 
-    from supercoil.dna.fitting.fit import fit_hat_curves
+    from supercoil.dna.fitting import fit_hat_curves
     from supercoil.dna.material import DNA
     from supercoil.dna.tweezers import read_tweezers_csv
-    from supercoil.exceptions import FitError, ParameterError
+    from supercoil.exceptions import FitError, ModelError, ParameterError
     from supercoil.parameters import load_parameters
     from supercoil.tables import write_csv
 
@@ -151,6 +158,13 @@ def run(args) -> int:
     except argparse.ArgumentTypeError as exc:
         print(f"supercoil fit: error: {exc}", file=sys.stderr)
         return 2
+    from supercoil.commands.hat import check_names
+
+    models = list(dict.fromkeys(args.model or ["li-zhao"]))
+    problem = check_names("fit", models, args.interaction)
+    if problem:
+        print(problem, file=sys.stderr)
+        return 2
     dna = load_parameters(args.params)
     if not isinstance(dna, DNA):
         raise ParameterError(f"parameter set {args.params!r} is not a DNA set")
@@ -160,7 +174,11 @@ def run(args) -> int:
         "fit_turns_offset": not args.no_turns_offset,
         "fit_extension_offset": not args.no_extension_offset,
         "thermal": not args.athermal,
+        "interaction": args.interaction,
     }
+    if len(models) > 1:
+        return _run_compare(args, models, dna, fixed, bounds, options, out)
+    options["model"] = models[0]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
@@ -174,6 +192,8 @@ def run(args) -> int:
                                         start=start, **options)
         except FitError as exc:
             raise FitError(_cli_text(str(exc))) from exc
+        except ModelError as exc:
+            raise ModelError(_cli_text(str(exc))) from exc
     for w in caught:
         print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
@@ -187,6 +207,12 @@ def run(args) -> int:
             _plot_many(table, args.vary, out / "fit_molecules.png")
             print(f"wrote {out / 'fit_molecules.png'}")
         return 0 if (table["success"] & table["determined"]).all() else 1
+    return _write_single(result, out, args)
+
+
+def _write_single(result, out, args):
+    from supercoil.tables import write_csv
+
     report = result.report()
     (out / "fit_report.txt").write_text(report + "\n")
     print(report)
@@ -207,8 +233,66 @@ def run(args) -> int:
     return 0
 
 
+def _run_compare(args, models, dna, fixed, bounds, options, out):
+    """``--model a --model b``: one data set, every model; table, report and figure."""
+    from supercoil.dna.fitting import compare_models
+    from supercoil.dna.fitting.plot import plot_comparison
+    from supercoil.dna.tweezers import read_tweezers_csv
+    from supercoil.exceptions import FitError
+    from supercoil.tables import write_csv
+
+    if args.start:
+        print("supercoil fit: error: --start cannot be combined with several --model",
+              file=sys.stderr)
+        return 2
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
+        if "molecule" in data.columns and data["molecule"].nunique() > 1 and not args.global_fit:
+            raise FitError("several --model compare models on one data set: give --global "
+                           "(shared parameters, per-molecule offsets) or one molecule")
+        table, results = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
+                                        bounds=bounds, return_results=True, **options)
+    for w in caught:
+        print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
+    out.mkdir(parents=True, exist_ok=True)
+    csv = write_csv(table, out / "fit_comparison.csv")
+    report = _compare_report(table, results)
+    (out / "fit_report.txt").write_text(report + "\n")
+    print(report)
+    print(f"wrote {csv}, {out / 'fit_report.txt'}")
+    if not args.no_plot and results:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig = plot_comparison(results)
+        fig.savefig(out / "fit_comparison.png", dpi=120)
+        plt.close(fig)
+        print(f"wrote {out / 'fit_comparison.png'}")
+    return 0 if table["success"].all() else 1
+
+
+def _compare_report(table, results):
+    lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) + 2k, "
+             "bic = N ln(chi2/N) + ln(N) k; lower is better)",
+             f"    {'model':<16}{'k':>4}{'chi-square':>14}{'AIC':>12}{'dAIC':>10}{'BIC':>12}"
+             f"{'dBIC':>10}"]
+    for _, row in table.iterrows():
+        if not row["success"]:
+            lines.append(f"    {row['model']:<16}  FAILED: {_cli_text(row['error'])}")
+            continue
+        lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
+                     f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
+                     f"{row['delta_bic']:>10.2f}")
+    for name, result in results.items():
+        lines += ["", f"==== model {name} ====", result.report()]
+    return "\n".join(lines)
+
+
 def _run_many(args, data, dna, fixed, bounds, start, options):
-    from supercoil.dna.fitting.fit import fit_many
+    from supercoil.dna.fitting import fit_many
 
     total_width = [0]
 
@@ -238,7 +322,11 @@ def _many_report(table, args):
         f"[[Per-molecule fits]] {len(table)} molecules, {int(table['success'].sum())} fitted, "
         f"{int((~table['success']).sum())} failed; varied: {', '.join(args.vary)}",
     ]
-    head = f"    {'molecule':<12}{'red.chi2':>10}"
+    # issue 15: with unit weights the reduced chi-square is the residual variance in nm^2;
+    # show its root, the noise estimate in nm (the errors are scaled by it)
+    unit_weights = table.attrs.get("provenance", {}).get("weighting", "unit") == "unit"
+    stat_head = "noise [nm]" if unit_weights else "red.chi2"
+    head = f"    {'molecule':<12}{stat_head:>10}"
     for p in params:
         head += f"{p + ' [' + units[p] + ']':>30}"
     lines.append(head)
@@ -246,7 +334,8 @@ def _many_report(table, args):
         if not row["success"]:
             lines.append(f"    {row['molecule']!s:<12}  FAILED: {_cli_text(row['error'])}")
             continue
-        text = f"    {row['molecule']!s:<12}{row['reduced_chi_square']:>10.4g}"
+        stat = np.sqrt(row["reduced_chi_square"]) if unit_weights else row["reduced_chi_square"]
+        text = f"    {row['molecule']!s:<12}{stat:>10.4g}"
         for p in params:
             err = row[p + "_stderr"]
             cell = (f"{row[p]:.5g} (not determined)" if np.isinf(err)

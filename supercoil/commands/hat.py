@@ -73,8 +73,9 @@ def register(sub):
     p = sub.add_parser(
         "hat",
         help="DNA hat curves: extension and torque versus turns at fixed forces",
-        description="Hat curves of a DNA molecule in a magnetic tweezers (MODEL.md section 6): "
-        "Marko-Siggia plectoneme equilibrium, Moroz-Nelson tail corrections.",
+        description="Hat curves of a DNA molecule in a magnetic tweezers (docs/theory/models.md): "
+        "by default the paper's construction (li-zhao: Marko-Siggia plectoneme equilibrium, "
+        "Moroz-Nelson tail corrections); --model selects any registered model.",
     )
     p.add_argument("--params", default="dna", help="DNA parameter set name or TOML path "
                    "(default: dna)")
@@ -89,15 +90,49 @@ def register(sub):
     p.add_argument("--short-tail", type=_quantity("length", "m"), default=None,
                    help="tail length below which points are flagged short_tail "
                    "(default: 3 bending persistence lengths)")
-    p.add_argument("--interaction", default="hard-core",
-                   help="inter-strand interaction of the plectoneme: hard-core (the paper's "
-                   "Marko-Siggia w, default) or screened (Debye-Hueckel with salt; needs a "
-                   "parameter set with 'salt', e.g. --params dna_150mM_nacl)")
     p.add_argument("--athermal", action="store_true",
                    help="no Moroz-Nelson corrections (C_eff = C, zeta = 1)")
+    p.add_argument("--model", default="li-zhao", metavar="NAME",
+                   help="DNA model (default li-zhao, the paper's); any registered model, "
+                   "see supercoil.available_models()")
+    p.add_argument("--interaction", default="hard-core", metavar="NAME",
+                   help="inter-strand interaction of the plectoneme: hard-core (the paper's "
+                   "Marko-Siggia w, default), screened (Debye-Hueckel with salt; needs a "
+                   "parameter set with 'salt', e.g. --params dna_150mM_nacl) or any "
+                   "registered interaction; models without a plectoneme take none")
     p.add_argument("--out", default="hat_out", help="output folder (default: hat_out)")
     p.add_argument("--no-plot", action="store_true", help="write only the CSV")
     p.set_defaults(func=run)
+
+
+def check_names(command, models, interaction):
+    """``None``, or an error message for a model or interaction name not registered now.
+
+    Checked at run time (not argparse ``choices``), so models registered after
+    import, e.g. by a plug-in, are accepted.
+    """
+    from supercoil.dna.interactions import available_interactions
+    from supercoil.dna.models import available_models
+
+    for name in models:
+        if name not in available_models():
+            return (f"supercoil {command}: error: --model {name!r} is not a registered model; "
+                    f"available: {', '.join(available_models())}")
+    if interaction is not None and interaction not in available_interactions():
+        return (f"supercoil {command}: error: --interaction {interaction!r} is not a registered "
+                f"interaction; available: {', '.join(available_interactions())}")
+    return None
+
+
+def _interaction_arg(args):
+    """The interaction for a model: None (the default) when the model has no plectoneme."""
+    from supercoil.dna.models import get_model
+
+    if not get_model(args.model).uses_interaction:
+        if args.interaction != "hard-core":
+            return args.interaction  # let the library name the conflict (ModelError)
+        return None
+    return args.interaction
 
 
 def run(args) -> int:
@@ -111,6 +146,10 @@ def run(args) -> int:
     from supercoil.tables import write_csv
     from supercoil.units import ureg
 
+    problem = check_names("hat", [args.model], args.interaction)
+    if problem:
+        print(problem, file=sys.stderr)
+        return 2
     dna = load_parameters(args.params)
     if not isinstance(dna, DNA):
         raise ParameterError(f"parameter set {args.params!r} is not a DNA set")
@@ -120,19 +159,19 @@ def run(args) -> int:
     force = ureg.Quantity(np.array([f.m_as("pN") for f in forces]), "pN")
     turns = args.turns if args.turns is not None else parse_turns(DEFAULT_TURNS)
     thermal = not args.athermal
+    mi = {"model": args.model, "interaction": _interaction_arg(args)}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        inter = args.interaction
         df = hat_curve(dna, force, turns, thermal=thermal, short_tail_length=args.short_tail,
-                       interaction=inter)
-        nb = buckling_turns(dna, force, thermal=thermal, interaction=inter).magnitude
-        slope = post_buckling_slope(dna, force, thermal=thermal, interaction=inter).magnitude
+                       **mi)
+        nb = buckling_turns(dna, force, thermal=thermal, **mi).magnitude
+        slope = post_buckling_slope(dna, force, thermal=thermal, **mi).magnitude
     for w in caught:
         print(f"supercoil hat: warning: {w.message}", file=sys.stderr)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     csv = write_csv(df, out / "hat_curve.csv")
-    print(f"wrote {csv} ({len(df)} rows)")
+    print(f"wrote {csv} ({len(df)} rows; model {args.model})")
     if not args.no_plot:
         import matplotlib
 
@@ -144,9 +183,13 @@ def run(args) -> int:
         print(f"wrote {out / 'hat_curve.png'}")
     print(f"{'force [pN]':>10} {'N_b':>8} {'plectoneme torque [pN nm]':>26} "
           f"{'dz/dN [nm/turn]':>16}")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # already reported above
-        torque_p = plectoneme_equilibrium(dna, force, interaction=inter).torque.m_as("pN nm")
+    torque_p = np.full(len(nb), np.nan)
+    if mi["interaction"] is not None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # already reported above
+            torque_p = plectoneme_equilibrium(dna, force, interaction=mi["interaction"]
+                                              ).torque.m_as("pN nm")
     for f, n, m, s in zip(force.magnitude, nb, torque_p, slope, strict=True):
-        print(f"{f:10.4g} {n:8.4g} {m:26.4g} {s:16.4g}")
+        torque = f"{m:26.4g}" if np.isfinite(m) else f"{'- (no plectoneme helix)':>26}"
+        print(f"{f:10.4g} {n:8.4g} {torque} {s:16.4g}")
     return 0

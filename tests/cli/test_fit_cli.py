@@ -5,7 +5,7 @@ import pytest
 
 import supercoil as sc
 from supercoil.cli import main
-from supercoil.dna.fitting.fit import simulate_rotation_curves
+from supercoil.dna.fitting import simulate_rotation_curves
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +27,8 @@ def test_fit_command_single_molecule(tmp_path, capsys, true_dna):
     rc = main(["fit", str(path), "--vary", "twist_persistence", "radius", "--out", str(out)])
     assert rc == 0
     report = (out / "fit_report.txt").read_text()
-    assert "twist_persistence" in report and "reduced chi-square" in report
+    assert "twist_persistence" in report and "noise estimate" in report
+    assert "reduced chi-square" not in report  # unit weights: no chi-square (issue 15)
     assert (out / "fit.png").stat().st_size > 0
     params = sc.read_csv(out / "fit_parameters.csv")
     assert params.attrs["units"]["twist_persistence"] == "nm"
@@ -71,7 +72,13 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     assert list(table["success"]) == [True, False, True]
     assert "no plectoneme equilibrium" in table["error"].iloc[1]
     assert np.isfinite(table["radius"].iloc[[0, 2]]).all()
-    assert "FAILED" in (out / "fit_report.txt").read_text()
+    report = (out / "fit_report.txt").read_text()
+    assert "FAILED" in report
+    # issue 15: unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
+    assert "noise [nm]" in report and "red.chi2" not in report
+    row = next(line for line in report.splitlines() if line.strip().startswith("m1 "))
+    assert float(row.split()[1]) == pytest.approx(np.sqrt(table["reduced_chi_square"].iloc[0]),
+                                                  rel=1e-3)
     assert (out / "fit_molecules.png").exists()
     # --global: one fit, shared parameters, offsets per molecule
     ok = df[df["molecule"] != "m2"].reset_index(drop=True)

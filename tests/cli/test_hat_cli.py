@@ -71,3 +71,14 @@ def test_parse_turns():
     assert parse_turns("-20:20:0.1").size == 401
     assert parse_turns("0:1").size == 11
     np.testing.assert_array_equal(parse_turns("1,2.5,-3"), [1, 2.5, -3])
+
+
+@pytest.mark.parametrize("model", sc.available_models())
+def test_hat_command_with_each_registered_model_equals_the_library(tmp_path, dna, ureg, model):
+    out = tmp_path / model
+    assert main(["hat", "--model", model, "--force", "0.5pN", "--turns=-6:6:1", "--out",
+                 str(out), "--no-plot"]) == 0
+    df = sc.read_csv(out / "hat_curve.csv")
+    ref = sc.hat_curve(dna, 0.5 * ureg.pN, np.arange(-6, 7.0), model=model)
+    np.testing.assert_allclose(df["extension"], ref["extension"], rtol=1e-10)
+    assert df.attrs["provenance"]["model"] == model

@@ -120,7 +120,7 @@ def test_drop_incomplete_does_not_hide_bad_cells(tmp_path):
 
 
 def test_round_trip_through_write_csv(tmp_path):
-    from supercoil.dna.fitting.fit import simulate_rotation_curves
+    from supercoil.dna.fitting import simulate_rotation_curves
 
     dna = sc.load_parameters("dna")
     df = simulate_rotation_curves(dna, [0.5] * sc.ureg.pN, points_per_force=20, seed=3,

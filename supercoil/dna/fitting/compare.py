@@ -1,0 +1,176 @@
+"""Model comparison: fit several DNA models to the same data, rank them by AIC and BIC.
+
+Statistics as lmfit defines them (lmfit documentation, "Goodness-of-Fit
+Statistics"), with N data points, ``N_varys`` free parameters (offsets
+included) and ``chi2`` the sum of squared weighted residuals:
+
+* ``chi_square = chi2``; ``reduced_chi_square = chi2 / (N - N_varys)``;
+* ``aic = N ln(chi2 / N) + 2 N_varys`` (Akaike information criterion);
+* ``bic = N ln(chi2 / N) + ln(N) N_varys`` (Bayesian information criterion).
+
+Lower is better; only differences between models fitted to the same data with
+the same weights mean anything (``delta_aic``, ``delta_bic`` from the best).
+With unit weights ``chi2`` is in nm^2, which shifts every model's AIC by the
+same constant.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from supercoil._checks import check_flag
+from supercoil.dna.fitting.fit import DEFAULT_VARY, emit, prepare, run_fit
+from supercoil.dna.fitting.result import FitResult
+from supercoil.dna.interactions import DEFAULT_INTERACTION
+from supercoil.dna.models import get_model
+from supercoil.exceptions import SupercoilError
+from supercoil.tables import make_table, provenance
+
+__all__ = ["compare_models", "information_criteria"]
+
+
+def information_criteria(chi2, ndata, nvarys):
+    """``(aic, bic)`` as lmfit defines them (see the module docstring)."""
+    core = ndata * math.log(chi2 / ndata)
+    return core + 2 * nvarys, core + math.log(ndata) * nvarys
+
+
+def _fit_one(data, dna, model, vary, own, kw):
+    m = get_model(model)
+    names = list(vary) + [k for k in m.parameters if own and k not in vary]
+    interaction = kw["interaction"] if m.uses_interaction else None
+    spec = prepare(data, dna, vary=names, model=m, **dict(kw, interaction=interaction))
+    core = run_fit(spec)
+    return FitResult(core, spec, data, dna)
+
+
+def _row(label, result, error):
+    row = {"model": label, "success": result is not None, "error": error}
+    if result is None:
+        return row, {}
+    n, k = result.ndata, len(result.names)
+    aic, bic = information_criteria(result.chi_square, n, k)
+    row.update(nparams=k, ndata=n, chi_square=result.chi_square,
+               reduced_chi_square=result.reduced_chi_square, aic=aic, bic=bic,
+               residual_rms=result.residual_rms.m_as("nm"),
+               goodness_p=result.goodness.get("p_value", np.nan),
+               warnings="; ".join(result.warnings))
+    units = {"residual_rms": "nm"}
+    for name in result.names:
+        row[name] = result.parameters[name].magnitude
+        row[f"{name}_stderr"] = result.stderr[name].magnitude
+        units[name] = units[f"{name}_stderr"] = result.units[name]
+    return row, units
+
+
+def _assemble(rows, units):
+    stats = ["model", "success", "error", "nparams", "ndata", "chi_square",
+             "reduced_chi_square", "aic", "bic", "delta_aic", "delta_bic", "residual_rms",
+             "goodness_p"]
+    params = list(dict.fromkeys(k for r in rows for k in r if k not in stats
+                                and k != "warnings"))
+    aics = [r.get("aic", np.nan) for r in rows]
+    bics = [r.get("bic", np.nan) for r in rows]
+    best_a = np.nanmin(aics) if np.isfinite(aics).any() else np.nan
+    best_b = np.nanmin(bics) if np.isfinite(bics).any() else np.nan
+    cols = {}
+    for key in [*stats, *params, "warnings"]:
+        col = []
+        for r, a, b in zip(rows, aics, bics, strict=True):
+            if key == "delta_aic":
+                col.append(a - best_a)
+            elif key == "delta_bic":
+                col.append(b - best_b)
+            else:
+                col.append(r.get(key, "" if key in ("error", "warnings") else np.nan))
+        cols[key] = col
+    cols["nparams"] = [int(v) if np.isfinite(v) else 0 for v in cols["nparams"]]
+    cols["ndata"] = [int(v) if np.isfinite(v) else 0 for v in cols["ndata"]]
+    all_units = {k: units.get(k, "") for k in cols}
+    return cols, all_units
+
+
+def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None, *,
+                   sigma=None, fit_turns_offset=True, fit_extension_offset=True, thermal=True,
+                   interaction=DEFAULT_INTERACTION, max_nfev=None, tol=1e-10,
+                   return_results=False):
+    """Fit several DNA models to the same data; a table ranked by AIC.
+
+    Parameters
+    ----------
+    data, dna, fixed, bounds, sigma, fit_turns_offset, fit_extension_offset, thermal,
+    max_nfev, tol
+        As for :func:`fit_hat_curves`.
+    vary : sequence of str, or dict of model name -> sequence of str
+        A sequence: the DNA fields fitted for every model, each model's own
+        parameters (``model.parameters``) varied as well. A dict: exactly the
+        parameters varied per model (DNA fields and model parameters; a model
+        missing from it gets the default ``("twist_persistence", "radius")``).
+    models : sequence of str or DNAModel
+        The models (registered names or instances), at least one.
+    interaction : str or Interaction
+        For the models with a plectoneme helix (others take none).
+    return_results : bool
+        Also return the :class:`FitResult` of each model (dict by model name).
+
+    Returns
+    -------
+    pandas.DataFrame (or (DataFrame, dict) with ``return_results``)
+        One row per model, sorted by AIC (best first): ``model``, ``success``,
+        ``error`` (a failed fit), ``nparams`` (free parameters, offsets
+        included), ``ndata``, ``chi_square``, ``reduced_chi_square``, ``aic``,
+        ``bic``, ``delta_aic``, ``delta_bic`` (from the best model),
+        ``residual_rms`` (nm), ``goodness_p`` (p-value of the goodness-of-fit
+        test, see :mod:`supercoil.dna.fitting.diagnostics`), every fitted
+        parameter and its ``_stderr`` (NaN for models without it),
+        ``warnings``. ``attrs["units"]`` and ``attrs["provenance"]``; the
+        definitions are those of lmfit (module docstring).
+
+    Warns
+    -----
+    The warnings of each fit, prefixed by the model name.
+    """
+    return_results = check_flag(return_results, "return_results")
+    models = list(models) if not isinstance(models, str) else [models]
+    if not models:
+        raise ValueError("compare_models needs at least one model")
+    kw = dict(fixed=fixed, bounds=bounds, sigma=sigma, fit_turns_offset=fit_turns_offset,
+              fit_extension_offset=fit_extension_offset, thermal=thermal,
+              interaction=interaction, max_nfev=max_nfev, tol=tol)
+    rows, units, results = [], {}, {}
+    for spec in models:
+        label = get_model(spec).name
+        names = vary.get(label, DEFAULT_VARY) if isinstance(vary, dict) else vary
+        names = [names] if isinstance(names, str) else list(names)
+        result, error = None, ""
+        try:
+            with warnings.catch_warnings(record=True):  # re-issued below with the model name
+                result = _fit_one(data, dna, spec, names, not isinstance(vary, dict), kw)
+        except SupercoilError as exc:
+            error = f"{type(exc).__name__}: {exc}"
+        if result is not None:
+            results[label] = result
+            emit([(_category(m, result), m) for m in result.warnings],
+                 prefix=f"model {label}: ")
+        row, u = _row(label, result, error)
+        rows.append(row)
+        units.update(u)
+    rows.sort(key=lambda r: r.get("aic", np.inf))
+    cols, all_units = _assemble(rows, units)
+    prov = provenance(dna, models=[r["model"] for r in rows],
+                      vary={k: list(v) for k, v in vary.items()} if isinstance(vary, dict)
+                      else list(vary),
+                      thermal=thermal, interaction=str(getattr(interaction, "name", interaction)),
+                      criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
+    table = make_table(cols, all_units, prov)
+    return (table, results) if return_results else table
+
+
+def _category(message, result):
+    for cat, msg in result._core["warnings"]:
+        if msg == message:
+            return cat
+    return "FitWarning"

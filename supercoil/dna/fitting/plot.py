@@ -1,0 +1,134 @@
+"""Figures of fits: data, fitted curves and residuals per force (one fit or several models)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from supercoil.dna.fitting.result import fmt_pm
+from supercoil.exceptions import SupercoilError
+
+__all__ = ["plot_comparison", "plot_fit"]
+
+_MARKERS = "osd^v<>p*hX"
+
+
+def _curve(result, force, grid):
+    """The fitted hat curve (offset-free, nm) on ``grid`` turns at ``force`` (N)."""
+    c = result._core
+    dna, model, inter = c["dna"], c["model_obj"], c["interaction_obj"]
+    if c.get("states"):  # per-force parameters: the molecule and model at this force
+        dna, model, inter = c["states"][float(force)]
+    pts = model.points(grid, np.full_like(grid, force), dna, result.thermal, inter, None)
+    return np.asarray(pts.extension) * 1e9
+
+
+def _data_panels(result, axes, k, f):
+    d, c = result._spec.data, result._core
+    ax, axr = axes[0, k], axes[1, k]
+    mol = d.mol_index
+    n_eff = d.turns - c["n0"][mol]
+    z_corr = (d.extension - c["z0"][mol]) * 1e9
+    resid = (d.extension - c["model"]) * 1e9
+    sel = d.force == f
+    for i, lab in enumerate(d.labels):
+        m = sel & (mol == i)
+        if not m.any():
+            continue
+        label = f"molecule {lab}" if d.has_molecule and len(d.labels) > 1 else "data"
+        kw = {"marker": _MARKERS[i % len(_MARKERS)], "ms": 3, "ls": "none", "alpha": 0.6}
+        ax.plot(n_eff[m], z_corr[m], label=label if k == 0 else None, **kw)
+        axr.plot(n_eff[m], resid[m], **kw)
+    return n_eff[sel]
+
+
+def plot_fit(result, fig=None, n_curve=300):
+    """Data, fit and residuals per force (offset-corrected); returns the Figure.
+
+    Top row: extension minus the molecule's extension offset against turns
+    minus its turns offset, with the fitted hat curve. Bottom row: residuals
+    ``data - model``.
+    """
+    import matplotlib.pyplot as plt
+
+    d, c = result._spec.data, result._core
+    forces = np.unique(d.force)
+    nf = len(forces)
+    if fig is None:
+        fig = plt.figure(figsize=(min(4.2 * nf, 16), 5.2), layout="constrained")
+    axes = fig.subplots(2, nf, sharex="col", squeeze=False,
+                        gridspec_kw={"height_ratios": [3, 1]})
+    for k, f in enumerate(forces):
+        ax, axr = axes[0, k], axes[1, k]
+        n_sel = _data_panels(result, axes, k, f)
+        grid = np.linspace(n_sel.min(), n_sel.max(), n_curve)
+        try:
+            ax.plot(grid, _curve(result, f, grid), "k-", lw=1.5, label="fit" if k == 0 else None)
+        except SupercoilError:
+            sel = d.force == f
+            order = np.argsort(n_sel)
+            z = (c["model"][sel] - c["z0"][d.mol_index][sel])[order] * 1e9
+            ax.plot(n_sel[order], z, "k-", lw=1.5, label="fit" if k == 0 else None)
+        ax.set_title(f"F = {f * 1e12:.3g} pN")
+        axr.axhline(0, color="k", lw=0.8)
+        axr.set_xlabel("turns - turns offset")
+        if k == 0:
+            ax.set_ylabel("extension - offset (nm)")
+            axr.set_ylabel("residual (nm)")
+    axes[0, 0].legend(fontsize="small")
+    text = ", ".join(
+        f"{k} = {fmt_pm(result.parameters[k].magnitude, result.stderr[k].magnitude)} "
+        f"{result.units[k]}" for k in result.names if result.params[k].owner != "offset")
+    if result.weighting == "unit":  # the reduced chi-square is a variance in nm^2 here
+        stat = f"noise estimate (residual RMS) {result.residual_rms.magnitude:.3g} nm"
+    else:
+        stat = f"reduced chi-square {result.reduced_chi_square:.3g}"
+    fig.suptitle(f"hat-curve fit ({result.model.name}): {text}; {stat}", fontsize="medium")
+    return fig
+
+
+def plot_comparison(results, fig=None, n_curve=300):
+    """Several fits of the same data (one per model): data, every fit and its residuals.
+
+    ``results`` maps a label (the model name) to a :class:`FitResult`. Each
+    fit's curve is drawn with its own offsets removed from the data it shows
+    (the data points are drawn with the first fit's offsets).
+    """
+    import matplotlib.pyplot as plt
+
+    first = next(iter(results.values()))
+    d = first._spec.data
+    forces = np.unique(d.force)
+    nf = len(forces)
+    if fig is None:
+        fig = plt.figure(figsize=(min(4.2 * nf, 16), 5.6), layout="constrained")
+    axes = fig.subplots(2, nf, sharex="col", squeeze=False,
+                        gridspec_kw={"height_ratios": [3, 1.4]})
+    for k, f in enumerate(forces):
+        ax, axr = axes[0, k], axes[1, k]
+        c = first._core
+        sel = d.force == f
+        n_eff = (d.turns - c["n0"][d.mol_index])[sel]
+        ax.plot(n_eff, (d.extension - c["z0"][d.mol_index])[sel] * 1e9, "o", ms=3,
+                color="0.6", label="data" if k == 0 else None)
+        grid = np.linspace(n_eff.min(), n_eff.max(), n_curve)
+        for j, (label, r) in enumerate(results.items()):
+            color = f"C{j}"
+            rc = r._core
+            shift = (rc["n0"][0] - c["n0"][0])
+            try:
+                ax.plot(grid, _curve(r, f, grid - shift) + (rc["z0"][0] - c["z0"][0]) * 1e9,
+                        "-", color=color, lw=1.4, label=label if k == 0 else None)
+            except SupercoilError:
+                pass
+            resid = (r._spec.data.extension - rc["model"])[sel] * 1e9
+            axr.plot(n_eff, resid, ".", ms=3, color=color)
+        ax.set_title(f"F = {f * 1e12:.3g} pN")
+        axr.axhline(0, color="k", lw=0.8)
+        axr.set_xlabel("turns - turns offset")
+        if k == 0:
+            ax.set_ylabel("extension - offset (nm)")
+            axr.set_ylabel("residual (nm)")
+    axes[0, 0].legend(fontsize="small")
+    fig.suptitle("model comparison: " + ", ".join(
+        f"{label}: {r.headline(3)}" for label, r in results.items()), fontsize="medium")
+    return fig

@@ -1,0 +1,230 @@
+"""From the keyword arguments of a fit (vary, fixed, bounds, start) to :class:`FitParameters`.
+
+Names a fit accepts: the DNA fields (:data:`DNA_FIELDS`; ``temperature`` only
+in ``fixed``), the parameters the DNA model and the interaction declare
+(``model.parameters``, ``interaction.parameters``), and the offsets
+``turns_offset`` / ``extension_offset`` (all molecules) or
+``turns_offset[<molecule>]`` (one molecule).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+
+from supercoil.dna.fitting.model import dna_si
+from supercoil.dna.fitting.parameters import DNA_FIELDS, PLAUSIBLE, FitParameter, FitParameters
+from supercoil.exceptions import FitError
+from supercoil.units import U, as_turns, magnitude
+
+__all__ = ["Z0_SCALE", "build_parameters", "plain"]
+
+Z0_SCALE = 1e-8  # scaled extension-offset variable: units of 10 nm
+_NAME = re.compile(r"^(?P<base>turns_offset|extension_offset)(?:\[(?P<mol>.*)\])?$")
+_OFFSETS = ("turns_offset", "extension_offset")
+
+
+def plain(value):
+    """A value for a message: ``-1 nm`` or ``-1.0``, never ``np.float64(-1.0)`` / ``<Quantity>``."""
+    mag = getattr(value, "magnitude", value)
+    if isinstance(mag, np.generic):
+        mag = mag.item()
+    units = getattr(value, "units", None)
+    if units is None:
+        return str(mag)
+    unit_text = f"{units:~P}"
+    return f"{mag} {unit_text}" if unit_text else str(mag)
+
+
+class _Names:
+    """Resolves a parameter name to (owner, base name, molecule index or None)."""
+
+    def __init__(self, labels, model, interaction):
+        self.labels = list(labels)
+        self.model = model
+        self.interaction = interaction
+
+    def allowed(self):
+        return [*DNA_FIELDS, *self.model.parameters, *self.interaction.parameters]
+
+    def kind(self, name):
+        if name in DNA_FIELDS or name == "temperature":
+            return "dna", name, None
+        if name in self.model.parameters:
+            return "model", name, None
+        if name in self.interaction.parameters:
+            return "interaction", name, None
+        m = _NAME.match(name)
+        if not m:
+            raise FitError(f"unknown parameter {name!r}; fit parameters are {self.allowed()}, "
+                           "'turns_offset', 'extension_offset' (or 'turns_offset[<molecule>]', "
+                           "...)")
+        mol = m.group("mol")
+        if mol is None:
+            return "offset", m.group("base"), None
+        if mol not in self.labels:
+            raise FitError(f"parameter {name!r}: no molecule {mol!r} in the data "
+                           f"(have {self.labels})")
+        return "offset", m.group("base"), self.labels.index(mol)
+
+    def spec(self, owner, base):
+        return (self.model if owner == "model" else self.interaction).parameters[base]
+
+    def to_si(self, name, value):
+        owner, base, _ = self.kind(name)
+        try:
+            if base == "turns_offset":
+                return float(as_turns(value, name))
+            if base == "temperature":
+                return float(magnitude(value, U.K, name))
+            if owner in ("model", "interaction"):
+                spec = self.spec(owner, base)
+                if hasattr(value, "_units"):
+                    return float(magnitude(value, spec.si_unit, name))
+                return float(value)
+            return float(magnitude(value, U.m, name))
+        except (TypeError, ValueError) as exc:
+            raise FitError(f"parameter {name!r}: {exc}") from None
+
+
+def _global_parameter(names, owner, base, value, vary):
+    if owner == "dna":
+        lo, hi, src = PLAUSIBLE[base]
+        return FitParameter(base, value, "nm", vary=vary, min=0.0, kind=base, owner="dna",
+                            plausible=(lo, hi), plausible_source=src, scale=value)
+    spec = names.spec(owner, base)
+    scale = abs(value) if value != 0 else (max(abs(spec.lower), abs(spec.upper), 1.0)
+                                           if math.isfinite(spec.upper - spec.lower) else 1.0)
+    return FitParameter(base, value, spec.unit, vary=vary, min=spec.lower, max=spec.upper,
+                        kind=base, owner=owner, plausible=(spec.lower, spec.upper),
+                        plausible_source=spec.source or f"declared range of {owner} "
+                        f"parameter {base}", scale=scale)
+
+
+def _check_vary(vary, names):
+    if isinstance(vary, str):
+        vary = [vary]
+    vary = list(dict.fromkeys(vary or []))
+    allowed = names.allowed()
+    for name in vary:
+        if name not in allowed:
+            raise FitError(f"cannot vary {name!r}: the physical fit parameters are {allowed} "
+                           "(offsets are switched with fit_turns_offset and "
+                           "fit_extension_offset)")
+    return vary
+
+
+def _apply_fixed(fixed, names, vary, values, n0, z0):
+    """Fixed values into ``values`` (globals) and the offset tables; returns the fixed mask."""
+    for name, value in fixed.items():
+        owner, base, idx = names.kind(name)
+        v = names.to_si(name, value)
+        if base in vary:
+            raise FitError(f"parameter {name!r} is both in vary and in fixed")
+        if owner == "dna":
+            if not (np.isfinite(v) and v > 0):
+                raise FitError(f"fixed {name} must be finite and positive, got {plain(value)}")
+            values[("dna", base)] = v
+        elif owner in ("model", "interaction"):
+            values[(owner, base)] = v
+        else:
+            table = n0 if base == "turns_offset" else z0
+            for i in range(len(names.labels)) if idx is None else [idx]:
+                table[i] = (v, True, False)
+
+
+def _apply_start(start, names, vary, values, n0, z0):
+    for name, value in start.items():
+        owner, base, idx = names.kind(name)
+        v = names.to_si(name, value)
+        if owner != "offset":
+            if base not in vary:
+                raise FitError(f"start value given for {name!r}, which is not varied")
+            values[(owner, base)] = v
+            continue
+        table = n0 if base == "turns_offset" else z0
+        for i in range(len(names.labels)) if idx is None else [idx]:
+            table[i] = (v, True, table[i][2])
+
+
+def _apply_bounds(bounds, names, params):
+    for name, pair in bounds.items():
+        _, base, idx = names.kind(name)
+        try:
+            b_lo, b_hi = pair
+        except (TypeError, ValueError):
+            raise FitError(f"bounds[{name!r}] must be a pair (lower, upper)") from None
+        lo = -np.inf if b_lo is None else names.to_si(name, b_lo)
+        hi = np.inf if b_hi is None else names.to_si(name, b_hi)
+        if not lo < hi:
+            raise FitError(f"bounds[{name!r}]: lower bound {plain(pair[0])} is not below "
+                           f"{plain(pair[1])}")
+        hits = [p for p in params.free_params()
+                if p.kind == base and (idx is None or p.molecule == idx)]
+        if not hits:
+            raise FitError(f"bounds given for {name!r}, which is not a free parameter")
+        for p in hits:
+            p.min, p.max = lo, hi
+
+
+def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=None, start=None,
+                     fit_turns_offset=True, fit_extension_offset=True):
+    """The :class:`FitParameters` of a fit and the model/interaction with fixed values applied.
+
+    Returns ``(params, dna SI, model, interaction)``.
+    """
+    names = _Names(data.labels, model, interaction)
+    vary = _check_vary(vary, names)
+    si = dna.si
+    values = {("dna", k): getattr(si, k) for k in (*DNA_FIELDS, "temperature")}
+    values.update({("model", k): v for k, v in model.values.items()})
+    values.update({("interaction", k): v for k, v in interaction.values.items()})
+    n_mol = len(data.labels)
+    # per molecule: (value, given, free)
+    n0 = [(0.0, False, bool(fit_turns_offset))] * n_mol
+    z0 = [(0.0, False, bool(fit_extension_offset))] * n_mol
+    _apply_fixed(dict(fixed or {}), names, vary, values, n0, z0)
+    _apply_start(dict(start or {}), names, vary, values, n0, z0)
+    si = dna_si(si, {k: values[("dna", k)] for k in (*DNA_FIELDS, "temperature")},
+                dna.wlc_persistence is None)
+    model = model.replace(**{k: values[("model", k)] for k in model.parameters}) \
+        if model.parameters else model
+    interaction = interaction.replace(**{k: values[("interaction", k)]
+                                         for k in interaction.parameters}) \
+        if interaction.parameters else interaction
+    params = FitParameters()
+    owners = {b: o for o, b in values}
+    for base in vary:
+        params.add(_global_parameter(names, owners[base], base, values[(owners[base], base)],
+                                     True))
+    for i, lab in enumerate(data.labels):
+        suffix = f"[{lab}]" if data.has_molecule else ""
+        for base, table, unit, scale in (("turns_offset", n0, "turn", 1.0),
+                                         ("extension_offset", z0, "nm", Z0_SCALE)):
+            v, given, free = table[i]
+            lo, hi, src = PLAUSIBLE[base]
+            params.add(FitParameter(f"{base}{suffix}", v, unit, vary=free,
+                                    shared="per-molecule", molecule=i, kind=base,
+                                    owner="offset", plausible=(lo, hi), plausible_source=src,
+                                    given=given, scale=scale))
+    _apply_bounds(dict(bounds or {}), names, params)
+    n_free = len(params.free)
+    if n_free == 0:
+        raise FitError("nothing to fit: vary is empty and both offsets are switched off")
+    if data.n - n_free <= 0:
+        raise FitError(f"{data.n} data points cannot determine {n_free} free parameters")
+    return params, si, model, interaction
+
+
+def strip_molecule_keys(d):
+    """``d`` unchanged, or FitError for a per-molecule key (fit_many fits molecules alone)."""
+    if d is None:
+        return None
+    for k in d:
+        m = _NAME.match(k)
+        if m and m.group("mol") is not None:
+            raise FitError(f"fit_many fits each molecule alone: give {m.group('base')!r}, "
+                           f"not {k!r}")
+    return dict(d)

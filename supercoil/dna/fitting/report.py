@@ -1,0 +1,119 @@
+"""The text report of a fit (in the style of lmfit's ``fit_report``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from supercoil.units import ureg
+
+__all__ = ["fit_report"]
+
+
+def _in_data_unit(result, nm):
+    """``nm`` in the data's extension unit, with nm in brackets when that is another unit."""
+    unit = result._spec.data.units.get("extension", "nm") or "nm"
+    try:
+        v = ureg.Quantity(nm, "nm").m_as(unit)
+    except Exception:  # an unusual unit string: stay in nm
+        unit, v = "nm", nm
+    return f"{v:.4g} {unit}" + ("" if unit == "nm" else f" ({nm:.4g} nm)")
+
+
+def _statistics(result):
+    noise = result.residual_rms.magnitude
+    g = result.goodness
+    if result.weighting == "unit":
+        stats = [
+            f"    noise estimate     = {_in_data_unit(result, noise)} (residual RMS, "
+            "sqrt(sum of squared residuals / degrees of freedom))",
+            f"    sum of squares     = {result.chi_square:.6g} nm^2 (unit weights: no "
+            "chi-square, the noise level is estimated from the scatter)",
+        ]
+        if np.isfinite(g.get("p_value", np.nan)):
+            stats.append(f"    goodness of fit    = runs test (Wald-Wolfowitz): "
+                         f"{int(g['runs'])} runs of one sign, {g['expected_runs']:.1f} "
+                         f"expected, p = {g['p_value']:.3g}")
+        wtext = ("unit weights; standard errors scaled by the noise estimate (the residual "
+                 "RMS)")
+    else:
+        stats = [
+            f"    chi-square         = {result.chi_square:.6g}",
+            f"    reduced chi-square = {result.reduced_chi_square:.6g} (1 when the model and "
+            "the sigmas describe the data)",
+            f"    goodness of fit    = chi-square test, two-sided p = {g['p_value']:.3g}",
+            f"    residual RMS       = {_in_data_unit(result, noise)}",
+        ]
+        wtext = (f"per-point sigma ({result.weighting}); covariance not rescaled "
+                 "(absolute uncertainties)")
+    return stats, wtext
+
+
+def _parameter_lines(result, width):
+    lines = [f"    {'name':<{width}}{'value':>12}{'stderr':>16}  {'unit':<6}{'rel.err':>9}"
+             f"{'start':>12}  bounds"]
+    start = result._core["start"]
+    for j, name in enumerate(result.names):
+        p = result.params[name]
+        v = result.parameters[name].magnitude
+        e = result.stderr[name].magnitude
+        if name in result.undetermined:
+            etext, rel = "not determined", "-"
+        else:
+            etext = f"{e:.4g}"
+            rel = f"{100 * e / abs(v):.2f}%" if v != 0 else "-"
+        f = p.factor
+        lines.append(f"    {name:<{width}}{v:>12.6g}{etext:>16}  {p.unit:<6}{rel:>9}"
+                     f"{start[j] * f:>12.6g}  ({p.min * f:.4g}, {p.max * f:.4g})")
+    return lines
+
+
+def _correlation_lines(result, min_correlation):
+    pairs = []
+    names = result.names
+    corr = result.correlation.to_numpy()
+    for a in range(len(names)):
+        for b in range(a + 1, len(names)):
+            if np.isfinite(corr[a, b]) and abs(corr[a, b]) >= min_correlation:
+                pairs.append((abs(corr[a, b]), names[a], names[b], corr[a, b]))
+    if not pairs:
+        return []
+    return [f"[[Correlations]] (|C| >= {min_correlation:g})"] + [
+        f"    C({a}, {b}) = {v:+.4f}" for _, a, b, v in sorted(pairs, reverse=True)]
+
+
+def fit_report(result, min_correlation=0.1) -> str:
+    """Statistics, parameter table with units, fixed values, correlations, warnings."""
+    d = result._spec.data
+    forces = np.unique(d.force)
+    force_text = ", ".join(f"{f * 1e12:.4g}" for f in forces)
+    stats, wtext = _statistics(result)
+    inter = (f", interaction {result.interaction.name!r}" if result.model.uses_interaction
+             else "")
+    lines = [
+        "[[Model]]",
+        f"    z = hat(N - turns_offset) + extension_offset, model {result.model.name!r}{inter}, "
+        + ("thermal" if result.thermal else "athermal"),
+        "[[Fit statistics]]",
+        f"    fitting method     = least_squares (trf), {result.nfev} model evaluations "
+        f"({result._core['kernel_calls']} kernel calls with the Jacobians), "
+        f"{result.seconds:.3g} s",
+        f"    data points        = {result.ndata} ({len(forces)} forces: {force_text} pN; "
+        f"{len(d.labels)} molecule{'s' if len(d.labels) > 1 else ''})",
+        f"    free parameters    = {len(result.names)}",
+        f"    degrees of freedom = {result.nfree}",
+        *stats,
+        f"    weighting          = {wtext}",
+        f"    converged          = {result.success} ({result.message})",
+        "[[Parameters]]",
+    ]
+    width = max(len(n) for n in [*result.names, *result.fixed, "name"]) + 2
+    lines += _parameter_lines(result, width)
+    if result.fixed:
+        lines.append("[[Fixed]]")
+        for name, q in result.fixed.items():
+            lines.append(f"    {name:<{width}}{q.magnitude:>12.6g}  {q.units:~P}")
+    lines += _correlation_lines(result, min_correlation)
+    if result.warnings:
+        lines.append("[[Warnings]]")
+        lines.extend(f"    {w}" for w in result.warnings)
+    return "\n".join(lines)

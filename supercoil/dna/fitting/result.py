@@ -1,0 +1,225 @@
+"""The result of a hat-curve fit (:class:`FitResult`): estimates, errors, tables."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from supercoil.dna.fitting.parameters import DNA_FIELDS
+from supercoil.tables import make_table, provenance
+from supercoil.units import U, quantity
+
+__all__ = ["FitResult", "fmt_pm"]
+
+
+def fmt_pm(v, e):
+    """``value ± error`` with the error's significant digits; ``(not determined)`` for inf."""
+    if np.isinf(e):
+        return f"{v:.6g} (not determined)"
+    if not np.isfinite(e) or e <= 0:
+        return f"{v:.6g}"
+    digits = max(0, 1 - math.floor(math.log10(e)))
+    return f"{v:.{digits}f} ± {e:.{digits}f}" if digits < 12 else f"{v:.6g} ± {e:.2g}"
+
+
+def _correlation(cov, undetermined):
+    d = np.sqrt(np.diag(cov))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(d, d)
+    corr[~np.isfinite(corr)] = 0.0
+    np.fill_diagonal(corr, 1.0)
+    corr[undetermined, :] = np.nan
+    corr[:, undetermined] = np.nan
+    corr[undetermined, undetermined] = 1.0
+    return corr
+
+
+class FitResult:
+    """The result of :func:`fit_hat_curves`.
+
+    Attributes
+    ----------
+    parameters : dict of str -> pint.Quantity
+        Best-fit values of the free parameters: the varied DNA fields (nm),
+        model or interaction parameters (their declared unit) and the offsets
+        ``turns_offset`` (turn) and ``extension_offset`` (nm); with a
+        ``molecule`` column the offsets are named ``turns_offset[<molecule>]``.
+    stderr : dict of str -> pint.Quantity
+        One-sigma standard errors, same keys and units; ``inf`` for a
+        parameter the data do not determine (see ``undetermined``).
+    params : FitParameters
+        All parameters (free and fixed) with values, errors, bounds and
+        plausible limits (SI).
+    undetermined : list of str
+        Free parameters with a component in the numerical null space of the
+        Jacobian: standard error ``inf``, NaN covariance and correlation rows
+        and columns, and a :class:`~supercoil.exceptions.FitWarning`.
+    fixed : dict of str -> pint.Quantity
+        The parameters held fixed (DNA fields not varied, offsets switched off).
+    covariance, correlation : pandas.DataFrame
+        Of the free parameters in the units of ``parameters`` (``attrs["units"]``).
+    chi_square, reduced_chi_square : float
+        ``sum(((data - model) / sigma)^2)`` and the same divided by ``nfree``:
+        with per-point sigma the usual chi-square; with unit weights sigma =
+        1 nm, so they are the sum of squared residuals and the residual
+        variance in nm^2 (not a goodness of fit; the report then shows
+        :attr:`residual_rms`). Always ``chi_square / nfree == reduced_chi_square``.
+    residual_rms : pint.Quantity
+        ``sqrt(sum((data - model)^2) / nfree)`` (nm): with unit weights the
+        estimate of the extension noise, by which the errors are scaled.
+    goodness : dict
+        The goodness-of-fit test that applies (``"chi-square"`` with sigmas,
+        ``"runs"`` with unit weights) and its ``p_value``.
+    ndata, nfree, nfev : int
+        Data points, degrees of freedom, model evaluations.
+    weighting : str
+        ``"sigma column"``, ``"sigma argument"`` or ``"unit"``.
+    residuals, best_fit : pint.Quantity
+        ``data - model`` and the model extensions at the data points (nm).
+    dna : DNA
+        The input DNA with the fitted (global) fields replaced by their estimates.
+    model, interaction
+        The model and interaction instances with the fitted parameters.
+    data : pandas.DataFrame
+        The data as given.
+    warnings : list of str
+        Every warning of the fit (also in :meth:`report`).
+    """
+
+    def __init__(self, core, spec, data, dna):
+        self._core = core
+        self._spec = spec
+        self.data = data
+        self.params = core["params"]
+        self.names = list(core["names"])
+        free = [self.params[n] for n in self.names]
+        self.parameters = {p.name: p.quantity(v) for p, v in zip(free, core["values"],
+                                                                   strict=True)}
+        self.stderr = {p.name: p.quantity(e) for p, e in zip(free, core["stderr"], strict=True)}
+        self.units = {p.name: p.unit for p in free}
+        factors = np.array([p.factor for p in free])
+        cov = core["covariance"] * np.outer(factors, factors)
+        self.covariance = pd.DataFrame(cov, index=self.names, columns=self.names)
+        self.covariance.attrs["units"] = dict(self.units)
+        undetermined = np.asarray(core["undetermined"], dtype=bool)
+        self.correlation = pd.DataFrame(_correlation(cov, undetermined), index=self.names,
+                                        columns=self.names)
+        self.correlation.attrs["units"] = {k: "" for k in self.names}
+        self.undetermined = [n for n, u in zip(self.names, undetermined, strict=True) if u]
+        self.chi_square = float(core["chi_square"])
+        self.reduced_chi_square = float(core["reduced_chi_square"])
+        resid = spec.data.extension - core["model"]
+        self.nfree = int(core["nfree"])
+        self.residual_rms = quantity(math.sqrt(float(resid @ resid) / self.nfree) * 1e9, U.nm)
+        self.goodness = dict(core["goodness"])
+        self.ndata = int(core["ndata"])
+        self.nfev = int(core["nfev"])
+        self.message = core["message"]
+        self.success = core["status"] > 0
+        self.weighting = spec.data.weighting
+        self.thermal = spec.thermal
+        self.seconds = float(core["seconds"])
+        self.best_fit = quantity(core["model"] * 1e9, U.nm)
+        self.residuals = quantity(resid * 1e9, U.nm)
+        self.warnings = [m for _, m in core["warnings"]]
+        self.model = core["model_obj"]
+        self.interaction = core["interaction_obj"]
+        self.fixed = self._fixed(core, spec)
+        si = core["dna"]
+        self.dna = dna.replace(**{p: quantity(getattr(si, p) * 1e9, U.nm) for p in spec.vary
+                                  if p in DNA_FIELDS})
+
+    @staticmethod
+    def _fixed(core, spec):
+        si = core["dna"]
+        fixed = {p: quantity(getattr(si, p) * 1e9, U.nm) for p in DNA_FIELDS
+                 if p not in spec.vary}
+        fixed["temperature"] = quantity(si.temperature, U.K)
+        for obj in (core["model_obj"], core["interaction_obj"]):
+            for k, q in obj.quantities().items():
+                if k not in spec.vary:
+                    fixed[k] = q
+        for p in spec.params.values():
+            if p.owner == "offset" and not p.vary:
+                fixed[p.name] = p.quantity()
+        return fixed
+
+    # ---- text -------------------------------------------------------------------------
+    def __repr__(self):
+        vals = ", ".join(
+            f"{k}={fmt_pm(self.parameters[k].magnitude, self.stderr[k].magnitude)} "
+            f"{self.units[k]}" for k in self.names)
+        return f"<FitResult {vals}; {self.headline()}>"
+
+    def headline(self, digits=4):
+        """The fit-quality figure: noise estimate (unit weights) or reduced chi-square."""
+        if self.weighting == "unit":
+            return f"noise estimate {self.residual_rms.magnitude:.{digits}g} nm"
+        return f"reduced chi-square {self.reduced_chi_square:.{digits}g}"
+
+    def report(self, min_correlation=0.1) -> str:
+        """A fit report: statistics, parameter table with units, fixed values, correlations."""
+        from supercoil.dna.fitting.report import fit_report
+
+        return fit_report(self, min_correlation)
+
+    def plot(self, fig=None, n_curve=300):
+        """Data, fit and residuals per force (offset-corrected); returns the Figure."""
+        from supercoil.dna.fitting.plot import plot_fit
+
+        return plot_fit(self, fig=fig, n_curve=n_curve)
+
+    # ---- tables -------------------------------------------------------------------------
+    def to_frame(self) -> pd.DataFrame:
+        """One-row table (package convention): every free parameter and its stderr, fit stats.
+
+        Columns ``<name>`` and ``<name>_stderr`` in the units of ``parameters``
+        (``attrs["units"]``; the stderr is ``inf`` for an undetermined
+        parameter), then ``reduced_chi_square``, ``chi_square`` (see the class
+        docstring), ``residual_rms`` (nm), ``ndata``, ``nfree``, ``nfev``,
+        ``weighting``, ``determined`` (False if any parameter is undetermined).
+        """
+        cols, units = {}, {}
+        for name in self.names:
+            cols[name] = [self.parameters[name].magnitude]
+            cols[f"{name}_stderr"] = [self.stderr[name].magnitude]
+            units[name] = units[f"{name}_stderr"] = self.units[name]
+        for k, v, unit in (("reduced_chi_square", self.reduced_chi_square, ""),
+                           ("chi_square", self.chi_square, ""),
+                           ("residual_rms", self.residual_rms.magnitude, "nm"),
+                           ("ndata", self.ndata, ""), ("nfree", self.nfree, ""),
+                           ("nfev", self.nfev, ""), ("weighting", self.weighting, ""),
+                           ("determined", not self.undetermined, "")):
+            cols[k] = [v]
+            units[k] = unit
+        prov = provenance(self.dna, vary=list(self._spec.vary), fixed=dict(self.fixed),
+                          thermal=self.thermal, model=self.model.name,
+                          interaction=self.interaction.name)
+        return make_table(cols, units, prov)
+
+    def points_frame(self) -> pd.DataFrame:
+        """Per-point table: data, offset-corrected turns, best fit, residual, phase flags."""
+        d, c = self._spec.data, self._core
+        cols, units = {}, {}
+        if d.has_molecule:
+            cols["molecule"] = [d.labels[i] for i in d.mol_index]
+            units["molecule"] = ""
+        n_eff = d.turns - c["n0"][d.mol_index]
+        for k, v, u in (
+            ("force", d.force * 1e12, "pN"),
+            ("turns", d.turns, "turn"),
+            ("turns_corrected", n_eff, "turn"),
+            ("extension", d.extension * 1e9, "nm"),
+            ("best_fit", c["model"] * 1e9, "nm"),
+            ("residual", (d.extension - c["model"]) * 1e9, "nm"),
+            ("torque", c["torque"] * 1e21, "pN*nm"),
+            ("plectoneme_length", c["plectoneme_length"] * 1e9, "nm"),
+            ("phase", c["phase"].astype(int), ""),
+            ("short_tail", c["short_tail"], ""),
+        ):
+            cols[k] = v
+            units[k] = u
+        return make_table(cols, units, provenance(self.dna, vary=list(self._spec.vary),
+                                                  model=self.model.name))

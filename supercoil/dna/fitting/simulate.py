@@ -1,0 +1,154 @@
+"""Synthetic rotation curves (examples, validation, tests) from any registered DNA model."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from supercoil._checks import check_flag
+from supercoil.dna.fitting.fit import resolve_model
+from supercoil.dna.interactions import DEFAULT_INTERACTION
+from supercoil.dna.models import DEFAULT_MODEL
+from supercoil.dna.models.li_zhao import LiZhao
+from supercoil.exceptions import FitError
+from supercoil.tables import make_table, provenance
+from supercoil.units import U, as_turns, magnitude, quantity
+
+__all__ = ["simulate_rotation_curves", "valid_turns_range"]
+
+
+def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MODEL,
+                      interaction=DEFAULT_INTERACTION):
+    """Largest |N| (turns) at each force whose tail is still longer than ``min_tail``.
+
+    Beyond it the hat curve enters the short-tail region where the Moroz-Nelson
+    extension factor is not valid (docs/theory/li-zhao.md). ``min_tail``
+    defaults to 4 bending persistence lengths (one more than the kernel's
+    short-tail flag, so that a turns offset of a turn or two keeps the data
+    valid). For ``"li-zhao"`` exact: ``N_b + (L - l_min) D / (2 pi)`` with the
+    linking rate D; for other models from their buckling constants: ``N_b +
+    z_b (1 - l_min / L) / |dz/dN|`` (the plectoneme phase taken as linear).
+
+    Returns a float array (turns), one per force.
+
+    Raises
+    ------
+    FitError
+        For a model that does not buckle at a force (no finite range).
+    """
+    from supercoil.core.dna.hat import hat_parameters
+
+    thermal = check_flag(thermal, "thermal")
+    m, inter = resolve_model(model, interaction)
+    si = dna.si
+    F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
+    lmin = 4 * si.bending_persistence if min_tail is None else float(
+        magnitude(min_tail, U.m, "min_tail"))
+    if type(m) is LiZhao and inter.name == DEFAULT_INTERACTION:
+        par = hat_parameters(F, si.length, si.bending_rigidity, si.torsional_rigidity, si.kT,
+                             si.radius, thermal=thermal)
+        return par.buckling_turns + (si.length - lmin) * par.linking_rate / (2 * np.pi)
+    b = m.buckling(F, si, thermal, inter)
+    ok = np.isfinite(b.turns) & np.isfinite(b.slope) & (b.slope < 0)
+    if not ok.all():
+        i = int(np.flatnonzero(~ok)[0])
+        raise FitError(f"model {m.name!r} does not buckle at force {F[i] * 1e12:.6g} pN: no "
+                       "finite valid turns range; give the turns explicitly")
+    zb = np.asarray(m.points(b.turns, F, si, thermal, inter, None).extension, dtype=float)
+    return b.turns + zb * (1 - lmin / si.length) / np.abs(b.slope)
+
+
+def _labels(molecules):
+    if molecules is None:
+        return ["m1"], False
+    if isinstance(molecules, int):
+        return [f"m{i + 1}" for i in range(molecules)], True
+    return [str(m) for m in molecules], True
+
+
+def _offsets(turns_offset, extension_offset, n):
+    n0 = np.broadcast_to(np.asarray(as_turns(turns_offset, "turns_offset"), dtype=float), (n,))
+    z0 = np.broadcast_to(np.asarray(magnitude(
+        extension_offset if extension_offset is not None else 0 * U.nm, U.m,
+        "extension_offset"), dtype=float), (n,))
+    return n0, z0
+
+
+def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, noise=None,
+                             turns_offset=0.0, extension_offset=None, molecules=None, seed=None,
+                             thermal=True, extension_unit="um", sigma_column=False,
+                             model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION):
+    """Synthetic rotation curves: a hat-curve model plus offsets and Gaussian noise.
+
+    Parameters
+    ----------
+    dna : DNA
+        The true parameters.
+    force : Quantity [force], array
+        One rotation curve per force (and per molecule).
+    turns : array, optional
+        Applied turns of every curve; default ``points_per_force`` points evenly
+        over +-:func:`valid_turns_range` at each force.
+    noise : Quantity [length], optional
+        Standard deviation of the Gaussian extension noise (default 5 nm).
+    turns_offset, extension_offset : float / Quantity or sequence, optional
+        True offsets: the data are ``hat(N - turns_offset) + extension_offset``
+        (one value, or one per molecule). Default 0 turns and 0 nm.
+    molecules : int or sequence of str, optional
+        Number (labels ``m1``, ``m2``, ...) or labels of molecules; with it the
+        table has a ``molecule`` column.
+    seed : int or numpy.random.Generator, optional
+        Random seed (reproducible data).
+    thermal : bool
+        Thermal (default) or athermal hat curve.
+    extension_unit : str
+        Unit of the extension column (``"um"`` or ``"nm"``).
+    sigma_column : bool
+        Add a ``sigma`` column (nm) holding the noise level.
+    model, interaction : str or instance
+        The DNA model (default ``"li-zhao"``) and interaction (``"hard-core"``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table convention of :func:`~supercoil.read_tweezers_csv`:
+        ``[molecule,] force [pN], turns, extension [extension_unit][, sigma [nm]]``.
+    """
+    thermal = check_flag(thermal, "thermal")
+    sigma_column = check_flag(sigma_column, "sigma_column")
+    m, inter = resolve_model(model, interaction)
+    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
+    sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
+    labels, has_mol = _labels(molecules)
+    n0, z0 = _offsets(turns_offset, extension_offset, len(labels))
+    if turns is None:
+        nmax = valid_turns_range(dna, quantity(F, U.N), thermal=thermal, model=m,
+                                 interaction=interaction)
+        grids = [np.linspace(-x, x, points_per_force) for x in nmax]
+    else:
+        grids = [np.asarray(as_turns(turns, "turns"), dtype=float)] * len(F)
+    factor = {"um": 1e6, "nm": 1e9}[extension_unit]
+    N = np.concatenate(grids)
+    FF = np.concatenate([np.full(len(g), f) for g, f in zip(grids, F, strict=True)])
+    mol, Fs, Ns, Zs = [], [], [], []
+    for i, lab in enumerate(labels):
+        z = np.asarray(m.points(N - n0[i], FF, dna.si, thermal, inter, None).extension,
+                       dtype=float)
+        z = z + z0[i] + rng.normal(0.0, sd, z.shape)
+        mol.extend([lab] * len(N))
+        Fs.append(FF * 1e12)
+        Ns.append(N)
+        Zs.append(z * factor)
+    table = {"molecule": mol} if has_mol else {}
+    table.update(force=np.concatenate(Fs), turns=np.concatenate(Ns),
+                 extension=np.concatenate(Zs))
+    units = {"molecule": "", "force": "pN", "turns": "", "extension": extension_unit}
+    if sigma_column:
+        table["sigma"] = np.full(len(table["force"]), sd * 1e9)
+        units["sigma"] = "nm"
+    prov = provenance(
+        dna, simulated=True, noise=f"{sd * 1e9:.6g} nm", seed=seed if isinstance(seed, int)
+        else None, turns_offset=[float(v) for v in n0],
+        extension_offset=[f"{v * 1e9:.6g} nm" for v in z0], thermal=thermal, model=m.name,
+        interaction=inter.name)
+    return make_table(table, {k: units[k] for k in table}, prov)
