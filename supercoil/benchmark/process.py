@@ -34,9 +34,9 @@ import numpy as np
 
 _IMPORT = """
 import time
-t0 = time.perf_counter()
+t0, c0 = time.perf_counter(), time.process_time()
 import supercoil
-print(time.perf_counter() - t0)
+print(time.perf_counter() - t0, time.process_time() - c0)
 """
 
 _PHASES = """
@@ -75,14 +75,22 @@ def _env():
     return env
 
 
+def _children_cpu():
+    import resource
+
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
 def _run(args, env):
-    t0 = time.perf_counter()
+    """``(stdout, wall seconds, CPU seconds)`` of ``python *args`` in a child process."""
+    c0, t0 = _children_cpu(), time.perf_counter()
     proc = subprocess.run([sys.executable, *args], env=env, capture_output=True, text=True,
                           check=False, timeout=120)
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, _children_cpu() - c0
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(args)} failed ({proc.returncode}): {proc.stderr[-500:]}")
-    return proc.stdout, wall
+    return proc.stdout, wall, cpu
 
 
 def import_time(repeat=5):
@@ -91,16 +99,18 @@ def import_time(repeat=5):
     Returns
     -------
     dict
-        ``import`` (s, median), ``samples`` (list) and ``startup`` (median wall of
-        ``python -c pass``, s).
+        ``import`` (s, median), ``samples`` (list), ``import_cpu`` (CPU s of the
+        import, median) and ``startup`` (median wall of ``python -c pass``, s).
     """
     env = _env()
-    samples, startups = [], []
+    samples, cpus, startups = [], [], []
     for _ in range(repeat):  # interleaved: start-up, import, start-up, import, ...
         startups.append(_run(["-c", "pass"], env)[1])
-        samples.append(float(_run(["-c", _IMPORT], env)[0].split()[-1]))
+        wall, cpu = _run(["-c", _IMPORT], env)[0].split()[-2:]
+        samples.append(float(wall))
+        cpus.append(float(cpu))
     return {"import": float(np.median(samples)), "samples": samples,
-            "startup": float(np.median(startups))}
+            "import_cpu": float(np.median(cpus)), "startup": float(np.median(startups))}
 
 
 def cli_hat_phases(repeat=3):
@@ -111,18 +121,21 @@ def cli_hat_phases(repeat=3):
     dict
         ``wall`` (median of ``repeat`` subprocess runs of ``python -m
         supercoil.cli hat --params dna --out DIR``; with ``repeat=0`` the wall
-        time of the hooked run), and from one hooked run
+        time of the hooked run), ``cpu`` (CPU s of the same processes, median),
+        and from one hooked run
         ``startup``, ``import``, ``compute``, ``plot``, ``rest`` (s).
     """
     env = _env()
     with tempfile.TemporaryDirectory() as tmp:
-        walls = [_run(["-m", "supercoil.cli", "hat", "--params", "dna", "--out", tmp], env)[1]
-                 for _ in range(repeat)]
-        out, wall = _run(["-c", _PHASES, tmp], env)
+        runs = [_run(["-m", "supercoil.cli", "hat", "--params", "dna", "--out", tmp], env)
+                for _ in range(repeat)]
+        out, wall, cpu = _run(["-c", _PHASES, tmp], env)
+        walls, cpus = [r[1] for r in runs] or [wall], [r[2] for r in runs] or [cpu]
         if not (Path(tmp) / "hat_curve.png").is_file():
             raise RuntimeError("supercoil hat wrote no hat_curve.png")
     phases = json.loads(out.strip().splitlines()[-1])
     if phases["code"] != 0:
         raise RuntimeError(f"supercoil hat returned {phases['code']}")
-    return {"wall": float(np.median(walls)) if walls else wall, "startup": wall - phases["inside"],
+    return {"wall": float(np.median(walls)), "cpu": float(np.median(cpus)),
+            "startup": wall - phases["inside"],
             **{k: phases[k] for k in ("import", "compute", "plot", "rest")}}
