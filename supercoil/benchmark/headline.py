@@ -75,9 +75,13 @@ def measure(quick=False, log=print):
     return r
 
 
-def _row(measurement, value, unit, target, met, note=""):
+def target_row(measurement, value, unit, target, met, note=""):
+    """One headline row (a dict of the table's columns)."""
     return {"measurement": measurement, "value": float(value), "unit": unit,
             "target": target, "met": bool(met), "note": note}
+
+
+_row = target_row
 
 
 def _dna_rows(r):

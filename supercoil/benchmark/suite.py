@@ -28,7 +28,7 @@ from supercoil.benchmark.timing import best_time, machine_description
 
 def _legacy_rows(wp, hat, ub, eq1000):
     """Rows of the earlier issues' targets (best wall time of a kernel or a solver)."""
-    from supercoil.benchmark.headline import _row
+    from supercoil.benchmark.headline import target_row as _row
 
     rows = [_row("kernel supercoil.core.dna.plectoneme.equilibrium, 1000 forces: best wall "
                  "time per force", eq1000 * 1e6, "us", "<= 20 us", eq1000 * 1e6 <= 20)]
