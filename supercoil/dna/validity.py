@@ -16,17 +16,20 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
 from supercoil.exceptions import ValidityWarning
-from supercoil.units import U, magnitude
+from supercoil.units import U, as_turns, magnitude
 
 __all__ = [
     "DENATURATION_FORCE",
     "OVERSTRETCHING_FORCE",
     "StateRecorder",
     "check_dna",
+    "check_finite_output",
     "checked_forces",
+    "checked_turns",
     "denaturation_messages",
     "extension_messages",
     "force_messages",
@@ -38,25 +41,97 @@ __all__ = [
 
 def check_dna(dna):
     """The SI view of ``dna``; TypeError naming the argument if it is not a DNA."""
-    if not isinstance(dna, DNA):
-        hint = " (an ElasticRod is a rod scene's material)" if type(dna).__name__ == \
-            "ElasticRod" else ""
-        raise TypeError(f"dna must be a supercoil.DNA, got {type(dna).__name__}{hint}")
-    return dna.si
+    return check_material(dna, DNA, "dna")
 
 
 def checked_forces(force, one_d=True):
-    """Force magnitudes in N (finite; 1-D if ``one_d``), ValueError naming ``force``."""
+    """Force magnitudes in N (finite, positive; 1-D if ``one_d``), errors naming ``force``.
+
+    Raises
+    ------
+    ValueError
+        Not finite; not 1-D (``one_d``).
+    NoEquilibriumError
+        A force <= 0 (a ValueError too): every DNA model describes a molecule
+        stretched by a positive tension (models differ in what else they need).
+    """
+    from supercoil.exceptions import NoEquilibriumError
+
     f = magnitude(force, U.N, "force")
     if np.iscomplexobj(f):
         raise TypeError("force must be real")
     if not np.all(np.isfinite(f)):
         raise ValueError(f"force must be finite, got {force}")
+    if np.any(f <= 0):
+        bad = float(np.asarray(f)[np.asarray(f) <= 0].flat[0])
+        raise NoEquilibriumError(f"no equilibrium at force {bad * 1e12:.6g} pN: the force "
+                                 "must be positive (a molecule stretched by a tension)")
     if one_d:
         f = np.atleast_1d(f)
         if f.ndim != 1:
             raise ValueError(f"force must be a scalar or 1-D, got shape {f.shape}")
     return f
+
+
+#: DNA helical repeat h (m per helical turn, 10.5 bp): Lk_0 = L / h
+HELICAL_REPEAT = 3.57e-9
+
+
+def checked_turns(turns, dna):
+    """Turns N (1-D float array) for a DNA function: real, finite, not empty, |sigma| <= 1.
+
+    One check for every DNA function taking turns (:func:`~supercoil.units.as_turns`
+    reads plain numbers as turns and converts angle units).
+
+    Raises
+    ------
+    TypeError
+        Not numbers (text, None, complex).
+    ValueError
+        Not 1-D, empty, NaN or infinite.
+    ValidityError
+        ``|N| > Lk_0 = L / h`` (supercoiling density |sigma| > 1, h = 3.57 nm): more
+        turns than the molecule has helical turns, where no model applies (and
+        the models' arithmetic would overflow for absurd N such as 1e300).
+    """
+    from supercoil.exceptions import ValidityError
+
+    n = np.atleast_1d(as_turns(turns, "turns"))
+    if n.ndim != 1:
+        raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
+    if n.size == 0:
+        raise ValueError("turns is empty: give at least one number of turns")
+    if not np.all(np.isfinite(n)):
+        raise ValueError(f"turns must be finite, got {n[~np.isfinite(n)][0]!r}")
+    lk0 = dna.length / HELICAL_REPEAT
+    big = np.abs(n) > lk0
+    if np.any(big):
+        raise ValidityError(
+            f"turns {n[big][0]:.6g}: |N| exceeds the molecule's helical turns Lk0 = L/h = "
+            f"{lk0:.6g} (supercoiling density |sigma| > 1, h = 3.57 nm); no model applies")
+    return n
+
+
+def check_finite_output(model, force, values, turns=None, allow_inf=False):
+    """ValidityError naming the model, force (and turns) where a model's output is not finite.
+
+    ``values`` maps output names to SI arrays of the shape of ``force``; the
+    models are expected to raise their own named errors first, so this is the
+    net under every model (a result never carries a silent NaN or inf).
+    ``allow_inf`` lets +-inf through (a buckling turns of inf: never buckles).
+    """
+    from supercoil.exceptions import ValidityError
+
+    for name, x in values.items():
+        x = np.asarray(x)
+        bad = np.isnan(x) if allow_inf else ~np.isfinite(x)
+        if x.dtype.kind == "f" and bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            at = f"force {np.asarray(force).flat[i] * 1e12:.6g} pN"
+            if turns is not None:
+                at += f", turns {np.asarray(turns).flat[i]:.6g}"
+            raise ValidityError(f"model {model.name!r} gives {name} = {x.flat[i]!r} at {at}: "
+                                "outside the model's range (no finite result)")
 
 
 def warn(messages, stacklevel=3):
