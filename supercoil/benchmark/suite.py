@@ -68,6 +68,60 @@ def _headline_table(rows, machine):
     return make_table(cols, units, provenance(None, machine=machine))
 
 
+def _charts(wp, hat, ub, out):
+    """work_precision.png (three work-precision scenes, hat-curve cost) and unit_boundary.png."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from supercoil.benchmark import unit_boundary, work_precision
+
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9))
+    labels = ("max |alpha error| (rad)", "max |alpha error| (rad)",
+              "max relative error of alpha and R")
+    for ax, (scene, sub), xlabel in zip(axes.flat[:3], wp.groupby("scene", sort=False), labels,
+                                        strict=False):
+        work_precision.plot(sub, ax, title=scene, error_label=xlabel)
+        ax.title.set_fontsize(8)
+    ax = axes.flat[3]
+    for variant, sub in hat.groupby("variant", sort=False):
+        ax.loglog(sub["points"], sub["time_per_point"] * 1e9, "o-", label=variant)
+    ax.set(xlabel="turns values per call", ylabel="time per point (ns)",
+           title="hat curve (1.2 pN): cost per point")
+    ax.title.set_fontsize(8)
+    ax.legend()
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / "work_precision.png", dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    unit_boundary.plot(ub, ax)
+    fig.tight_layout()
+    fig.savefig(out / "unit_boundary.png", dpi=110)
+    plt.close(fig)
+
+
+def _headline_step(out, quick, log, readme, machine, legacy):
+    """Measure the headline targets; write dna_model_cost.csv, headline.csv/.md (and README)."""
+    from supercoil.benchmark import dna_models, headline
+    from supercoil.tables import make_table, provenance, write_csv
+
+    res = headline.measure(quick=quick, log=log)
+    write_csv(make_table(res["models"], dna_models.UNITS, provenance(None, machine=machine)),
+              out / "dna_model_cost.csv")
+    head = _headline_table(headline.target_rows(res) + legacy, machine)
+    write_csv(head, out / "headline.csv")
+    md = headline.markdown(head, machine, (res["load_start"], res["load_end"]))
+    (out / "headline.md").write_text(md)
+    if readme is not None:
+        headline.update_readme(readme, md)
+        log(f"updated the speed table of {readme}")
+    log(md)
+    return head
+
+
 def run(out, quick=False, log=print, readme=None):
     """Run every benchmark, write charts and tables into ``out``; returns the headline table.
 
@@ -75,11 +129,6 @@ def run(out, quick=False, log=print, readme=None):
     section, :func:`supercoil.benchmark.headline.update_readme`) is replaced by the
     new one.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     import supercoil as sc
     from supercoil.benchmark import dna, rod, stability, unit_boundary, work_precision
     from supercoil.core.dna import plectoneme as pl
@@ -120,30 +169,7 @@ def run(out, quick=False, log=print, readme=None):
     ub = unit_boundary.run(sizes=(1, 10_000) if quick else unit_boundary.SIZES)
     write_csv(ub, out / "unit_boundary.csv")
 
-    fig, axes = plt.subplots(2, 2, figsize=(12, 9))
-    labels = ("max |alpha error| (rad)", "max |alpha error| (rad)",
-              "max relative error of alpha and R")
-    for ax, (scene, sub), xlabel in zip(axes.flat[:3], wp.groupby("scene", sort=False), labels,
-                                        strict=False):
-        work_precision.plot(sub, ax, title=scene, error_label=xlabel)
-        ax.title.set_fontsize(8)
-    ax = axes.flat[3]
-    for variant, sub in hat.groupby("variant", sort=False):
-        ax.loglog(sub["points"], sub["time_per_point"] * 1e9, "o-", label=variant)
-    ax.set(xlabel="turns values per call", ylabel="time per point (ns)",
-           title="hat curve (1.2 pN): cost per point")
-    ax.title.set_fontsize(8)
-    ax.legend()
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(out / "work_precision.png", dpi=110)
-    plt.close(fig)
-
-    fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    unit_boundary.plot(ub, ax)
-    fig.tight_layout()
-    fig.savefig(out / "unit_boundary.png", dpi=110)
-    plt.close(fig)
+    _charts(wp, hat, ub, out)
 
     log("5/6 stability map ...")
     smap = stability.run(quick=quick)
@@ -151,19 +177,6 @@ def run(out, quick=False, log=print, readme=None):
     stability.plot(smap, out / "stability_map.png")
 
     log("6/6 headline targets ...")
-    from supercoil.benchmark import dna_models, headline
-
-    res = headline.measure(quick=quick, log=log)
-    write_csv(make_table(res["models"], dna_models.UNITS, provenance(None, machine=machine)),
-              out / "dna_model_cost.csv")
-    head = _headline_table(headline.target_rows(res) + _legacy_rows(wp, hat, ub, eq1000),
-                           machine)
-    write_csv(head, out / "headline.csv")
-    md = headline.markdown(head, machine, (res["load_start"], res["load_end"]))
-    (out / "headline.md").write_text(md)
-    if readme is not None:
-        headline.update_readme(readme, md)
-        log(f"updated the speed table of {readme}")
-    log(md)
+    head = _headline_step(out, quick, log, readme, machine, _legacy_rows(wp, hat, ub, eq1000))
     log(f"done in {time.perf_counter() - t_start:.1f} s; outputs in {out}")
     return head

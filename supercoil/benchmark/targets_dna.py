@@ -16,7 +16,8 @@ its docstring exactly what it times:
   ``sc.plectoneme_equilibrium`` call beyond its output, per force;
 * :func:`loader_cost`: ``sc.read_tweezers_csv`` against plain
   ``pandas.read_csv(path, comment="#", skipinitialspace=True)`` of the same
-  file (CPU, interleaved), and its peak memory beyond its output per row.
+  file (:func:`supercoil.benchmark.memory.write_rotation_csv`; CPU,
+  interleaved), and its peak memory beyond its output per row.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from supercoil.benchmark.cpu import interleaved_cpu, peak_memory
+from supercoil.benchmark.memory import write_rotation_csv
 
 #: force of the hat-curve measurements (N) and their turns range (turns): N >= 0
 #: at 1.2 pN, so that no denaturation warning is part of what is timed
@@ -121,28 +123,6 @@ def equilibrium_memory(n):
     del m["result"]
     return {"peak": m["peak"], "output": m["retained"],
             "beyond_output_per_force": (m["peak"] - m["retained"]) / n}
-
-
-def write_rotation_csv(path, n_rows, seed=0):
-    """A rotation-curve CSV of ``n_rows`` rows: molecule, force [pN], turns, extension [um].
-
-    Random values in the ranges of tweezers data (the loader checks cells, not
-    physics); one molecule label per 1000 rows; one provenance line.
-    """
-    import pandas as pd
-
-    rng = np.random.default_rng(seed)
-    n_mol = max(1, n_rows // 1000)
-    df = pd.DataFrame({
-        "molecule": np.char.add("m", (np.arange(n_rows) // 1000 % n_mol).astype(str)),
-        "force [pN]": np.round(rng.uniform(0.2, 4.0, n_rows), 4),
-        "turns": np.round(rng.uniform(-30, 30, n_rows), 3),
-        "extension [um]": np.round(rng.uniform(0.0, 0.6, n_rows), 5),
-    })
-    with open(path, "w") as fh:
-        fh.write('# instrument: "benchmark"\n')
-        df.to_csv(fh, index=False)
-    return Path(path)
 
 
 def loader_cost(n_rows, samples=5, directory=None):
