@@ -12,16 +12,13 @@ target: ``measurement`` (naming exactly what is timed: a public call such as
 subprocess or a process pool makes wall time by nature (import, CLI, pool
 speed-up), which say so. The targets are benchmarks, never test assertions.
 
-:func:`markdown` renders the table (with the machine and its load average) and
-:func:`update_readme` replaces the table of the "## Speed and accuracy" section
-of a README with it.
+:func:`markdown` renders the table (with the machine and its load average);
+``supercoil docs figures`` copies it into the README.
 """
 
 from __future__ import annotations
 
 import os
-import re
-from pathlib import Path
 
 import numpy as np
 
@@ -205,44 +202,23 @@ def target_rows(r):
 
 
 def markdown(head, machine, load=None):
-    """The headline table as markdown, with the machine (and the load average)."""
+    """The headline table as markdown, with the machine (and the load average).
+
+    Four columns (measurement, value, target, met); the note follows the
+    measurement in parentheses. ``supercoil docs figures`` copies this text into
+    ``docs/generated/headline.md`` and the README's ``headline`` block.
+    """
     def cell(text):  # a "|" (as in |N| <= 25) would end the cell
         return str(text).replace("|", "\\|")
 
-    lines = ["| measurement | value | target | met | note |", "|---|---|---|---|---|"]
+    lines = ["| measurement | value | target | met |", "|---|---|---|---|"]
     for _, row in head.iterrows():
-        lines.append(f"| {cell(row['measurement'])} | {row['value']:.3g} {row['unit']} | "
-                     f"{cell(row['target'])} | {'yes' if row['met'] else 'no'} | "
-                     f"{cell(row['note'])} |")
+        note = f" ({cell(row['note'])})" if row["note"] else ""
+        lines.append(f"| {cell(row['measurement'])}{note} | {row['value']:.3g} {row['unit']} | "
+                     f"{cell(row['target'])} | {'yes' if row['met'] else 'no'} |")
     lines.append("")
     where = f"Measured on: {machine}"
     if load is not None:
         where += f"; load average {load[0]:.1f} at the start, {load[1]:.1f} at the end"
     lines.append(where + ".")
     return "\n".join(lines) + "\n"
-
-
-#: the headline block of a README: from the table's header row to its "Measured on:" line,
-#: inside the "## Speed and accuracy" section
-_BLOCK = re.compile(r"(^## Speed and accuracy[^\n]*\n(?:(?!^## ).)*?)"
-                    r"^\| measurement \|.*?^Measured on:[^\n]*\n", re.S | re.M)
-
-
-def update_readme(readme, table_md):
-    """Replace the headline table of ``readme`` by ``table_md`` (from :func:`markdown`).
-
-    The table replaced is the one of the "## Speed and accuracy" section: from
-    its ``| measurement |`` header row to its ``Measured on:`` line.
-
-    Raises
-    ------
-    ValueError
-        If the file has no such section and table.
-    """
-    path = Path(readme)
-    text = path.read_text()
-    if not _BLOCK.search(text):
-        raise ValueError(f"{path}: no '## Speed and accuracy' section with a "
-                         "'| measurement |' table ending in a 'Measured on:' line")
-    path.write_text(_BLOCK.sub(lambda mo: mo.group(1) + table_md, text, count=1))
-    return path

@@ -103,8 +103,8 @@ def _charts(wp, hat, ub, out):
     plt.close(fig)
 
 
-def _headline_step(out, quick, log, readme, machine, legacy):
-    """Measure the headline targets; write dna_model_cost.csv, headline.csv/.md (and README)."""
+def _headline_step(out, quick, log, machine, legacy):
+    """Measure the headline targets; write dna_model_cost.csv, headline.csv and headline.md."""
     from supercoil.benchmark import dna_models, headline
     from supercoil.tables import make_table, provenance, write_csv
 
@@ -115,20 +115,12 @@ def _headline_step(out, quick, log, readme, machine, legacy):
     write_csv(head, out / "headline.csv")
     md = headline.markdown(head, machine, (res["load_start"], res["load_end"]))
     (out / "headline.md").write_text(md)
-    if readme is not None:
-        headline.update_readme(readme, md)
-        log(f"updated the speed table of {readme}")
     log(md)
     return head
 
 
-def run(out, quick=False, log=print, readme=None):
-    """Run every benchmark, write charts and tables into ``out``; returns the headline table.
-
-    ``readme``: a README path whose headline table (in its "Speed and accuracy"
-    section, :func:`supercoil.benchmark.headline.update_readme`) is replaced by the
-    new one.
-    """
+def run(out, quick=False, log=print):
+    """Run every benchmark, write charts and tables into ``out``; returns the headline table."""
     import supercoil as sc
     from supercoil.benchmark import dna, rod, stability, unit_boundary, work_precision
     from supercoil.core.dna import plectoneme as pl
@@ -177,6 +169,6 @@ def run(out, quick=False, log=print, readme=None):
     stability.plot(smap, out / "stability_map.png")
 
     log("6/6 headline targets ...")
-    head = _headline_step(out, quick, log, readme, machine, _legacy_rows(wp, hat, ub, eq1000))
+    head = _headline_step(out, quick, log, machine, _legacy_rows(wp, hat, ub, eq1000))
     log(f"done in {time.perf_counter() - t_start:.1f} s; outputs in {out}")
     return head

@@ -16,15 +16,11 @@ def register(sub):
     p.add_argument("--out", default="bench", help="output folder (default: bench)")
     p.add_argument("--quick", action="store_true",
                    help="fewer tolerances and smaller sizes (the row names give the sizes)")
-    p.add_argument("--readme", default=None, metavar="PATH",
-                   help="also replace the headline table of this README's 'Speed and "
-                   "accuracy' section by the new one")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from supercoil.benchmark import suite
 
-    suite.run(args.out, quick=args.quick, log=lambda msg: print(msg, file=sys.stderr),
-              readme=args.readme)
+    suite.run(args.out, quick=args.quick, log=lambda msg: print(msg, file=sys.stderr))
     return 0

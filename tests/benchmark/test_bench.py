@@ -166,23 +166,15 @@ def test_replay_executor_runs_the_function_once():
     assert first.result() is not second.result()
 
 
-def test_update_readme_replaces_only_the_headline_table(tmp_path):
-    from supercoil.benchmark.headline import markdown, update_readme
+def test_markdown_escapes_pipes_and_keeps_the_four_columns():
+    from supercoil.benchmark.headline import markdown
 
-    old = ("| measurement | value | target | met |\n|---|---|---|---|\n| a | 1 | <= 2 | yes |\n"
-           "\nMeasured on: old machine.\n")
-    other = "| measurement | other table |\n\nMeasured on: elsewhere.\n"
-    readme = tmp_path / "README.md"
-    readme.write_text(f"# x\n\n{other}\n## Speed and accuracy\n\nintro\n\n{old}\ncaption\n"
-                      "\n## Next\n\ntext\n")
     table = pd.DataFrame({"measurement": ["hat points, |N| <= 25"], "value": [2.5],
-                          "unit": ["x"], "target": ["<= 3x"], "met": [True], "note": [""]})
-    new = markdown(table, "new machine")
-    assert "\\|N\\| <= 25" in new  # a pipe inside a cell is escaped
-    update_readme(readme, new)
-    assert readme.read_text() == (f"# x\n\n{other}\n## Speed and accuracy\n\nintro\n\n{new}"
-                                  "\ncaption\n\n## Next\n\ntext\n")
-    bare = tmp_path / "bare.md"
-    bare.write_text(f"# x\n\n{other}")  # a table outside the section is not the headline
-    with pytest.raises(ValueError, match="Speed and accuracy"):
-        update_readme(bare, new)
+                          "unit": ["x"], "target": ["<= 3x"], "met": [True], "note": ["a note"]})
+    text = markdown(table, "a machine", (1.0, 2.0))
+    lines = text.splitlines()
+    assert lines[:2] == ["| measurement | value | target | met |", "|---|---|---|---|"]
+    assert lines[2] == "| hat points, \\|N\\| <= 25 (a note) | 2.5 x | <= 3x | yes |"
+    # four cells: the escaped pipes do not split the row
+    assert len(re.split(r"(?<!\\)\|", lines[2])) == 6
+    assert lines[-1] == "Measured on: a machine; load average 1.0 at the start, 2.0 at the end."
