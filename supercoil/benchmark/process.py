@@ -15,7 +15,8 @@
   table). The split wraps ``supercoil.tables.write_csv`` and
   ``plot_hat_curves`` (in ``supercoil.dna.plot`` and ``supercoil.dna.hat``: the
   command imports them at run time) with clocks; if a hook does not fire, the
-  measurement fails with that message.
+  measurement fails with that message. Modules that ``import supercoil`` loads
+  lazily are loaded (and counted) in the phase that first needs them.
 
 The children import this checkout of supercoil (its parent folder first on
 ``PYTHONPATH``) with ``MPLBACKEND=Agg``.
