@@ -1,4 +1,4 @@
-"""Cost of the DNA models side by side: li-zhao against free-energy.
+"""Cost of the DNA models side by side: each registered model against li-zhao.
 
 :func:`model_cost` measures, for each model, through the model interface at
 the float level (``model.buckling`` and ``model.points``, hard-core
