@@ -1,4 +1,4 @@
-"""Cost of the DNA models side by side: li-zhao against free-energy.
+"""Cost of the DNA models side by side: each registered model against li-zhao.
 
 :func:`model_cost` measures, for each model, through the model interface at
 the float level (``model.buckling`` and ``model.points``, hard-core
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .timing import best_time
+from .cpu import interleaved_cpu
 
 MODELS = ("li-zhao", "free-energy")
 #: units of the :func:`model_cost` columns, for ``make_table(rows, UNITS, ...)``
@@ -52,10 +52,13 @@ def _calls(d, names):
 
 def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, repeat=3,
                models=MODELS):
-    """Time per force and points per second of each model (dict of lists).
+    """CPU time per force and points per second of each model (dict of lists).
 
     ``models[0]`` is the reference of ``ratio_to_li_zhao`` (time over its time
-    for the same measurement).
+    for the same measurement). The models of one measurement are timed in
+    interleaved samples (CPU time, median of ``repeat`` samples,
+    :func:`supercoil.benchmark.cpu.interleaved_cpu`), so their ratio is measured
+    under the same machine load.
     """
     import supercoil as sc
     from supercoil.core.dna import free_energy as fe
@@ -73,13 +76,14 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
         rows["time"].append(t)
         rows["per_item"].append(t / n)
         rows["rate"].append(n / t)
-        base = rows["time"][-len(models)] if model != models[0] else t
+        # the reference model's row of the same measurement, models.index(model) rows back
+        base = rows["time"][-1 - models.index(model)]
         rows["ratio_to_li_zhao"].append(t / base)
 
     forces = np.geomspace(0.3e-12, 10e-12, n_forces)
+    t = interleaved_cpu({m: lambda m=m: per_force[m](forces) for m in models}, samples=repeat)
     for model in models:
-        add(f"per-force constants, {n_forces} forces 0.3-10 pN", model, n_forces,
-            best_time(lambda m=model: per_force[m](forces), repeat=repeat))
+        add(f"per-force constants, {n_forces} forces 0.3-10 pN", model, n_forces, t[model])
     inter = get_interaction("hard-core")
     co = fe.coexistence(np.array([force]), d.length, d.bending_rigidity, d.torsional_rigidity,
                         d.kT, lambda T: inter.equilibrium(T, d))
@@ -89,7 +93,8 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
         for n in sizes:
             N = np.linspace(-top, top, n)
             F = np.full(n, force)
+            t = interleaved_cpu({m: lambda m=m, N=N, F=F: points[m](N, F) for m in models},
+                                samples=repeat)
             for model in models:
-                add(f"{label} at {force * 1e12:g} pN", model, n,
-                    best_time(lambda m=model, N=N, F=F: points[m](N, F), repeat=repeat))
+                add(f"{label} at {force * 1e12:g} pN", model, n, t[model])
     return rows

@@ -1,4 +1,4 @@
-"""Benchmarks of the rough-rod profile (MODEL.md s.4): closed form against solve_ivp.
+"""Benchmarks of the rough-rod profile (docs/theory/rough.md): closed form against solve_ivp.
 
 Two scenes, each with a reference that needs no ODE solver:
 

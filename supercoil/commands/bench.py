@@ -8,12 +8,14 @@ import sys
 def register(sub):
     p = sub.add_parser(
         "bench",
-        help="benchmarks: work-precision charts, stability map, unit-boundary cost",
+        help="benchmarks: work-precision charts, stability map, speed and memory targets",
         description="Runs every benchmark (under 5 minutes on 2 cores) and writes the "
-        "charts (PNG), the measurements (CSV) and the headline numbers (headline.md).",
+        "charts (PNG), the measurements (CSV) and the headline table of every speed and "
+        "memory target with its measured value (headline.csv, headline.md).",
     )
     p.add_argument("--out", default="bench", help="output folder (default: bench)")
-    p.add_argument("--quick", action="store_true", help="fewer tolerances and sizes")
+    p.add_argument("--quick", action="store_true",
+                   help="fewer tolerances and smaller sizes (the row names give the sizes)")
     p.set_defaults(func=run)
 
 

@@ -1,0 +1,224 @@
+"""The headline table: every speed and memory target with its measured value.
+
+:func:`measure` runs the measurements of :mod:`~supercoil.benchmark.targets_dna`,
+:mod:`~supercoil.benchmark.targets_fit`, :mod:`~supercoil.benchmark.process` and
+:mod:`~supercoil.benchmark.dna_models` (sizes in :data:`FULL` or, for
+``--quick``, :data:`QUICK`); :func:`target_rows` turns them into one row per
+target: ``measurement`` (naming exactly what is timed: a public call such as
+``sc.hat_curve`` or a kernel such as
+``supercoil.core.dna.hat.hat_curve_points``, and the size), ``value``,
+``unit``, ``target``, ``met`` and ``note``. Times are CPU times
+(``time.process_time``, medians of interleaved samples) except the ones a
+subprocess or a process pool makes wall time by nature (import, CLI, pool
+speed-up), which say so. The targets are benchmarks, never test assertions.
+
+:func:`markdown` renders the table (with the machine and its load average);
+``supercoil docs figures`` copies it into the README.
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+#: sizes of the full run (``supercoil bench``)
+FULL = {"hat_n": 10**6, "hat_mem": (10**6, 10**7), "eq_n": 1000, "eq_mem": 10**7,
+        "loader_rows": 10**5, "fit_samples": 9, "pooled": 200, "replayed": (200, 2000),
+        "import_repeat": 5, "cli_repeat": 3, "model_forces": 1000,
+        "model_sizes": (1_000, 100_000), "samples": 9}
+#: sizes of ``supercoil bench --quick`` (seconds; the names of the rows give the sizes)
+QUICK = {"hat_n": 10**5, "hat_mem": (10**4, 10**5), "eq_n": 1000, "eq_mem": 10**5,
+         "loader_rows": 5_000, "fit_samples": 2, "pooled": 4, "replayed": (4, 20),
+         "import_repeat": 0, "cli_repeat": 0, "model_forces": 100, "model_sizes": (1_000,),
+         "samples": 2}
+MODELS = ("li-zhao", "free-energy", "marko2007")
+
+
+def measure(quick=False, log=print):
+    """Run every headline measurement; a dict of result dicts by group."""
+    from supercoil.benchmark import dna_models, process, targets_dna, targets_fit
+
+    s = QUICK if quick else FULL
+    r = {"load_start": os.getloadavg()[0]}
+    log("headline: hat curve and plectoneme equilibrium (CPU, interleaved) ...")
+    r["hat"] = targets_dna.hat_throughput(s["hat_n"], samples=s["samples"])
+    r["hat"]["n"] = s["hat_n"]
+    r["hat_mem"] = {n: targets_dna.hat_memory(n) for n in s["hat_mem"]}
+    r["eq"] = targets_dna.equilibrium_cost(s["eq_n"], samples=s["samples"])
+    r["eq"]["n"] = s["eq_n"]
+    log("headline: peak memory (tracemalloc) ...")
+    r["eq_mem"] = targets_dna.equilibrium_memory(s["eq_mem"])
+    r["eq_mem"]["n"] = s["eq_mem"]
+    log("headline: tweezers loader against pandas ...")
+    r["loader"] = targets_dna.loader_cost(s["loader_rows"], samples=3 if quick else 5)
+    r["loader"]["n"] = s["loader_rows"]
+    log("headline: fit and fit_many ...")
+    r["fit"] = targets_fit.fit_cost(samples=s["fit_samples"])
+    r["many"] = targets_fit.fit_many_cost(pooled=s["pooled"], replayed=s["replayed"],
+                                          read_back=min(s["replayed"]))
+    r["many"].update(pooled=s["pooled"], replayed=s["replayed"], read_back=min(s["replayed"]))
+    log("headline: import time and the CLI main job (fresh interpreters) ...")
+    r["cli"] = process.cli_hat_phases(repeat=s["cli_repeat"])
+    if s["import_repeat"] > 0:
+        r["import"] = process.import_time(repeat=s["import_repeat"])
+    else:  # quick: the import phase of the CLI run (import supercoil.cli)
+        r["import"] = {"import": r["cli"]["import"], "import_cpu": float("nan"),
+                       "startup": float("nan")}
+    log("headline: DNA models side by side ...")
+    r["models"] = dna_models.model_cost(n_forces=s["model_forces"], sizes=s["model_sizes"],
+                                        repeat=s["samples"], models=MODELS)
+    r["load_end"] = os.getloadavg()[0]
+    return r
+
+
+def target_row(measurement, value, unit, target, met, note=""):
+    """One headline row (a dict of the table's columns)."""
+    return {"measurement": measurement, "value": float(value), "unit": unit,
+            "target": target, "met": bool(met), "note": note}
+
+
+_row = target_row
+
+
+def _dna_rows(r):
+    h, n = r["hat"], r["hat"]["n"]
+    rows = [
+        _row(f"public sc.hat_curve, {n:.0e} turns values at 1.2 pN: CPU per call / one numpy "
+             "pass np.multiply(turns, 2.0) over the same array", h["public_ratio"], "x",
+             "<= 10x", h["public_ratio"] <= 10,
+             f"{h['public'] * 1e3:.3g} ms vs {h['numpy_pass'] * 1e3:.3g} ms; returns a "
+             f"9-column DataFrame of {r['hat_mem'].get(n, {}).get('result', float('nan')) / n:.3g}"
+             f" B per point; the pass reads and writes {16 * n / 1e6:.3g} MB (it can stay in "
+             "the CPU cache)"),
+        _row(f"kernel supercoil.core.dna.hat.hat_curve_points, {n:.0e} points: CPU per call / "
+             "the same numpy pass", h["kernel_ratio"], "x", "<= 5x", h["kernel_ratio"] <= 5,
+             f"{h['kernel'] * 1e3:.3g} ms"),
+    ]
+    for m, mem in r["hat_mem"].items():
+        rows.append(_row(f"public sc.hat_curve, {m:.0e} turns values: peak traced memory / "
+                         "memory of its result", mem["peak_to_result"], "x",
+                         "<= 1.5x (at 1e7)", mem["peak_to_result"] <= 1.5,
+                         f"peak {mem['peak_per_element']:.3g} B per element, result "
+                         f"{mem['result'] / m:.3g} B per element (tracemalloc)"))
+    eq, em = r["eq"], r["eq_mem"]
+    rows += [
+        _row(f"public sc.plectoneme_equilibrium, {eq['n']} forces: CPU per force",
+             eq["public_per_force"] * 1e6, "us", "<= 2 us", eq["public_per_force"] <= 2e-6,
+             f"kernel supercoil.core.dna.plectoneme.equilibrium "
+             f"{eq['kernel_per_force'] * 1e6:.3g} us"),
+        _row(f"public sc.plectoneme_equilibrium, {em['n']:.0e} forces: peak traced memory "
+             "beyond its output, per force", em["beyond_output_per_force"], "B", "<= 64 B",
+             em["beyond_output_per_force"] <= 64,
+             f"output {em['output'] / em['n']:.3g} B per force, peak "
+             f"{em['peak'] / em['n']:.3g} B per force"),
+    ]
+    ld = r["loader"]
+    rows += [
+        _row(f"public sc.read_tweezers_csv, {ld['n']:.0e} rows: CPU / pandas.read_csv(path, "
+             "comment='#', skipinitialspace=True)", ld["ratio"], "x", "<= 2x",
+             ld["ratio"] <= 2, f"{ld['loader'] * 1e3:.3g} ms vs {ld['pandas'] * 1e3:.3g} ms"),
+        _row(f"public sc.read_tweezers_csv, {ld['n']:.0e} rows: peak traced memory beyond "
+             "its output, per row", ld["beyond_output_per_row"], "B", "<= 64 B",
+             ld["beyond_output_per_row"] <= 64,
+             f"output {ld['output'] / ld['n']:.3g} B per row (4 columns)"),
+    ]
+    return rows
+
+
+def _fit_rows(r):
+    f, m = r["fit"], r["many"]
+    n2, n1 = max(m["replayed"]), min(m["replayed"])
+    rows = [
+        _row("public sc.fit_hat_curves, 3 forces x 110 points (examples/fit_tweezers_data.py)"
+             f": CPU per fit{', BLAS on 1 thread' if f['blas_limited'] else ''}",
+             f["fit"] * 1e3, "ms", "about 10-15 ms", f["fit"] <= 15e-3,
+             f"{f['kernel_calls']} kernel calls (nfev {f['nfev']:.0f}); with the default "
+             f"BLAS threads {f['fit_default_threads'] * 1e3:.3g} ms CPU"),
+        _row("public sc.fit_hat_curves: CPU per fit / (kernel calls x CPU of "
+             "supercoil.core.dna.hat.hat_curve_points on the fit's arguments), both on the "
+             "same BLAS threads", f["ratio"],
+             "x", "<= 2x", f["ratio"] <= 2,
+             f"{f['call_sizes']}; lower bound {f['lower_bound'] * 1e3:.3g} ms"),
+        _row(f"public sc.fit_many, {n2} molecules: parent CPU per molecule, replaying "
+             "executor (submit returns a finished future with one recorded result)",
+             m[f"replay_parent_cpu_{n2}"] * 1e3, "ms", "<= 2 ms",
+             m[f"replay_parent_cpu_{n2}"] <= 2e-3,
+             f"{n1} molecules: {m[f'replay_parent_cpu_{n1}'] * 1e3:.3g} ms"),
+        _row(f"public sc.fit_many, {m['read_back']} molecules read by sc.read_tweezers_csv: "
+             "parent CPU per molecule, replaying executor", m["replay_read_back_cpu"] * 1e3,
+             "ms", "<= 2 ms", m["replay_read_back_cpu"] <= 2e-3,
+             "the same molecules as simulated tables cost "
+             f"{m[f'replay_parent_cpu_{n1}'] * 1e3:.3g} ms" if m["read_back"] == n1 else ""),
+        _row(f"public sc.fit_many, {m['pooled']} molecules on ProcessPoolExecutor(2): parent "
+             "CPU per molecule while the workers fit", m["pool_parent_cpu"] * 1e3, "ms",
+             "<= 2 ms", m["pool_parent_cpu"] <= 2e-3,
+             f"every fit succeeded: {m['all_ok']}"),
+        _row(f"public sc.fit_many, {m['pooled']} molecules: wall time serial / "
+             "ProcessPoolExecutor(2)", m["speedup"], "x", ">= 1.8x", m["speedup"] >= 1.8,
+             f"wall: serial {m['serial_wall']:.3g} s, pool {m['pool_wall']:.3g} s; serial CPU "
+             f"{m['serial_cpu'] * 1e3:.3g} ms per molecule; the workers got "
+             f"{m['pool_workers_cpu'] / m['pool_wall']:.2g} cores (their CPU / pool wall); "
+             f"load average {r['load_start']:.1f} on {os.cpu_count()} cores"),
+    ]
+    return rows
+
+
+def _process_rows(r):
+    im, c = r["import"], r["cli"]
+    return [
+        _row("import supercoil in a fresh interpreter: wall time of the import statement",
+             im["import"], "s", "<= 0.4 s", im["import"] <= 0.4,
+             "median of fresh processes" + (f"; CPU {im['import_cpu']:.2g} s; interpreter "
+                                            f"start-up {im['startup']:.2g} s"
+                                            if np.isfinite(im["startup"]) else
+                                            " (quick: import supercoil.cli of the CLI run)")),
+        _row("supercoil hat --params dna --out DIR (python -m supercoil.cli): wall time of the "
+             "subprocess", c["wall"], "s", "<= 1.5 s", c["wall"] <= 1.5,
+             f"CPU {c['cpu']:.2f} s; split (wall): import {c['import']:.2f} s, compute "
+             f"{c['compute']:.2f} s, plot "
+             f"{c['plot']:.2f} s, table {c['rest']:.2f} s, start-up and exit "
+             f"{c['startup']:.2f} s"),
+    ]
+
+
+def _model_rows(r):
+    rows = []
+    m = r["models"]
+    for i, (meas, model) in enumerate(zip(m["measurement"], m["model"], strict=True)):
+        if model == MODELS[0]:
+            continue
+        ratio = m["ratio_to_li_zhao"][i]
+        per = "CPU per force" if "per-force" in meas else "CPU per point"
+        rows.append(_row(f"model {model} / li-zhao through model.buckling / model.points: "
+                         f"{per}, {meas}, {m['points'][i]} values", ratio, "x", "<= 3x",
+                         ratio <= 3, f"{m['rate'][i]:.3g} per s"))
+    return rows
+
+
+def target_rows(r):
+    """One row per target (list of dicts) from the results of :func:`measure`."""
+    return _dna_rows(r) + _fit_rows(r) + _process_rows(r) + _model_rows(r)
+
+
+def markdown(head, machine, load=None):
+    """The headline table as markdown, with the machine (and the load average).
+
+    Four columns (measurement, value, target, met); the note follows the
+    measurement in parentheses. ``supercoil docs figures`` copies this text into
+    ``docs/generated/headline.md`` and the README's ``headline`` block.
+    """
+    def cell(text):  # a "|" (as in |N| <= 25) would end the cell
+        return str(text).replace("|", "\\|")
+
+    lines = ["| measurement | value | target | met |", "|---|---|---|---|"]
+    for _, row in head.iterrows():
+        note = f" ({cell(row['note'])})" if row["note"] else ""
+        lines.append(f"| {cell(row['measurement'])}{note} | {row['value']:.3g} {row['unit']} | "
+                     f"{cell(row['target'])} | {'yes' if row['met'] else 'no'} |")
+    lines.append("")
+    where = f"Measured on: {machine}"
+    if load is not None:
+        where += f"; load average {load[0]:.1f} at the start, {load[1]:.1f} at the end"
+    lines.append(where + ".")
+    return "\n".join(lines) + "\n"

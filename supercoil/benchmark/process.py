@@ -1,0 +1,147 @@
+"""Headline measurements in fresh interpreters: import time and the CLI main job.
+
+* :func:`import_time`: wall time of ``import supercoil`` inside a fresh
+  ``python`` process (timed by the child around the import statement, so the
+  interpreter's own start-up is left out and reported separately), median of
+  ``repeat`` processes;
+* :func:`cli_hat_phases`: the CLI main job ``supercoil hat --params dna --out
+  DIR`` (``python -m supercoil.cli``): its whole wall time as a subprocess
+  (median), and in a second fresh interpreter the same job split into
+  ``startup`` (interpreter start-up and exit: the wall time of the process
+  minus the time inside the script), ``import`` (``import supercoil.cli``), ``compute``
+  (argument parsing to the end of the last CSV written: parameters, hat
+  curve, buckling table, CSVs), ``plot`` (from there to the end of
+  ``plot_hat_curves``: matplotlib import, figure, PNG) and ``rest`` (the printed
+  table). The split wraps ``supercoil.tables.write_csv`` and
+  ``plot_hat_curves`` (in ``supercoil.dna.plot`` and ``supercoil.dna.hat``: the
+  command imports them at run time) with clocks; if a hook does not fire, the
+  measurement fails with that message. Modules that ``import supercoil`` loads
+  lazily are loaded (and counted) in the phase that first needs them.
+
+The children import this checkout of supercoil (its parent folder first on
+``PYTHONPATH``) with ``MPLBACKEND=Agg``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+_IMPORT = """
+import time
+t0, c0 = time.perf_counter(), time.process_time()
+import supercoil
+print(time.perf_counter() - t0, time.process_time() - c0)
+"""
+
+_PHASES = """
+import json, sys, time
+t_start = time.perf_counter()
+import supercoil.cli as cli
+t_import = time.perf_counter()
+import importlib
+import supercoil.tables as tables
+marks = {}
+def clocked(func, mark):
+    def wrapper(*a, **k):
+        out = func(*a, **k)
+        marks[mark] = time.perf_counter()
+        return out
+    return wrapper
+tables.write_csv = clocked(tables.write_csv, "csv")
+for name in ("supercoil.dna.plot", "supercoil.dna.hat"):  # wherever the command imports it from
+    module = importlib.import_module(name)
+    if hasattr(module, "plot_hat_curves"):
+        module.plot_hat_curves = clocked(module.plot_hat_curves, "plot")
+import contextlib, io
+with contextlib.redirect_stdout(io.StringIO()):
+    code = cli.main(["hat", "--params", "dna", "--out", sys.argv[1]])
+t_end = time.perf_counter()
+if "csv" not in marks or "plot" not in marks:
+    sys.exit(f"the timing hooks did not fire (marks: {sorted(marks)}): "
+             "supercoil hat no longer calls supercoil.tables.write_csv and plot_hat_curves")
+print(json.dumps({"code": code, "import": t_import - t_start,
+                  "compute": marks["csv"] - t_import, "plot": marks["plot"] - marks["csv"],
+                  "rest": t_end - marks["plot"], "inside": t_end - t_start}))
+"""
+
+
+def _env():
+    root = str(Path(__file__).resolve().parents[2])
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
+    env["MPLBACKEND"] = "Agg"
+    return env
+
+
+def _children_cpu():
+    import resource
+
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def _run(args, env):
+    """``(stdout, wall seconds, CPU seconds)`` of ``python *args`` in a child process."""
+    c0, t0 = _children_cpu(), time.perf_counter()
+    proc = subprocess.run([sys.executable, *args], env=env, capture_output=True, text=True,
+                          check=False, timeout=120)
+    wall, cpu = time.perf_counter() - t0, _children_cpu() - c0
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)} failed ({proc.returncode}): {proc.stderr[-500:]}")
+    return proc.stdout, wall, cpu
+
+
+def import_time(repeat=5):
+    """Median in-process wall seconds of ``import supercoil``; interpreter start-up beside.
+
+    Returns
+    -------
+    dict
+        ``import`` (s, median), ``samples`` (list), ``import_cpu`` (CPU s of the
+        import, median) and ``startup`` (median wall of ``python -c pass``, s).
+    """
+    env = _env()
+    samples, cpus, startups = [], [], []
+    for _ in range(repeat):  # interleaved: start-up, import, start-up, import, ...
+        startups.append(_run(["-c", "pass"], env)[1])
+        wall, cpu = _run(["-c", _IMPORT], env)[0].split()[-2:]
+        samples.append(float(wall))
+        cpus.append(float(cpu))
+    return {"import": float(np.median(samples)), "samples": samples,
+            "import_cpu": float(np.median(cpus)), "startup": float(np.median(startups))}
+
+
+def cli_hat_phases(repeat=3):
+    """Wall seconds of ``supercoil hat --params dna --out DIR``, whole and by phase.
+
+    Returns
+    -------
+    dict
+        ``wall`` (median of ``repeat`` subprocess runs of ``python -m
+        supercoil.cli hat --params dna --out DIR``; with ``repeat=0`` the wall
+        time of the hooked run), ``cpu`` (CPU s of the same processes, median),
+        and from one hooked run
+        ``startup``, ``import``, ``compute``, ``plot``, ``rest`` (s).
+    """
+    env = _env()
+    with tempfile.TemporaryDirectory() as tmp:
+        runs = [_run(["-m", "supercoil.cli", "hat", "--params", "dna", "--out", tmp], env)
+                for _ in range(repeat)]
+        out, wall, cpu = _run(["-c", _PHASES, tmp], env)
+        walls, cpus = [r[1] for r in runs] or [wall], [r[2] for r in runs] or [cpu]
+        if not (Path(tmp) / "hat_curve.png").is_file():
+            raise RuntimeError("supercoil hat wrote no hat_curve.png")
+    phases = json.loads(out.strip().splitlines()[-1])
+    if phases["code"] != 0:
+        raise RuntimeError(f"supercoil hat returned {phases['code']}")
+    return {"wall": float(np.median(walls)), "cpu": float(np.median(cpus)),
+            "startup": wall - phases["inside"],
+            **{k: phases[k] for k in ("import", "compute", "plot", "rest")}}

@@ -1,0 +1,152 @@
+"""Headline measurements of the DNA layer: hat curve, plectoneme equilibrium, loader.
+
+Each function returns a flat dict of SI numbers (seconds, bytes) and names in
+its docstring exactly what it times:
+
+* :func:`hat_throughput`: the public ``sc.hat_curve`` (a DataFrame of 9
+  columns) and the kernel it calls,
+  ``supercoil.core.dna.hat.hat_curve_points`` (float arrays), against one numpy
+  pass over the same turns array (``np.multiply(turns, 2.0)``, a new array),
+  CPU time, median of interleaved samples;
+* :func:`hat_memory`: peak traced memory of one public ``sc.hat_curve`` call
+  against the memory its result holds;
+* :func:`equilibrium_cost`: the public ``sc.plectoneme_equilibrium`` and the
+  kernel ``supercoil.core.dna.plectoneme.equilibrium`` per force;
+* :func:`equilibrium_memory`: peak traced memory of one public
+  ``sc.plectoneme_equilibrium`` call beyond its output, per force;
+* :func:`loader_cost`: ``sc.read_tweezers_csv`` against plain
+  ``pandas.read_csv(path, comment="#", skipinitialspace=True)`` of the same
+  file (:func:`supercoil.benchmark.memory.write_rotation_csv`; CPU,
+  interleaved), and its peak memory beyond its output per row.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from supercoil.benchmark.cpu import interleaved_cpu, peak_memory
+from supercoil.benchmark.memory import write_rotation_csv
+
+#: force of the hat-curve measurements (N) and their turns range (turns): N >= 0
+#: at 1.2 pN, so that no denaturation warning is part of what is timed
+HAT_FORCE = 1.2e-12
+HAT_TURNS = (0.0, 25.0)
+
+
+def _dna():
+    import supercoil as sc
+
+    return sc.load_parameters("dna")
+
+
+def hat_throughput(n, samples=9):
+    """CPU seconds per call at ``n`` turns values: public, kernel, one numpy pass.
+
+    Returns
+    -------
+    dict
+        ``public``, ``kernel``, ``numpy_pass`` (s per call) and the ratios
+        ``public_ratio``, ``kernel_ratio`` (to the numpy pass).
+    """
+    import supercoil as sc
+    from supercoil.core.dna import hat as hat_kernel
+
+    dna = _dna()
+    d = dna.si
+    turns = np.linspace(*HAT_TURNS, n)
+    forces = np.full(n, HAT_FORCE)
+    force_q = HAT_FORCE * sc.ureg.N
+    args = (d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)
+    t = interleaved_cpu({
+        "public": lambda: sc.hat_curve(dna, force_q, turns),
+        "kernel": lambda: hat_kernel.hat_curve_points(turns, forces, *args),
+        "numpy_pass": lambda: np.multiply(turns, 2.0),
+    }, samples=samples)
+    t["public_ratio"] = t["public"] / t["numpy_pass"]
+    t["kernel_ratio"] = t["kernel"] / t["numpy_pass"]
+    return t
+
+
+def hat_memory(n):
+    """Peak traced bytes of one public ``sc.hat_curve`` call at ``n`` turns values.
+
+    Returns
+    -------
+    dict
+        ``peak`` and ``result`` (bytes the returned DataFrame holds), per element
+        ``peak_per_element`` and the ratio ``peak_to_result``.
+    """
+    import supercoil as sc
+
+    dna = _dna()
+    turns = np.linspace(*HAT_TURNS, n)
+    force_q = HAT_FORCE * sc.ureg.N
+    sc.hat_curve(dna, force_q, turns[:100])  # warm caches outside the traced call
+    m = peak_memory(lambda: sc.hat_curve(dna, force_q, turns))
+    del m["result"]
+    return {"peak": m["peak"], "result": m["retained"], "peak_per_element": m["peak"] / n,
+            "peak_to_result": m["peak"] / m["retained"]}
+
+
+def equilibrium_cost(n=1000, samples=15):
+    """CPU seconds per force of the public equilibrium and its kernel at ``n`` forces."""
+    import supercoil as sc
+    from supercoil.core.dna import plectoneme as pl
+
+    dna = _dna()
+    d = dna.si
+    f_si = np.linspace(0.2e-12, 10e-12, n)
+    f_q = f_si * sc.ureg.N
+    t = interleaved_cpu({
+        "public": lambda: sc.plectoneme_equilibrium(dna, f_q),
+        "kernel": lambda: pl.equilibrium(f_si, d.bending_rigidity, d.torsional_rigidity,
+                                         d.kT, d.radius),
+    }, samples=samples)
+    return {"public_per_force": t["public"] / n, "kernel_per_force": t["kernel"] / n}
+
+
+def equilibrium_memory(n):
+    """Peak traced bytes of one public ``sc.plectoneme_equilibrium`` at ``n`` forces.
+
+    The forces (0.2-10 pN, a quantity in N) are allocated before the call.
+    ``beyond_output_per_force`` is (peak - retained output) / n.
+    """
+    import supercoil as sc
+
+    dna = _dna()
+    sc.plectoneme_equilibrium(dna, np.linspace(0.2, 10, 100) * sc.ureg.pN)  # warm caches
+    f_q = np.linspace(0.2e-12, 10e-12, n) * sc.ureg.N
+    m = peak_memory(lambda: sc.plectoneme_equilibrium(dna, f_q))
+    del m["result"]
+    return {"peak": m["peak"], "output": m["retained"],
+            "beyond_output_per_force": (m["peak"] - m["retained"]) / n}
+
+
+def loader_cost(n_rows, samples=5, directory=None):
+    """``sc.read_tweezers_csv`` against plain pandas on one file of ``n_rows`` rows.
+
+    Returns
+    -------
+    dict
+        ``loader``, ``pandas`` (CPU s per read, median of interleaved samples),
+        ``ratio``, ``peak``, ``output`` (bytes the returned DataFrame holds) and
+        ``beyond_output_per_row`` ((peak - output) / rows, bytes).
+    """
+    import pandas as pd
+
+    import supercoil as sc
+
+    with tempfile.TemporaryDirectory(dir=directory) as tmp:
+        path = write_rotation_csv(Path(tmp) / "rotation.csv", n_rows)
+        t = interleaved_cpu({
+            "loader": lambda: sc.read_tweezers_csv(path),
+            "pandas": lambda: pd.read_csv(path, comment="#", skipinitialspace=True),
+        }, samples=samples, min_sample=0.0)
+        m = peak_memory(lambda: sc.read_tweezers_csv(path))
+    del m["result"]
+    return {"loader": t["loader"], "pandas": t["pandas"], "ratio": t["loader"] / t["pandas"],
+            "peak": m["peak"], "output": m["retained"],
+            "beyond_output_per_row": (m["peak"] - m["retained"]) / n_rows}

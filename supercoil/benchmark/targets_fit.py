@@ -1,0 +1,235 @@
+"""Headline measurements of the fits: one global fit, and many molecules.
+
+* :func:`fit_cost`: CPU time of the public ``sc.fit_hat_curves`` on the problem
+  of ``examples/fit_tweezers_data.py`` (3 forces x 110 points, twist
+  persistence and radius varied, both offsets fitted), the number of kernel
+  calls per fit (``supercoil.core.dna.hat.hat_curve_points`` wrapped with a
+  counter for one fit; the fit's own ``nfev`` beside it) and the CPU cost of one
+  such kernel call on the arguments the fit passed, timed interleaved with the
+  fit, both with BLAS limited to one thread (``threadpoolctl``), and the fit
+  again with the default BLAS threads. The lower bound of a fit is calls x
+  kernel cost.
+* :func:`fit_many_cost`: the parent's CPU time per molecule of the public
+  ``sc.fit_many``: with a real ``ProcessPoolExecutor(2)`` (the parent prepares,
+  pickles, submits, collects and builds the table while the workers fit), and
+  with a replaying executor whose ``submit()`` returns an already finished
+  future holding one recorded worker result (the parent's own cost with no
+  worker at all, affordable at 2,000 molecules); and the wall-time speed-up of
+  ``ProcessPoolExecutor(2)`` over the serial call.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import tempfile
+import time
+from concurrent.futures import Future, ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from supercoil.benchmark.cpu import cpu_once, interleaved_cpu
+
+FORCES_PN = (0.3, 0.5, 0.7)
+POINTS_PER_FORCE = 110
+VARY = ("twist_persistence", "radius")
+
+
+def fit_problem(molecules=None, seed=20261121):
+    """``(data, seed_set)``: the synthetic data of ``examples/fit_tweezers_data.py``.
+
+    True parameters C_t = 95 nm, r_0 = 2.0 nm (the seed set has 86 nm and
+    1.75 nm), turns offset 0.4 turn, extension offset 30 nm, 5 nm noise.
+    ``molecules``: that many molecules (a ``molecule`` column) instead of one.
+    """
+    import supercoil as sc
+
+    u = sc.ureg
+    seed_set = sc.load_parameters("dna")
+    true = seed_set.replace(twist_persistence=95 * u.nm, radius=2.0 * u.nm)
+    extra = {} if molecules is None else {"molecules": molecules}
+    data = sc.simulate_rotation_curves(true, np.array(FORCES_PN) * u.pN,
+                                       points_per_force=POINTS_PER_FORCE, noise=5 * u.nm,
+                                       turns_offset=0.4, extension_offset=30 * u.nm,
+                                       seed=seed, **extra)
+    return data, seed_set
+
+
+class _KernelCounter:
+    """Replaces ``supercoil.core.dna.hat.hat_curve_points`` by a counting wrapper."""
+
+    def __init__(self):
+        from supercoil.core.dna import hat
+
+        self.module, self.original, self.calls = hat, hat.hat_curve_points, []
+
+    def __enter__(self):
+        def counted(*args, **kwargs):
+            self.calls.append((copy.deepcopy(args), dict(kwargs)))
+            return self.original(*args, **kwargs)
+
+        self.module.hat_curve_points = counted
+        return self
+
+    def __exit__(self, *exc):
+        self.module.hat_curve_points = self.original
+
+
+def fit_cost(samples=9):
+    """CPU time per fit, kernel calls per fit and the kernel-cost lower bound.
+
+    Returns
+    -------
+    dict
+        ``fit`` (CPU s per fit, median, BLAS on one thread when ``blas_limited``),
+        ``fit_default_threads`` (the same with the default BLAS threads: on a
+        multi-core machine the idle BLAS threads' spinning adds CPU time),
+        ``kernel_calls`` (counted in one fit),
+        ``nfev`` (the fit result's, or NaN if it has none), ``call_sizes``
+        (text: how many calls of each size), ``lower_bound`` (the sum over the
+        calls of the CPU cost of a kernel call of that size, timed on the
+        arguments the fit passed) and ``ratio`` (fit / lower_bound).
+    """
+    import supercoil as sc
+
+    data, seed_set = fit_problem()
+    vary = list(VARY)
+    sc.fit_hat_curves(data, seed_set, vary=vary)  # warm-up
+    with _KernelCounter() as counter:
+        result = sc.fit_hat_curves(data, seed_set, vary=vary)
+    if not counter.calls:
+        raise RuntimeError("the fit made no call of supercoil.core.dna.hat.hat_curve_points")
+    kernel = counter.original
+    groups = {}  # one representative call per call size, and how many calls had that size
+    for args, kwargs in counter.calls:
+        n = int(np.size(args[0]))
+        groups.setdefault(n, [args, kwargs, 0])[2] += 1
+    funcs = {"fit": lambda: sc.fit_hat_curves(data, seed_set, vary=vary)}
+    for n, (args, kwargs, _) in groups.items():
+        funcs[n] = lambda args=args, kwargs=kwargs: kernel(*args, **kwargs)
+    limit, limited = blas_single_thread()
+    with limit:  # the fit and its kernel calls on one BLAS thread
+        t = interleaved_cpu(funcs, samples=samples)
+    # the same fit with the process's default BLAS threads (idle threads spin on CPU time)
+    default = interleaved_cpu({"fit": funcs["fit"]}, samples=samples)["fit"]
+    lower = sum(count * t[n] for n, (_, _, count) in groups.items())
+    sizes = ", ".join(f"{count} x {n} points" for n, (_, _, count) in groups.items())
+    return {"fit": t["fit"], "fit_default_threads": default, "blas_limited": limited,
+            "kernel_calls": len(counter.calls),
+            "nfev": float(getattr(result, "nfev", float("nan"))), "call_sizes": sizes,
+            "lower_bound": lower, "ratio": t["fit"] / lower}
+
+
+def blas_single_thread():
+    """``(context manager, limited)``: BLAS/OpenMP pools limited to one thread if possible.
+
+    Uses ``threadpoolctl`` when it is installed (``limited`` True); otherwise a
+    no-op context (``limited`` False) and the numbers include the BLAS threads.
+    """
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - threadpoolctl is optional
+        return contextlib.nullcontext(), False
+    return threadpool_limits(1), True
+
+
+class ReplayExecutor:
+    """An executor whose ``submit()`` returns a finished future with a recorded result.
+
+    The first ``submit`` runs the function (call it once before timing); every
+    later one returns a copy of that result without running anything, so that
+    only the caller's own work is timed.
+    """
+
+    def __init__(self):
+        self.result = None
+
+    def submit(self, fn, *args, **kwargs):
+        if self.result is None:
+            self.result = fn(*args, **kwargs)
+        fut = Future()
+        fut.set_result(copy.copy(self.result))
+        return fut
+
+
+def _children_cpu():
+    """CPU seconds (user + system) of the terminated and reaped child processes."""
+    import resource
+
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def _warm_pool(pool, workers):
+    """Start every worker before timing (``submit`` spawns them on demand)."""
+    for fut in [pool.submit(time.sleep, 0.05) for _ in range(workers)]:
+        fut.result()
+
+
+def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2, read_back=200):
+    """Parent CPU per molecule of ``sc.fit_many``, and the pool's speed-up.
+
+    Parameters
+    ----------
+    pooled : int
+        Molecules fitted for real, on ``ProcessPoolExecutor(workers)`` and
+        (if ``serial``) serially in this process.
+    replayed : tuple of int
+        Molecule counts of the replaying-executor runs.
+    read_back : int
+        Molecules of one more replaying run on the data written with
+        ``sc.write_csv`` and read back with ``sc.read_tweezers_csv`` (the
+        table then carries the file line of every row in its attrs); 0: none.
+
+    Returns
+    -------
+    dict
+        ``pool_parent_cpu`` (s per molecule), ``pool_wall``,
+        ``pool_workers_cpu`` (s, all workers together), ``serial_wall``,
+        ``serial_cpu`` (s per molecule), ``speedup`` (serial wall / pool wall),
+        ``all_ok`` (every real fit succeeded), and ``replay_parent_cpu_<n>`` (s
+        per molecule) for each ``n`` in ``replayed``, ``replay_read_back_cpu`` (s
+        per molecule, if ``read_back``).
+    """
+    import supercoil as sc
+
+    out = {}
+    data, seed_set = fit_problem(molecules=max((pooled, *replayed)))
+    mol = data["molecule"].astype(str).to_numpy()
+    labels = list(dict.fromkeys(mol))
+
+    def first(n):
+        sub = data.loc[np.isin(mol, labels[:n])].reset_index(drop=True)
+        sub.attrs = dict(data.attrs)
+        return sub
+
+    replay = ReplayExecutor()
+    sc.fit_many(first(1), seed_set, vary=list(VARY), executor=replay)  # records one result
+    for n in replayed:
+        sub = first(n)
+        _, cpu, _ = cpu_once(lambda sub=sub: sc.fit_many(sub, seed_set, vary=list(VARY),
+                                                          executor=replay))
+        out[f"replay_parent_cpu_{n}"] = cpu / n
+    if read_back:  # the same molecules written as CSV and read by sc.read_tweezers_csv
+        with tempfile.TemporaryDirectory() as tmp:
+            back = sc.read_tweezers_csv(sc.write_csv(first(read_back), Path(tmp) / "m.csv"))
+        _, cpu, _ = cpu_once(lambda: sc.fit_many(back, seed_set, vary=list(VARY),
+                                                 executor=replay))
+        out["replay_read_back_cpu"] = cpu / read_back
+    sub = first(pooled)
+    children = _children_cpu()
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        _warm_pool(pool, workers)
+        table, cpu, wall = cpu_once(lambda: sc.fit_many(sub, seed_set, vary=list(VARY),
+                                                        executor=pool))
+    # the workers' CPU time (they are reaped at shutdown): with the pool wall time it says
+    # how many cores the workers actually got on a machine shared with other processes
+    out.update(pool_parent_cpu=cpu / pooled, pool_wall=wall,
+               pool_workers_cpu=_children_cpu() - children,
+               all_ok=bool(table["success"].all()))
+    if serial:
+        table, cpu, wall = cpu_once(lambda: sc.fit_many(sub, seed_set, vary=list(VARY)))
+        out.update(serial_wall=wall, serial_cpu=cpu / pooled, speedup=wall / out["pool_wall"],
+                   all_ok=out["all_ok"] and bool(table["success"].all()))
+    return out
