@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["check_flag"]
+__all__ = ["broadcast_shape", "check_finite_output", "check_flag", "check_material"]
 
 
 def check_flag(value, name):
@@ -15,3 +15,53 @@ def check_flag(value, name):
     if isinstance(value, bool | np.bool_):
         return bool(value)
     raise TypeError(f"{name} must be True or False, got {value!r}")
+
+
+def check_material(value, cls, name):
+    """The SI view of ``value``; TypeError naming ``name`` unless it is a ``cls``.
+
+    One check for every public function taking a material (``rod``, ``dna``):
+    ``None``, a parameter-set name or the other material give a message that
+    says what was expected instead of an AttributeError on ``.si``.
+    """
+    if isinstance(value, cls):
+        return value.si
+    hint = ""
+    if isinstance(value, str):
+        hint = f" (load it first: supercoil.load_parameters({value!r}))"
+    elif type(value).__name__ in ("DNA", "ElasticRod"):
+        hint = " (an ElasticRod is a rod scene's material, a DNA the tweezers scenes')"
+    raise TypeError(f"{name} must be a supercoil.{cls.__name__}, got "
+                    f"{type(value).__name__}{hint}")
+
+
+def broadcast_shape(**arrays):
+    """The common shape of the arguments; ValueError naming them if they do not broadcast.
+
+    ``broadcast_shape(turns=n, slack=S)``: numpy's own message ("shape mismatch:
+    objects cannot be broadcast") names neither argument.
+    """
+    shapes = {k: np.shape(v) for k, v in arrays.items()}
+    try:
+        return np.broadcast_shapes(*shapes.values())
+    except ValueError:
+        listed = ", ".join(f"{k} {v}" for k, v in shapes.items())
+        raise ValueError(f"the shapes of {', '.join(arrays)} do not broadcast together "
+                         f"({listed}); give scalars, equal shapes, or numpy-broadcastable "
+                         "ones") from None
+
+
+def check_finite_output(value, name, inputs):
+    """``value`` unchanged if all finite; else ValidityError naming ``name`` and ``inputs``.
+
+    For results that leave the floating-point range (e.g. ``curvature_error``
+    of a slope of 1e200); ``inputs`` describes the arguments in the message.
+    """
+    from supercoil.exceptions import ValidityError
+
+    a = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(a)):
+        bad = float(a[~np.isfinite(a)].reshape(-1)[0])
+        raise ValidityError(f"{name} is {bad!r} for {inputs}: the result leaves the "
+                            "floating-point range (about 1.8e308)")
+    return value

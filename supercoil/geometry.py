@@ -1,6 +1,6 @@
 """Helix geometry with units: thin wrappers over :mod:`supercoil.core.geometry`.
 
-MODEL.md section 1. Every function checks dimensions at the boundary (a wrong
+docs/theory/geometry.md. Every function checks dimensions at the boundary (a wrong
 dimension raises :class:`pint.DimensionalityError` naming the argument) and
 values (NaN, inf, a negative radius, pitch or slack, a tilt outside
 [0, pi/2] raise ValueError naming the argument and the limit), converts once
@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape, check_finite_output
 from supercoil.core import geometry as _g
 from supercoil.exceptions import SingularityError
 from supercoil.units import U, magnitude, quantity
@@ -29,6 +30,23 @@ __all__ = [
     "torsion_partials",
     "writhe",
 ]
+
+
+def _out(value, unit, name, **inputs):
+    """``value`` with ``unit``; ValidityError naming ``name`` and the inputs if not finite."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        a = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(a)):
+        given = ", ".join(f"{k} = {v!r}" for k, v in inputs.items())
+        check_finite_output(a, name, given)
+    return quantity(value, unit)
+
+
+def _alpha_radius(alpha, radius):
+    """Checked (alpha, radius) that broadcast together."""
+    a, r = _alpha(alpha), _radius(radius)
+    broadcast_shape(alpha=a, radius=r)
+    return a, r
 
 
 def _finite(x, name, given):
@@ -86,7 +104,10 @@ def tilt_angle(radius, pitch):
         radius or pitch not finite or not positive (a negative pitch would give
         alpha > pi/2; the handedness is the sign of the turns N).
     """
-    return quantity(_g.tilt_angle(_radius(radius), _length(pitch, "pitch")), U.rad)
+    r, p = _radius(radius), _length(pitch, "pitch")
+    broadcast_shape(radius=r, pitch=p)
+    return _out(_g.tilt_angle(r, p), U.rad, "alpha",
+                radius=radius, pitch=pitch)
 
 
 def pitch_from_tilt(alpha, radius):
@@ -100,43 +121,59 @@ def pitch_from_tilt(alpha, radius):
         alpha or radius not finite or out of range.
     """
     a = _alpha(alpha)
+    broadcast_shape(alpha=a, radius=_radius(radius))
     if np.any(np.asarray(a) == 0):
         raise SingularityError("pitch diverges at alpha = 0 (straight strands)")
-    return quantity(_g.pitch_from_tilt(a, _radius(radius)), U.m)
+    with np.errstate(over="ignore", divide="ignore"):
+        p = _g.pitch_from_tilt(a, _radius(radius))
+    return _out(p, U.m, "pitch", alpha=alpha, radius=radius)
 
 
 def radius_from_tilt(alpha, pitch):
     """Radius ``R = P tan(alpha) / (2 pi)``, alpha in [0, pi/2), pitch > 0 (finite)."""
     a = _alpha(alpha, hi_open=True)
-    return quantity(_g.radius_from_tilt(a, _length(pitch, "pitch")), U.m)
+    broadcast_shape(alpha=a, pitch=_length(pitch, "pitch"))
+    with np.errstate(over="ignore"):
+        r = _g.radius_from_tilt(a, _length(pitch, "pitch"))
+    return _out(r, U.m, "radius", alpha=alpha, pitch=pitch)
 
 
 def curvature(alpha, radius):
     """Curvature ``kappa = sin^2(alpha) / R`` [Eq curvature1], in 1/m."""
-    return quantity(_g.curvature(_alpha(alpha), _radius(radius)), U.per_m)
+    with np.errstate(over="ignore"):
+        k = _g.curvature(*_alpha_radius(alpha, radius))
+    return _out(k, U.per_m, "curvature", alpha=alpha, radius=radius)
 
 
 def torsion(alpha, radius):
     """Torsion ``tau = sin(alpha) cos(alpha) / R`` [Eq torsion1], in 1/m."""
-    return quantity(_g.torsion(_alpha(alpha), _radius(radius)), U.per_m)
+    with np.errstate(over="ignore"):
+        t = _g.torsion(*_alpha_radius(alpha, radius))
+    return _out(t, U.per_m, "torsion", alpha=alpha, radius=radius)
 
 
 def curvature_partials(alpha, radius):
     """``(d kappa/d alpha [1/m/rad], d kappa/d R [1/m^2])``."""
-    da, dr = _g.curvature_partials(_alpha(alpha), _radius(radius))
-    return quantity(da, U.per_m / U.rad), quantity(dr, U.per_m / U.m)
+    with np.errstate(over="ignore"):
+        da, dr = _g.curvature_partials(*_alpha_radius(alpha, radius))
+    return (_out(da, U.per_m / U.rad, "d kappa/d alpha", alpha=alpha, radius=radius),
+            _out(dr, U.per_m / U.m, "d kappa/d R", alpha=alpha, radius=radius))
 
 
 def torsion_partials(alpha, radius):
     """``(d tau/d alpha [1/m/rad], d tau/d R [1/m^2])``."""
-    da, dr = _g.torsion_partials(_alpha(alpha), _radius(radius))
-    return quantity(da, U.per_m / U.rad), quantity(dr, U.per_m / U.m)
+    with np.errstate(over="ignore"):
+        da, dr = _g.torsion_partials(*_alpha_radius(alpha, radius))
+    return (_out(da, U.per_m / U.rad, "d tau/d alpha", alpha=alpha, radius=radius),
+            _out(dr, U.per_m / U.m, "d tau/d R", alpha=alpha, radius=radius))
 
 
 def curvature_error(dpitch_ds):
     """Appendix A factor ``e = sqrt(1 + (dP/ds)^2 / 4 pi^2)`` (dimensionless)."""
     d = _finite(magnitude(dpitch_ds, U.dimensionless, "dpitch_ds"), "dpitch_ds", dpitch_ds)
-    return quantity(_g.curvature_error(d if d.ndim else float(d)), U.dimensionless)
+    with np.errstate(over="ignore"):
+        e = _g.curvature_error(d if d.ndim else float(d))
+    return _out(e, U.dimensionless, "curvature_error", dpitch_ds=dpitch_ds)
 
 
 def superhelical_turns(alpha, radius, slack):
@@ -145,9 +182,12 @@ def superhelical_turns(alpha, radius, slack):
     Unsigned (alpha >= 0, S >= 0): the magnitude of the count; the rod scenes
     attach sign(N) (see :class:`supercoil.SmoothHelix`).
     """
-    n = _g.superhelical_turns(_alpha(alpha), _radius(radius),
-                              _length(slack, "slack", positive=False))
-    return quantity(n, U.turn)
+    with np.errstate(over="ignore"):
+        a, r = _alpha_radius(alpha, radius)
+        s = _length(slack, "slack", positive=False)
+        broadcast_shape(alpha=a, radius=r, slack=s)
+        n = _g.superhelical_turns(a, r, s)
+    return _out(n, U.turn, "superhelical_turns", alpha=alpha, radius=radius, slack=slack)
 
 
 def writhe(alpha, radius, slack, method="exact"):
@@ -166,13 +206,12 @@ def writhe(alpha, radius, slack, method="exact"):
         valid only for small alpha.
     """
     a, r, s = _alpha(alpha), _radius(radius), _length(slack, "slack", positive=False)
-    if method == "exact":
-        wr = _g.writhe_uniform(a, r, s)
-    elif method == "one_view":
-        wr = _g.writhe_one_view(a, r, s)
-    else:
+    broadcast_shape(alpha=a, radius=r, slack=s)
+    if method not in ("exact", "one_view"):
         raise ValueError(f"method must be 'exact' or 'one_view', got {method!r}")
-    return quantity(wr, U.turn)
+    with np.errstate(over="ignore"):
+        wr = (_g.writhe_uniform if method == "exact" else _g.writhe_one_view)(a, r, s)
+    return _out(wr, U.turn, "writhe", alpha=alpha, radius=radius, slack=slack)
 
 
 def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
@@ -188,12 +227,18 @@ def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
     a, r = _alpha(alpha), _radius(radius)
     s = _length(slack, "slack", positive=False)
     L = _length(length, "length")
+    broadcast_shape(alpha=a, radius=r, slack=s, length=L)
     if np.any(np.asarray(s) > np.asarray(L)):
         raise ValueError(f"slack must not exceed length (S <= L), got S = {slack!r}, "
                          f"L = {length!r}")
     wh = _finite(magnitude(omega_helix, U.per_m, "omega_helix"), "omega_helix", omega_helix)
     wt = wh if omega_tail is None else _finite(
         magnitude(omega_tail, U.per_m, "omega_tail"), "omega_tail", omega_tail)
-    tw = _g.twist_uniform(wh, wt, s, L)
-    wr = _g.writhe_uniform(a, r, s)
-    return (quantity(tw + wr, U.turn), quantity(tw, U.turn), quantity(wr, U.turn))
+    broadcast_shape(alpha=a, radius=r, slack=s, length=L, omega_helix=wh, omega_tail=wt)
+    with np.errstate(over="ignore", invalid="ignore"):
+        tw = _g.twist_uniform(wh, wt, s, L)
+        wr = _g.writhe_uniform(a, r, s)
+        lk = tw + wr
+    given = {"alpha": alpha, "radius": radius, "slack": slack, "length": length}
+    return (_out(lk, U.turn, "linking_number", **given), _out(tw, U.turn, "twist", **given),
+            _out(wr, U.turn, "writhe", **given))

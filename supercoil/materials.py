@@ -15,7 +15,8 @@ import numpy as np
 
 from supercoil.units import U, magnitude, quantity
 
-__all__ = ["Material", "format_optional", "format_quantity", "positive_scalar"]
+__all__ = ["Material", "derived_positive", "format_optional", "format_quantity",
+           "positive_scalar"]
 
 
 def positive_scalar(value, unit, name, owner):
@@ -28,6 +29,23 @@ def positive_scalar(value, unit, name, owner):
     if mag <= 0:
         raise ValueError(f"{owner}.{name} must be positive, got {value!r}")
     return mag
+
+
+def derived_positive(value, what, owner, inputs):
+    """A derived SI number (a rigidity, kT) as float, if it is a normal positive float.
+
+    ValueError naming the inputs when the product leaves the float range:
+    ``ElasticRod(radius=1e300 m)`` overflows ``r^4`` to inf, and
+    ``DNA(temperature=1e-300 K)`` underflows ``kT`` to a subnormal number,
+    whose reciprocal overflows later in the kernels.
+    """
+    with np.errstate(over="ignore", under="ignore"):
+        v = float(value)
+    if not (np.isfinite(v) and v >= np.finfo(float).tiny):
+        raise ValueError(f"{owner}: the {what} is {v!r} (outside the normal float range "
+                         f"{np.finfo(float).tiny:.3g} to {np.finfo(float).max:.3g} in SI "
+                         f"units); check {inputs}")
+    return v
 
 
 def format_quantity(q):

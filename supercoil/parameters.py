@@ -87,6 +87,10 @@ def available_parameter_sets() -> list[str]:
 
 
 def _resolve(name_or_path) -> tuple[str, Path]:
+    if not isinstance(name_or_path, str | Path) and not hasattr(name_or_path, "__fspath__"):
+        raise TypeError(f"name_or_path must be a parameter-set name (one of "
+                        f"{', '.join(available_parameter_sets())}) or a path to a TOML file, "
+                        f"got {type(name_or_path).__name__}")
     p = Path(name_or_path)
     if p.suffix == ".toml" or p.exists() or len(p.parts) > 1:
         if not p.is_file():

@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from supercoil._csvfile import CsvFile
 from supercoil.exceptions import DataError
 
 __all__ = ["column_quantity", "make_table", "provenance", "read_csv", "write_csv"]
@@ -118,7 +119,7 @@ def write_csv(df, path) -> Path:
     return path
 
 
-def _header_hint(header):
+def header_hint(header):
     """A hint for a header line that does not follow the ``name [unit]``, comma convention."""
     hints = []
     if ";" in header or "\t" in header:
@@ -151,6 +152,24 @@ def _bad_record(body, n_fields):
     return None, None
 
 
+def _check_unique_names(path, header_line, header_text):
+    """DataError if two header fields share a name (with or without their units).
+
+    pandas renames a repeated header ``force [pN]`` to ``force [pN].1``, so the
+    check reads the raw header fields, before pandas sees them.
+    """
+    import csv
+
+    fields = next(csv.reader([header_text], skipinitialspace=True), [])
+    seen = {}
+    for i, field in enumerate(fields):
+        name = _HEADER.match(field.strip()).group("name")
+        if name in seen:
+            raise DataError(f"{path}, line {header_line}: column {name!r} appears twice in "
+                            f"the header (fields {seen[name] + 1} and {i + 1})")
+        seen[name] = i
+
+
 def read_csv(path, text_columns=("molecule",)) -> pd.DataFrame:
     """Read a table written by :func:`write_csv` (or any CSV with ``name [unit]`` headers).
 
@@ -176,72 +195,76 @@ def read_csv(path, text_columns=("molecule",)) -> pd.DataFrame:
         comment lines, with a hint when the header does not look like
         ``name [unit]`` with commas); a column named twice.
     """
-    path = Path(path)
+    df, src = read_csv_source(path, text_columns)
+    src.close()
+    return df
+
+
+def read_csv_source(path, text_columns=("molecule",)):
+    """:func:`read_csv` and the open :class:`~supercoil._csvfile.CsvFile` (the caller closes it).
+
+    For readers that also need the file line of every row
+    (:meth:`~supercoil._csvfile.CsvFile.data_lines`), e.g.
+    :func:`supercoil.read_tweezers_csv`.
+    """
+    src = CsvFile(path)
     try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise DataError(f"no such file: {path}") from None
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = raw[: exc.start].count(b"\n") + 1
-        raise DataError(
-            f"{path}, line {line}: not UTF-8 text ({exc.reason} at byte {exc.start}); "
-            "save the file as UTF-8 CSV"
-        ) from None
-    lines = text.splitlines(keepends=True)
-    prov, comments, n_comment = {}, [], 0
-    for line in lines:
-        if not line.startswith("#"):
-            break
-        n_comment += 1
-        body = line[1:].strip()
-        key, sep, value = body.partition(":")
-        if sep and key.strip() and " " not in key.strip():
-            try:
-                prov[key.strip()] = json.loads(value.strip())
-                continue
-            except json.JSONDecodeError:
-                pass
-        comments.append(body)
-    if comments:
-        prov["comments"] = comments
-    body = "".join(lines[n_comment:])
-    if not body.strip():
-        raise DataError(f"{path}: no header line (the file is empty after its comments)")
-    header_text = next((ln for ln in lines[n_comment:] if ln.strip()), "").strip()
-    header_line = n_comment + 1 + next(
-        (i for i, ln in enumerate(lines[n_comment:]) if ln.strip()), 0)
-    try:
-        head = pd.read_csv(io.StringIO(body), skipinitialspace=True, nrows=0)
-        n_fields = len(head.columns)
-        where, got = _bad_record(body, n_fields)
-        if where is not None:
-            raise DataError(
-                f"{path}, line {n_comment + where}: {got} fields, but the header (line "
-                f"{header_line}) has {n_fields} (a decimal comma, e.g. 1,68 for 1.68, or an "
-                f"unquoted comma in a label splits a value){_header_hint(header_text)}"
-            )
-        text_set = set(text_columns or ())
-        dtype = {c: str for c in head.columns if _HEADER.match(str(c)).group("name") in text_set}
-        df = pd.read_csv(io.StringIO(body), skipinitialspace=True, dtype=dtype or None)
-    except pd.errors.EmptyDataError:
-        raise DataError(f"{path}: no header line (the file is empty after its comments)"
-                        ) from None
-    except pd.errors.ParserError as exc:
-        # pandas counts lines from the header: shift by the comment lines above it
-        msg = re.sub(r"line (\d+)", lambda m: f"line {int(m.group(1)) + n_comment}", str(exc))
-        raise DataError(f"{path}: cannot parse the table: {msg}{_header_hint(header_text)}"
-                        ) from None
+        df = _parse(src, text_columns)
+    except BaseException:
+        src.close()
+        raise
     names, units = [], {}
     for col in df.columns:
         m = _HEADER.match(str(col))
         name, unit = m.group("name"), (m.group("unit") or "").strip()
-        if name in units:
-            raise DataError(f"{path}: column {name!r} appears twice in the header")
         names.append(name)
         units[name] = unit
     df.columns = names
     df.attrs["units"] = units
-    df.attrs["provenance"] = prov
+    df.attrs["provenance"] = src.provenance
+    return df, src
+
+
+def _parse(src, text_columns):
+    """pandas' reading of the table body; DataError naming the file line on a bad record."""
+    path, header_text, n_comment = src.path, src.header_text, src.n_comment
+
+    def too_many_fields(n_fields):
+        where, got = _bad_record(src.body_text(), n_fields)
+        if where is None:
+            return None
+        return DataError(
+            f"{path}, line {n_comment + where}: {got} fields, but the header (line "
+            f"{src.header_line}) has {n_fields} (a decimal comma, e.g. 1,68 for 1.68, or an "
+            f"unquoted comma in a label splits a value){header_hint(header_text)}")
+
+    n_fields = None
+    try:
+        head = pd.read_csv(io.StringIO(header_text + "\n"), skipinitialspace=True, nrows=0)
+        n_fields = len(head.columns)
+        _check_unique_names(path, src.header_line, header_text)
+        text_set = set(text_columns or ())
+        dtype = {c: str for c in head.columns if _HEADER.match(str(c)).group("name") in text_set}
+        df = pd.read_csv(src.body(), skipinitialspace=True, dtype=dtype or None,
+                         encoding="utf-8")
+    except UnicodeDecodeError:
+        src.body_text()  # raises the DataError naming the line
+        raise
+    except pd.errors.EmptyDataError:
+        raise DataError(f"{path}: no header line (the file is empty after its comments)"
+                        ) from None
+    except pd.errors.ParserError as exc:
+        err = too_many_fields(n_fields) if n_fields is not None else None
+        if err is not None:
+            raise err from None
+        # pandas counts lines from the header: shift by the comment lines above it
+        msg = re.sub(r"line (\d+)", lambda m: f"line {int(m.group(1)) + n_comment}", str(exc))
+        raise DataError(f"{path}: cannot parse the table: {msg}{header_hint(header_text)}"
+                        ) from None
+    if not isinstance(df.index, pd.RangeIndex):
+        # every row had more fields than the header: pandas made the first an index.
+        # Only then (or on a parser error) is the file scanned record by record.
+        err = too_many_fields(n_fields)
+        if err is not None:
+            raise err
     return df

@@ -38,6 +38,10 @@ __all__ = [
 #: ``length = 750 * supercoil.ureg.nm``.
 ureg = pint.UnitRegistry()
 ureg.formatter.default_format = "~P"
+# pint's documented way for a package: quantities unpickled in any process (a
+# worker of a ProcessPoolExecutor, a joblib/dask task) are rebuilt in this
+# registry, so they pass :func:`magnitude` (issue 9, item 8).
+pint.set_application_registry(ureg)
 Q_ = ureg.Quantity
 
 #: Boltzmann constant in J/K (exact, SI 2019).
@@ -122,29 +126,18 @@ def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
     TypeError
         If ``value`` belongs to another unit registry.
     """
+    value = _from_sequence(value, unit, name)
     units = getattr(value, "_units", None)
-    if units is None and isinstance(value, list | tuple) and value \
-            and any(hasattr(v, "_units") for v in value):
-        try:  # a list of quantities, e.g. [0.4 * u.pN, 1.2 * u.pN]
-            value = Q_.from_list(list(value))
-        except DimensionalityError:
-            raise _dimension_error(None, unit, name,
-                                   "; the list mixes incompatible units") from None
-        units = value._units
     if units is not None and not hasattr(value, "_magnitude"):
         raise TypeError(f"argument '{name}' is a unit, not a quantity: multiply it by a number")
     if units is None:
         if isinstance(value, str | bytes):
             raise TypeError(f"argument '{name}' is text ({value!r}); give a number or a "
                             "quantity, e.g. supercoil.ureg.Quantity('1.2 pN')")
+        if value is None:
+            raise TypeError(f"argument '{name}' is None; expected a number or a quantity")
         if unit.dimensionless:
-            try:
-                return _as_float(value)
-            except (TypeError, ValueError):
-                raise TypeError(
-                    f"argument '{name}' must be a number or an array of numbers, "
-                    f"got {type(value).__name__}"
-                ) from None
+            return _as_float(value, name)
         raise _dimension_error(
             None,
             unit,
@@ -160,13 +153,13 @@ def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
     mag = value._magnitude
     target = unit._units
     if units == target:
-        return _as_float(mag)
+        return _as_float(mag, name)
     key = (units, target)
     factor = _FACTORS.get(key)
     if factor is None:
         if not value._is_multiplicative:
             try:
-                return _as_float(value.m_as(unit))
+                return _as_float(value.m_as(unit), name)
             except DimensionalityError:
                 raise _dimension_error(units, unit, name) from None
         try:
@@ -174,14 +167,80 @@ def magnitude(value, unit: pint.Unit, name: str) -> np.ndarray | float:
         except DimensionalityError:
             raise _dimension_error(units, unit, name) from None
         _FACTORS[key] = factor
-    return _as_float(mag) * factor
+    return _as_float(mag, name) * factor
 
 
-def _as_float(mag):
+def _from_sequence(value, unit, name):
+    """A list or tuple holding quantities as one array quantity (else ``value`` unchanged).
+
+    ``[1 * turn, 2 * turn]`` must mean exactly what ``[1, 2] * turn`` means.
+    pint's own ``from_list`` keeps the unit of the first element; building
+    the magnitudes here also refuses a list that mixes quantities with plain
+    numbers (pint would read ``[1 * pN, 2]`` as 1 pN and 2 pN) or nested
+    sequences of a ragged shape.
+    """
+    if not isinstance(value, list | tuple) or not value:
+        return value
+    flat = _flatten(value)
+    has_units = [hasattr(v, "_units") for v in flat]
+    if not any(has_units):
+        return value
+    if not all(has_units):
+        raise TypeError(f"argument '{name}' mixes quantities and plain numbers; give "
+                        "every element a unit (or none)")
+    first = flat[0]
+    for v in flat:
+        if getattr(v, "_REGISTRY", ureg) is not ureg:
+            raise TypeError(
+                f"argument '{name}' was built with another pint UnitRegistry; "
+                "use supercoil.ureg (the package's single registry)")
+    try:
+        mags = _nested(value, lambda v: v.m_as(first.units))
+    except DimensionalityError:
+        raise _dimension_error(None, unit, name,
+                               "; the list mixes incompatible units") from None
+    try:
+        arr = np.asarray(mags, dtype=complex if any(np.iscomplexobj(m) for m in
+                                                    _flatten(mags)) else float)
+    except (TypeError, ValueError):
+        raise ValueError(f"argument '{name}' is a ragged nested list of quantities") from None
+    return Q_(arr, first.units)
+
+
+def _flatten(value):
+    out = []
+    for v in value:
+        if isinstance(v, list | tuple):
+            out.extend(_flatten(v))
+        else:
+            out.append(v)
+    return out
+
+
+def _nested(value, fn):
+    return [_nested(v, fn) if isinstance(v, list | tuple) else fn(v) for v in value]
+
+
+def _as_float(mag, name="value"):
+    """``mag`` as a float or float array; TypeError naming ``name`` for complex or text."""
     if isinstance(mag, float):
         return mag
-    arr = np.asarray(mag, dtype=float)
+    if isinstance(mag, complex) or np.iscomplexobj(mag):
+        raise TypeError(f"argument '{name}' is complex ({mag!r}); supercoil takes real numbers")
+    if isinstance(mag, str | bytes) or mag is None:
+        raise TypeError(f"argument '{name}' must be a number or an array of numbers, "
+                        f"got {type(mag).__name__}")
+    try:
+        arr = np.asarray(mag, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"argument '{name}' must be a number or an array of numbers, "
+                        f"got {type(mag).__name__} {_short(mag)}") from None
     return float(arr) if arr.ndim == 0 else arr
+
+
+def _short(value, width=60):
+    text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
 
 
 def as_turns(value, name: str = "turns") -> np.ndarray | float:
@@ -193,6 +252,7 @@ def as_turns(value, name: str = "turns") -> np.ndarray | float:
     dimensionless, so a plain ``.m_as("dimensionless")`` would turn 40 turns
     into 251; this function avoids that trap.)
     """
+    value = _from_sequence(value, U.turn, name)
     units = getattr(value, "_units", None)
     if units is None:
         return magnitude(value, U.dimensionless, name)
@@ -202,7 +262,7 @@ def as_turns(value, name: str = "turns") -> np.ndarray | float:
             "use supercoil.ureg (the package's single registry)"
         )
     if units == U.dimensionless._units:
-        return _as_float(value._magnitude)
+        return _as_float(value._magnitude, name)
     if _is_angle(units):  # turn, rad, degree, ...: convert to turns
         return magnitude(value, U.turn, name)
     # other dimensionless units (percent, m/mm, ...) are plain ratios of a count
@@ -236,6 +296,11 @@ def require_finite(name: str, arr, positive: bool = False, nonnegative: bool = F
     if nonnegative and not np.all(a >= 0):
         raise ValueError(f"{name} must be non-negative, got {arr!r}")
     return arr
+
+
+def _rebuild_record(cls, si):
+    """Unpickle a :class:`QuantityRecord` (module level, so pickle can find it)."""
+    return cls(**si)
 
 
 class QuantityRecord:
@@ -273,6 +338,11 @@ class QuantityRecord:
 
     def __setattr__(self, name, value):
         raise AttributeError(f"{type(self).__name__} is immutable")
+
+    def __reduce__(self):
+        # pickled as (class, SI arrays): the slots are immutable, so the default
+        # slot-state protocol (setattr after __new__) cannot restore them
+        return (_rebuild_record, (type(self), dict(self._si)))
 
     @property
     def _fields(self):

@@ -1,4 +1,4 @@
-"""Helix geometry of one strand of a double helix (MODEL.md section 1). Float-only kernel.
+"""Helix geometry of one strand of a double helix (docs/theory/geometry.md). Float-only kernel.
 
 All arguments are floats or numpy arrays in SI units (m, rad); everything
 broadcasts. Nothing here imports pint.
@@ -78,10 +78,12 @@ def curvature_error(dpitch_ds):
     """Appendix A: ``e = kappa_exact / kappa = sqrt(1 + (dP/ds)^2 / (4 pi^2))``.
 
     ``dpitch_ds`` is dimensionless (m/m). ``e >= 1``; ``e - 1`` is the relative
-    error of the slowly-varying-pitch approximation.
+    error of the slowly-varying-pitch approximation. Evaluated as
+    ``hypot(1, dP/ds / 2 pi)``, which stays finite wherever ``e`` is (the squared
+    form overflows above |dP/ds| ~ 1e154).
     """
     d = np.asarray(dpitch_ds, float)
-    return np.sqrt(1.0 + d * d / (TWO_PI * TWO_PI))
+    return np.hypot(1.0, d / TWO_PI)
 
 
 def curvature_error_profile(s, pitch):

@@ -22,7 +22,7 @@ from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import DEFAULT_MODEL, get_model
 from supercoil.dna.plot import plot_hat_curves
 from supercoil.tables import make_table, provenance
-from supercoil.units import U, as_turns, magnitude, quantity
+from supercoil.units import U, magnitude, quantity
 
 __all__ = [
     "HELICAL_REPEAT",
@@ -35,8 +35,7 @@ __all__ = [
     "resolve",
 ]
 
-#: DNA helical repeat h (m per helical turn, 10.5 bp): Lk_0 = L / h
-HELICAL_REPEAT = 3.57e-9
+HELICAL_REPEAT = _v.HELICAL_REPEAT  # DNA helical repeat h (m per helical turn)
 #: phase labels of the ``phase`` column, indexed by the kernel's phase code
 PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
 _PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
@@ -118,10 +117,11 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
         seed set) or < 0.5 (the Moroz-Nelson expansion has not converged).
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    b = m.buckling(f, si, thermal, inter)
-    msgs = _v.force_messages(f) + inter.messages(si)
-    if thermal and hasattr(m, "slope_validity"):
-        msgs += m.slope_validity(f, b.torque, si)
+    with np.errstate(invalid="ignore"):  # an undefined slope is raised as ValidityError below
+        b = m.buckling(f, si, thermal, inter)
+        msgs = _v.force_messages(f) + inter.messages(si)
+        if thermal and hasattr(m, "slope_validity"):
+            msgs += m.slope_validity(f, b.torque, si)
     if not np.all(np.isfinite(b.slope)):
         from supercoil.exceptions import ValidityError
 
@@ -134,9 +134,7 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
 
 def _points(dna, force, turns, thermal, model, interaction, short_tail_length, stacklevel):
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    n = np.atleast_1d(as_turns(turns, "turns"))
-    if n.ndim != 1:
-        raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
+    n = _v.checked_turns(turns, si)
     if short_tail_length is None:
         short = None
     else:
@@ -167,9 +165,7 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
         construction).
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    n = np.atleast_1d(as_turns(turns, "turns"))
-    if n.ndim != 1:
-        raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
+    n = _v.checked_turns(turns, si)
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
     g = m.free_energy(N, F, si, thermal, inter)

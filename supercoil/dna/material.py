@@ -9,7 +9,9 @@ from __future__ import annotations
 import dataclasses
 from typing import NamedTuple
 
-from supercoil.materials import Material, format_optional, positive_scalar
+import numpy as np
+
+from supercoil.materials import Material, derived_positive, format_optional, positive_scalar
 from supercoil.units import BOLTZMANN, U, quantity
 
 __all__ = ["DNA", "DNASI"]
@@ -89,8 +91,14 @@ class DNA(Material):
         salt = None
         if self.salt is not None:
             salt = positive_scalar(self.salt, U.mol_per_m3, "salt", "DNA")
-        kT = BOLTZMANN * t
-        object.__setattr__(self, "si", DNASI(L, A, Ct, r0, t, xi, kT, A * kT, Ct * kT, salt))
+        with np.errstate(over="ignore", under="ignore"):  # checked just below
+            kT, B, C = BOLTZMANN * t, A * BOLTZMANN * t, Ct * BOLTZMANN * t
+        kT = derived_positive(kT, "thermal energy kT", "DNA", "temperature")
+        B = derived_positive(B, "bending rigidity A kT", "DNA",
+                             "bending_persistence, temperature")
+        C = derived_positive(C, "torsional rigidity C_t kT", "DNA",
+                             "twist_persistence, temperature")
+        object.__setattr__(self, "si", DNASI(L, A, Ct, r0, t, xi, kT, B, C, salt))
 
     @property
     def kT(self):

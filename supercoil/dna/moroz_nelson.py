@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.dna import validity as _v
 from supercoil.exceptions import ValidityWarning
@@ -24,7 +25,7 @@ _PN_NM2 = U.pN * U.nm**2
 def effective_twist_rigidity(dna, force):
     """Moroz-Nelson effective torsional rigidity of the fluctuating tail.
 
-    ``1/C_eff = 1/C + kT / (4 B sqrt(B T))`` [MODEL.md s.6].
+    ``1/C_eff = 1/C + kT / (4 B sqrt(B T))`` [docs/theory/li-zhao.md#moroz-nelson].
 
     Returns
     -------
@@ -47,7 +48,7 @@ def extension_factor(dna, force, torque, tail_length):
     """Moroz-Nelson extension factor zeta of a tail of length l carrying torque M_3.
 
     ``zeta = 1 - (1/2) Q^(-1/2) + B kT / (l (B T - M_3^2/4))`` with the bracket
-    ``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` [MODEL.md s.6]; the tail's
+    ``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` [docs/theory/li-zhao.md#moroz-nelson]; the tail's
     end-to-end distance is ``zeta l``. Arguments broadcast.
 
     Raises
@@ -70,6 +71,10 @@ def extension_factor(dna, force, torque, tail_length):
     f = _v.checked_forces(force, one_d=False)
     m = magnitude(torque, U.N_m, "torque")
     length = magnitude(tail_length, U.m, "tail_length")
+    for name, x, given in (("torque", m, torque), ("tail_length", length, tail_length)):
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{name} must be finite, got {given}")
+    broadcast_shape(force=f, torque=m, tail_length=length)
     if not np.all(f > 0):
         raise ValueError(f"force must be positive, got {force}")
     if not np.all(np.asarray(length) > 0):

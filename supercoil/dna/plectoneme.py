@@ -1,6 +1,6 @@
 """DNA plectonemes at fixed force: Marko-Siggia equilibrium and Moroz-Nelson corrections.
 
-MODEL.md section 6 (paper Example III). Unit wrappers over the float kernels
+docs/theory/plectoneme.md (paper Example III). Unit wrappers over the float kernels
 :mod:`supercoil.core.dna.plectoneme` (equilibrium of (GE1), (GE2) and the tension
 equation with the Marko-Siggia interaction) and :mod:`supercoil.core.dna.moroz_nelson`.
 Every function takes a :class:`~supercoil.dna.material.DNA` and pint quantities of
@@ -49,7 +49,7 @@ class PlectonemeEquilibrium(QuantityRecord):
 
 
 def plectoneme_equilibrium(dna, force, interaction=DEFAULT_INTERACTION):
-    """Plectoneme equilibrium of ``dna`` at fixed ``force`` (MODEL.md s.6, s.2).
+    """Plectoneme equilibrium of ``dna`` at fixed ``force`` (docs/theory/plectoneme.md#equations).
 
     Solves (GE1) ``C omega = (B kappa kappa_alpha + w_alpha)/tau_alpha``, (GE2)
     and the tension equation ``T = -(1/2) B kappa^2 + C omega tau - w``

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from supercoil._checks import check_flag
 from supercoil.exceptions import ModelError
 
 __all__ = ["Registry"]
@@ -17,6 +18,7 @@ class Registry:
 
     def register(self, cls, replace=False):
         """Register a subclass of the base (or an instance's class) under ``cls.name``."""
+        replace = check_flag(replace, "replace")
         if isinstance(cls, self.base):
             cls = type(cls)
         if not (isinstance(cls, type) and issubclass(cls, self.base)):

@@ -33,17 +33,15 @@ of every row, ``attrs["lines"]``).
 
 from __future__ import annotations
 
-import csv
-import io
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pint
 
+from supercoil._checks import check_flag
 from supercoil.exceptions import DataError, DataWarning
-from supercoil.tables import _header_hint, read_csv
+from supercoil.tables import header_hint, read_csv_source
 from supercoil.units import U, ureg
 
 __all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
@@ -81,7 +79,7 @@ def _unit_for(column, unit_str, where):
     return unit
 
 
-def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
+def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.DataFrame:
     """Check a rotation-curve table; return it with its numeric columns as floats.
 
     Used by :func:`read_tweezers_csv` and by the fitting functions for tables
@@ -118,7 +116,7 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
         if col not in df.columns:
             raise DataError(
                 f"{header}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
-                + _header_hint(",".join(map(str, df.columns)))
+                + header_hint(",".join(map(str, df.columns)))
             )
     if len(df) == 0:
         raise DataError(f"{source}: the table has no data rows")
@@ -128,7 +126,7 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
         label = label.item() if hasattr(label, "item") else label
         return f"line {lines[i]}" if lines is not None else f"row {label!r}"
 
-    out = df.copy()
+    out = df.copy() if _copy else df  # read_tweezers_csv owns its frame: checked in place
     for col in (*REQUIRED_COLUMNS, "sigma"):
         if col not in df.columns:
             continue
@@ -136,39 +134,61 @@ def check_tweezers_frame(df, lines=None, source="data") -> pd.DataFrame:
             raise DataError(f"{header}, column {col!r}: no unit in attrs['units']")
         _unit_for(col, units[col], header)
         raw = df[col]
-        values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=float)
-        bad = np.flatnonzero(~np.isfinite(values))
-        if bad.size:
-            i = int(bad[0])
-            cell = raw.iloc[i]
-            if _is_missing(cell):
-                what = "missing value (empty cell or NaN)"
-            elif isinstance(cell, str) and _is_number(cell):
-                what = f"non-finite value {cell!r}"
-            elif isinstance(cell, float | np.floating):
-                what = f"non-finite value {float(cell)!r}"
-            else:
-                what = f"non-numeric value {cell!r}"
-            more = f" ({bad.size - 1} more rows in this column)" if bad.size > 1 else ""
-            raise DataError(f"{source}, {row_name(i)}, column {col!r}: {what}{more}")
-        if col in ("force", "sigma"):
-            nonpos = np.flatnonzero(values <= 0)
-            if nonpos.size:
-                i = int(nonpos[0])
-                raise DataError(
-                    f"{source}, {row_name(i)}, column {col!r}: {col} must be positive, "
-                    f"got {float(values[i]):g}"
-                )
-        out[col] = values
+        is_float = raw.dtype == np.float64  # already numbers: checked without a copy
+        values = _checked_values(raw, col, is_float, lambda i: f"{source}, {row_name(i)}")
+        if not is_float or _copy:
+            out[col] = values
     if "molecule" in df.columns:
         if "molecule" not in units:
             raise DataError(f"{header}, column 'molecule': no entry in attrs['units']")
-        miss = np.flatnonzero([_is_missing(v) for v in df["molecule"]])
+        miss = np.flatnonzero(_missing_mask(df["molecule"]))
         if miss.size:
             i = int(miss[0])
             raise DataError(f"{source}, {row_name(i)}, column 'molecule': missing label")
     out.attrs = dict(df.attrs)
     return out
+
+
+def _checked_values(raw, col, is_float, where):
+    """Column ``raw`` as floats; DataError naming ``where(row)`` for a bad cell."""
+    values = raw.to_numpy() if is_float else pd.to_numeric(
+        raw, errors="coerce").to_numpy(dtype=float)
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        i = int(bad[0])
+        cell = raw.iloc[i]
+        if _is_missing(cell):
+            what = "missing value (empty cell or NaN)"
+        elif isinstance(cell, str) and _is_number(cell):
+            what = f"non-finite value {cell!r}"
+        elif isinstance(cell, float | np.floating):
+            what = f"non-finite value {float(cell)!r}"
+        else:
+            what = f"non-numeric value {cell!r}"
+        more = f" ({bad.size - 1} more rows in this column)" if bad.size > 1 else ""
+        raise DataError(f"{where(i)}, column {col!r}: {what}{more}")
+    if col in ("force", "sigma"):
+        nonpos = np.flatnonzero(values <= 0)
+        if nonpos.size:
+            i = int(nonpos[0])
+            raise DataError(f"{where(i)}, column {col!r}: {col} must be positive, "
+                            f"got {float(values[i]):g}")
+    return values
+
+
+def _missing_mask(column):
+    """Boolean array: True where a cell is missing (NaN/None, or an NA string), vectorised."""
+    mask = column.isna().to_numpy(dtype=bool, copy=True)
+    if column.dtype == object or pd.api.types.is_string_dtype(column.dtype):
+        # the NA test on the distinct labels only (few: one per molecule), found in
+        # blocks (pandas' unique of a whole text column costs ~60 bytes per row)
+        labels = set()
+        for start in range(0, len(column), 65536):
+            labels.update(column.iloc[start:start + 65536].dropna().unique())
+        na = [v for v in labels if isinstance(v, str) and v.strip().lower() in _NA_STRINGS]
+        if na:
+            mask |= column.isin(na).to_numpy(dtype=bool)
+    return mask
 
 
 def _is_missing(cell):
@@ -197,34 +217,31 @@ _NA_STRINGS = {
 }
 
 
-def _row_lines(path, n_rows):
-    """File line (1-based) of the header and of every data row, as pandas reads them.
-
-    pandas skips blank lines and the ``#`` lines above the header; ``csv``'s
-    ``line_num`` follows quoted fields that span lines. Returns ``(header, rows)``
-    or ``(None, None)`` if the mapping cannot be made.
-    """
-    text = Path(path).read_text()
-    all_lines = text.splitlines(keepends=True)
-    n_comment = 0
-    for line in all_lines:
-        if not line.startswith("#"):
-            break
-        n_comment += 1
-    reader = csv.reader(io.StringIO("".join(all_lines[n_comment:])), skipinitialspace=True)
-    header, rows, prev = None, [], 0
-    for record in reader:
-        start = prev + 1
-        prev = reader.line_num
-        if not record or (all(not c.strip() for c in record) and len(record) <= 1):
-            continue
-        if header is None:
-            header = n_comment + start
-            continue
-        rows.append(n_comment + start)
-    if header is None or len(rows) != n_rows:
-        return None, None
-    return header, rows
+def _drop_incomplete(df, lines, source):
+    """``df`` (and ``lines``) without the rows that have a missing cell; DataWarning lists them."""
+    checked = [c for c in (*REQUIRED_COLUMNS, "sigma", "molecule") if c in df.columns]
+    missing = np.zeros(len(df), dtype=bool)
+    for col in checked:
+        missing |= _missing_mask(df[col])
+    if not missing.any():
+        return df, lines
+    idx = np.flatnonzero(missing)
+    names = [str(lines[i]) if lines is not None else f"data row {i + 1}" for i in idx[:21]]
+    shown = ", ".join(names[:20]) + (", ..." if len(names) > 20 else "")
+    warnings.warn(
+        f"{source}: dropped {idx.size} incomplete row(s) (empty or NaN cell in "
+        f"{', '.join(checked)}) at file line(s) {shown}",
+        DataWarning,
+        stacklevel=3,
+    )
+    attrs = dict(df.attrs)
+    df = df.loc[~missing].reset_index(drop=True)
+    df.attrs = attrs
+    if lines is not None:
+        lines = lines[~missing]
+    if len(df) == 0:
+        raise DataError(f"{source}: no complete data rows left after dropping")
+    return df, lines
 
 
 def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
@@ -248,14 +265,26 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     pandas.DataFrame
         The table convention: float magnitudes in the file's units,
         ``attrs["units"]``, ``attrs["provenance"]`` (plus ``"source"``, the
-        path) and ``attrs["lines"]``, the file line of every row kept.
+        path) and ``attrs["lines"]``, the file line of every row kept (an int64
+        array).
 
     Raises
     ------
     DataError
         No such file; missing column; unknown unit or unit of the wrong
         dimension; non-numeric, missing or non-finite cell; non-positive force
-        or sigma. The message names the file line and the column.
+        or sigma; a column named twice. The message names the file line and
+        the column.
+    TypeError
+        ``drop_incomplete`` not True/False (e.g. the string ``"False"``), or
+        ``path`` not a path.
+
+    Notes
+    -----
+    The checks are vectorised and the file is streamed (pandas reads the
+    body from the open file; the file lines are counted in blocks): measured
+    1.2-2x plain ``pandas.read_csv`` for 1e6 rows, and a few bytes per row of
+    peak memory beyond the table (benchmark: :mod:`supercoil.benchmark.memory`).
 
     Examples
     --------
@@ -263,9 +292,12 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     >>> data.attrs["units"]["extension"]  # doctest: +SKIP
     'um'
     """
-    path = Path(path)
-    df = read_csv(path)
-    header_line, lines = _row_lines(path, len(df))
+    drop_incomplete = check_flag(drop_incomplete, "drop_incomplete")
+    df, src = read_csv_source(path)
+    path = src.path
+    with src:
+        lines = src.data_lines(len(df))
+        header_line = src.header_line
     source = str(path)
     if header_line is not None:
         df.attrs["header_line"] = header_line
@@ -276,36 +308,16 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
         if col not in df.columns:
             raise DataError(
                 f"{hdr}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
-                + _header_hint(",".join(map(str, df.columns)))
+                + header_hint(",".join(map(str, df.columns)))
             )
     for col in (*REQUIRED_COLUMNS, "sigma"):
         if col in df.columns:
             _unit_for(col, units[col], hdr)
     if drop_incomplete:
-        checked = [c for c in (*REQUIRED_COLUMNS, "sigma", "molecule") if c in df.columns]
-        missing = np.zeros(len(df), dtype=bool)
-        for col in checked:
-            missing |= np.array([_is_missing(v) for v in df[col]], dtype=bool)
-        if missing.any():
-            idx = np.flatnonzero(missing)
-            names = [str(lines[i]) if lines else f"data row {i + 1}" for i in idx]
-            shown = ", ".join(names[:20]) + (", ..." if len(names) > 20 else "")
-            warnings.warn(
-                f"{source}: dropped {idx.size} incomplete row(s) (empty or NaN cell in "
-                f"{', '.join(checked)}) at file line(s) {shown}",
-                DataWarning,
-                stacklevel=2,
-            )
-            attrs = dict(df.attrs)
-            df = df.loc[~missing].reset_index(drop=True)
-            df.attrs = attrs
-            if lines:
-                lines = [ln for ln, m in zip(lines, missing, strict=True) if not m]
-            if len(df) == 0:
-                raise DataError(f"{source}: no complete data rows left after dropping")
-    out = check_tweezers_frame(df, lines=lines, source=source)
+        df, lines = _drop_incomplete(df, lines, source)
+    out = check_tweezers_frame(df, lines=lines, source=source, _copy=False)
     out.attrs["provenance"] = dict(out.attrs.get("provenance", {}), source=source)
     out.attrs.pop("header_line", None)
     if lines is not None:
-        out.attrs["lines"] = list(lines)
+        out.attrs["lines"] = lines  # int64 array: pandas deep-copies attrs on every operation
     return out

@@ -16,10 +16,11 @@ import warnings
 
 import numpy as np
 
+from supercoil._checks import check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
 from supercoil.exceptions import ValidityWarning
-from supercoil.units import U, magnitude
+from supercoil.units import U, as_turns, magnitude
 
 __all__ = [
     "DENATURATION_FORCE",
@@ -27,6 +28,7 @@ __all__ = [
     "StateRecorder",
     "check_dna",
     "checked_forces",
+    "checked_turns",
     "denaturation_messages",
     "extension_messages",
     "force_messages",
@@ -38,11 +40,7 @@ __all__ = [
 
 def check_dna(dna):
     """The SI view of ``dna``; TypeError naming the argument if it is not a DNA."""
-    if not isinstance(dna, DNA):
-        hint = " (an ElasticRod is a rod scene's material)" if type(dna).__name__ == \
-            "ElasticRod" else ""
-        raise TypeError(f"dna must be a supercoil.DNA, got {type(dna).__name__}{hint}")
-    return dna.si
+    return check_material(dna, DNA, "dna")
 
 
 def checked_forces(force, one_d=True):
@@ -57,6 +55,45 @@ def checked_forces(force, one_d=True):
         if f.ndim != 1:
             raise ValueError(f"force must be a scalar or 1-D, got shape {f.shape}")
     return f
+
+
+#: DNA helical repeat h (m per helical turn, 10.5 bp): Lk_0 = L / h
+HELICAL_REPEAT = 3.57e-9
+
+
+def checked_turns(turns, dna):
+    """Turns N (1-D float array) for a DNA function: real, finite, not empty, |sigma| <= 1.
+
+    One check for every DNA function taking turns (:func:`~supercoil.units.as_turns`
+    reads plain numbers as turns and converts angle units).
+
+    Raises
+    ------
+    TypeError
+        Not numbers (text, None, complex).
+    ValueError
+        Not 1-D, empty, NaN or infinite.
+    ValidityError
+        ``|N| > Lk_0 = L / h`` (supercoiling density |sigma| > 1, h = 3.57 nm): more
+        turns than the molecule has helical turns, where no model applies (and
+        the models' arithmetic would overflow for absurd N such as 1e300).
+    """
+    from supercoil.exceptions import ValidityError
+
+    n = np.atleast_1d(as_turns(turns, "turns"))
+    if n.ndim != 1:
+        raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
+    if n.size == 0:
+        raise ValueError("turns is empty: give at least one number of turns")
+    if not np.all(np.isfinite(n)):
+        raise ValueError(f"turns must be finite, got {n[~np.isfinite(n)][0]!r}")
+    lk0 = dna.length / HELICAL_REPEAT
+    big = np.abs(n) > lk0
+    if np.any(big):
+        raise ValidityError(
+            f"turns {n[big][0]:.6g}: |N| exceeds the molecule's helical turns Lk0 = L/h = "
+            f"{lk0:.6g} (supercoiling density |sigma| > 1, h = 3.57 nm); no model applies")
+    return n
 
 
 def warn(messages, stacklevel=3):

@@ -1,4 +1,4 @@
-"""Example II: design the twisting schedule for a chosen pitch profile (MODEL.md s.4).
+"""Example II: design the twisting schedule for a chosen pitch profile (docs/theory/design.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.design`.
 """
@@ -9,6 +9,7 @@ import numpy as np
 
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import design as _dh
+from supercoil.rod.material import check_rod
 from supercoil.rod.validity import warn_hard_contact, warn_no_friction
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, magnitude, quantity
@@ -36,7 +37,7 @@ def sinusoidal_pitch(p0, p1, wavenumber):
     ----------
     p0, p1 : Quantity [length]
         Mean pitch and amplitude (paper: 16 mm and 4 mm; the figure caption's
-        "cm" is a typo, MODEL.md s.4).
+        "cm" is a typo, docs/theory/corrections.md#typos).
     wavenumber : Quantity [1/length]
         k (paper: ``2 pi / (10 P0)``).
     """
@@ -121,7 +122,7 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
         P < 2 pi r / tan(0.699) = 7.5 r; see
         :func:`supercoil.core.rod.contact.contact_width_ratio`).
     """
-    si = rod.si
+    si = check_rod(rod)
     r, L, B, C, mu = (si.radius, si.length, si.bending_rigidity, si.torsional_rigidity,
                       si.friction_coefficient)
     if isinstance(n_points, bool) or not isinstance(n_points, int | np.integer):

@@ -11,10 +11,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from supercoil.materials import Material, format_optional, positive_scalar
+from supercoil._checks import check_material
+from supercoil.materials import Material, derived_positive, format_optional, positive_scalar
 from supercoil.units import U, magnitude
 
-__all__ = ["ElasticRod", "RodSI"]
+__all__ = ["ElasticRod", "RodSI", "check_rod"]
 
 
 class RodSI(NamedTuple):
@@ -77,11 +78,21 @@ class ElasticRod(Material):
                     f"ElasticRod.friction_coefficient must be finite and >= 0, got {mu!r}"
                 )
             object.__setattr__(self, "friction_coefficient", mu)
-        B = E * np.pi * r**4 / 4.0
-        C = G * np.pi * r**4 / 2.0
+        with np.errstate(over="ignore", under="ignore"):  # checked just below
+            r4 = np.float64(r) ** 4
+            B, C = E * np.pi * r4 / 4.0, G * np.pi * r4 / 2.0
+        B = derived_positive(B, "bending rigidity E pi r^4/4", "ElasticRod",
+                             "radius, young_modulus")
+        C = derived_positive(C, "torsional rigidity G pi r^4/2", "ElasticRod",
+                             "radius, shear_modulus")
         object.__setattr__(self, "si", RodSI(r, L, E, G, mu, B, C))
 
     def __repr__(self):
         body = ", ".join(f"{f.name}={format_optional(getattr(self, f.name))}"
                          for f in dataclasses.fields(self))
         return f"ElasticRod({body})"
+
+
+def check_rod(rod, name="rod"):
+    """The SI view of ``rod``; TypeError naming ``name`` unless it is an :class:`ElasticRod`."""
+    return check_material(rod, ElasticRod, name)

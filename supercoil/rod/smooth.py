@@ -1,4 +1,4 @@
-"""Case I, smooth surface: the uniform double helix (MODEL.md section 3).
+"""Case I, smooth surface: the uniform double helix (docs/theory/smooth.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.smooth`.
 """
@@ -9,8 +9,10 @@ import dataclasses
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import smooth as _sm
+from supercoil.rod.material import check_rod
 from supercoil.rod.validity import check_finite, warn_hard_contact
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, as_turns, magnitude, quantity
@@ -142,8 +144,8 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         ``-2 pi |N|`` to infinity, so every ``|N| > 0`` gives exactly one helix
         in contact; only ``N = 0`` gives none (alpha = 0: a flat hairpin of
         parallel strands, infinite pitch). The model ignores the loop at the head
-        and the buckling threshold (MODEL.md s.7), so a small |N| gives a real,
-        very loose helix here.
+        and the buckling threshold (docs/theory/limits.md#not-modelled), so a small
+        |N| gives a real, very loose helix here.
     SingularityError
         When alpha comes within ``cos 2 alpha < cos2a_min`` of pi/4 (large
         |N| r / L): the tension ~ B / (4 r^2 cos 2 alpha) diverges.
@@ -161,12 +163,13 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
         sqrt(cos 2a) > 1`` (alpha > 0.699 rad; derivation and strains in
         :func:`supercoil.core.rod.contact.contact_width_ratio`).
     """
-    si = rod.si
+    si = check_rod(rod)
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
     n = checked_turns(turns, "turns")
     S = magnitude(slack, U.m, "slack")
     if not np.all(np.isfinite(S)):
         raise ValueError(f"slack must be finite, got {slack!r}")
+    broadcast_shape(turns=n, slack=S)
     cos2a_min = _sc.check_cos2a_min(cos2a_min)
     with np.errstate(over="ignore", divide="ignore"):  # results checked below
         st = _sm.smooth_state(n, S, r, L, B, C, cos2a_min)

@@ -1,4 +1,4 @@
-"""Twist-spinning comparison: beta and pitch versus head tension T' (MODEL.md s.5).
+"""Twist-spinning comparison: beta and pitch versus head tension T' (docs/theory/spinning.md).
 
 Public unit wrapper over :mod:`supercoil.core.rod.spinning`, whose module
 docstring holds the derivation of the stationarity equations [f4, f5] from
@@ -11,8 +11,10 @@ import dataclasses
 
 import numpy as np
 
+from supercoil._checks import broadcast_shape
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import spinning as _ts
+from supercoil.rod.material import check_rod
 from supercoil.rod.smooth import checked_turns
 from supercoil.rod.validity import check_finite, warn_hard_contact
 from supercoil.tables import make_table, provenance
@@ -73,7 +75,7 @@ class TwistSpinningHelix:
 def twist_spinning(rod, turns, head_tension):
     """beta and pitch of a twist-spun helix versus head tension T'.
 
-    The model of the paper's Discussion (MODEL.md s.5): a smooth rod of length
+    The model of the paper's Discussion (docs/theory/spinning.md): a smooth rod of length
     L twisted by N turns, ends held apart, a short helix (S' << L) at the head
     pulled by T' along its axis. Stationarity of
     ``E_p = (1/2) B kappa^2 S' + (1/2) C omega^2 L - T' h`` in alpha and S' at
@@ -112,10 +114,11 @@ def twist_spinning(rod, turns, head_tension):
         Hard contact fails: Hertz contact half-width above the rod radius
         (alpha > 0.699 rad, see :func:`supercoil.core.rod.contact.contact_width_ratio`).
     """
-    si = rod.si
+    si = check_rod(rod)
     r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
     n = np.asarray(checked_turns(turns, "turns"), float)
     Tp = np.asarray(magnitude(head_tension, U.N, "head_tension"), float)
+    broadcast_shape(turns=n, head_tension=Tp)
     st = _ts.spinning_state(np.abs(n), Tp, r, L, B, C)
     _sc.check_tilt(st["alpha"], "twist-spinning helix")
     shape = st["alpha"].shape

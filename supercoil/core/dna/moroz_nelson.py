@@ -1,4 +1,6 @@
-"""Moroz-Nelson thermal corrections of a fluctuating DNA tail (MODEL.md section 6). Float-only.
+"""Moroz-Nelson thermal corrections of a fluctuating DNA tail. Float-only.
+
+docs/theory/li-zhao.md#moroz-nelson.
 
 * Effective torsional rigidity of the tail under tension T:
   ``1/C_eff = 1/C + kT / (4 B sqrt(B T))``.
@@ -32,7 +34,8 @@ __all__ = [
 
 def twist_rigidity_ratio(force, B, C, kT):
     """``C / C_eff = 1 + C kT / (4 B sqrt(B T))`` (> 1)."""
-    return 1.0 + C * kT / (4.0 * B * np.sqrt(B * np.asarray(force, float)))
+    # sqrt(B) sqrt(T), not sqrt(B T): the product underflows for T below ~1e-280 N
+    return 1.0 + C * kT / (4.0 * B * np.sqrt(B) * np.sqrt(np.asarray(force, float)))
 
 
 def effective_twist_rigidity(force, B, C, kT):

@@ -1,6 +1,6 @@
 """Example II: the twisting/slacking schedule that produces a chosen pitch profile.
 
-Float-only kernel (SI units), MODEL.md section 4 "Example II", paper [eq sinp].
+Float-only kernel (SI units), docs/theory/design.md, paper "Example II" [eq sinp].
 
 Inverting the ODE
 -----------------

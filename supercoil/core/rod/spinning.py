@@ -1,6 +1,6 @@
 r"""Twist-spinning: a short smooth helix held by a head tension T'. Float-only kernel.
 
-MODEL.md section 5, paper Discussion and Appendix F [f1, 11, f4, f5].
+docs/theory/spinning.md, paper Discussion and Appendix F [f1, 11, f4, f5].
 
 Set-up and what is held fixed
 -----------------------------
@@ -18,7 +18,7 @@ and the head sits at the height
     h = (S'/2) cos(alpha) + ((L - S')/2) cos(beta)
       = (S'/2) cos(alpha) + (L - S) / (2 tan(beta)).
 
-(MODEL.md and [f1] print the helix part as ``S'/cos(alpha)``; the height of a
+(the paper's [f1] prints the helix part as ``S'/cos(alpha)``; the height of a
 helix of strand length S'/2 and tilt alpha is ``(S'/2) cos(alpha)``, and only
 this form reproduces the paper's own [f4], see below.) The surface is smooth,
 so the twist density omega is uniform over the whole rod; the linking number
@@ -51,7 +51,7 @@ value: one root, found by bisection. Then [f5] gives beta explicitly,
 
     sec(beta) = cos(alpha) + 2 T_s / T',   T_s = 2 pi C n tau - B kappa^2 / 2 > 0,
 
-(T_s is the smooth-helix tension formula of MODEL.md s.3 at omega = 2 pi n).
+(T_s is the smooth-helix tension formula of docs/theory/smooth.md#tension at omega = 2 pi n).
 An equilibrium with tails needs ``sec(beta) >= 1``, i.e.
 ``2 T_s >= T' (1 - cos(alpha))``. This always holds: by [f4],
 ``2 pi C n = (B kappa kappa_alpha + T' sin(a)/2) / tau_alpha``, so
@@ -122,9 +122,10 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
         x = np.where(Tp > 0, 2.0 * Ts / np.where(Tp > 0, Tp, 1.0)
                      - 2.0 * np.sin(0.5 * alpha) ** 2, np.inf)
     x = np.maximum(x, 0.0)
-    with np.errstate(invalid="ignore"):
+    # x / (2 (1 + x)) as 0.5 / (1 + 1/x): no overflow for x near the float maximum
+    with np.errstate(invalid="ignore", divide="ignore"):
         beta = np.where(np.isinf(x), 0.5 * np.pi,
-                        2.0 * np.arcsin(np.sqrt(x / (2.0 * (1.0 + x)))))
+                        2.0 * np.arcsin(np.sqrt(0.5 / (1.0 + 1.0 / x))))
     return {
         "alpha": alpha,
         "beta": beta,
