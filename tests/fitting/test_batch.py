@@ -138,6 +138,7 @@ def test_worker_limits_blas_threads_only_in_a_worker_process(many, base, monkeyp
     one = many[many["molecule"] == "m1"].drop(columns="molecule").reset_index(drop=True)
     one.attrs = dict(many.attrs)
     spec = prepare(one, base)
+    task = batch.MoleculeTask("m1", spec.data, spec, batch._layout(spec))
     seen = []
     real = batch.run_fit
 
@@ -147,8 +148,9 @@ def test_worker_limits_blas_threads_only_in_a_worker_process(many, base, monkeyp
 
     monkeypatch.setattr(batch, "run_fit", spy)
     with threadpool_limits(limits=2):
-        assert batch._fit_worker(spec, parent_pid=-1)["ok"]  # "another process"
-        assert batch._fit_worker(spec, parent_pid=os.getpid())["ok"]  # a thread of the parent
+        assert batch._fit_worker(task, parent_pid=-1)[0]["success"]  # "another process"
+        # a thread of the parent
+        assert batch._fit_worker(task, parent_pid=os.getpid())[0]["success"]
         after = max(i["num_threads"] for i in threadpool_info())
     assert seen == [1, 2] and after == 2
 
