@@ -36,22 +36,26 @@ class MoleculeTask:
 
     ``settings`` is the :class:`~supercoil.dna.fitting.fit.FitSpec` validated
     once on the whole table (its parameters are copied on the worker); with a
-    dask client it is scattered once and ``settings`` is its future.
+    dask client it is None here: the settings are scattered once and their
+    future is a separate argument of the task (dask resolves only top-level
+    futures).
     """
 
     label: str
     data: RotationData
-    settings: FitSpec
+    settings: FitSpec | None
     row: dict  # names, display factors and units of the table columns
 
 
-def _fit_worker(task, parent_pid=None):
+def _fit_worker(task, parent_pid=None, settings=None):
     """Module-level (picklable) worker of :func:`fit_many`: builds the molecule's table row.
 
-    Never raises: a failure is the row's ``error``. Returns ``(row, warning records)``.
+    ``settings`` replaces ``task.settings`` (a dask client passes the scattered
+    settings here). Never raises: a failure is the row's ``error``. Returns
+    ``(row, warning records)``.
     """
     try:
-        settings = task.settings
+        settings = task.settings if settings is None else settings
         spec = dataclasses.replace(settings, data=task.data, params=settings.params.copy())
         n_free = len(spec.params.free)
         if spec.data.n - n_free <= 0:
@@ -208,11 +212,11 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
             emit(records, prefix=f"molecule {lab}: ", stacklevel=4)
         bar.update(lab)
 
-    settings = template
+    settings, args, extra = template, (), {}
     if _is_dask_client(executor):  # one copy of the settings per worker, not one per task
-        settings = executor.scatter(template, broadcast=True, hash=False)
+        settings, extra = None, {"pure": False}
+        args = (executor.scatter(template, broadcast=True, hash=False),)
     submit = executor.submit if executor is not None else None
-    extra = {"pure": False} if _is_dask_client(executor) else {}
     pending, pid = {}, os.getpid()
     try:
         for lab, index in zip(labels, whole.groups(), strict=True):
@@ -220,7 +224,7 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
             if submit is None:
                 finished(lab, *_fit_worker(task))
             else:
-                pending[submit(_fit_worker, task, pid, **extra)] = task
+                pending[submit(_fit_worker, task, pid, *args, **extra)] = task
         _collect(pending, executor, finished)
     finally:
         bar.close()
