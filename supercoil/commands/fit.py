@@ -7,7 +7,8 @@ Example::
 ``DATA.csv`` is a long table read by :func:`supercoil.read_tweezers_csv`
 (``force [pN]``, ``turns``, ``extension [um]``, optional ``molecule``,
 ``sigma [nm]``, ``torque [pN nm]`` and ``torque_sigma [pN nm]``; with a torque
-column extension and torque are fitted jointly, docs/theory/fitting.md#joint-torque-fit). With one molecule (or ``--global``: all molecules share the
+column extension and torque are fitted jointly, docs/theory/fitting.md#joint-torque-fit).
+With one molecule (or ``--global``: all molecules share the
 physical parameters, each keeps its own offsets) the command writes
 
 * ``DIR/fit_report.txt``: the fit report (parameter table with units);

@@ -14,8 +14,8 @@ import pytest
 from fitting_helpers import FORCES, simulate, truth
 
 import supercoil as sc
-from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting import RotationData, simulate_rotation_curves
+from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.interactions import get_interaction
 from supercoil.dna.models import get_model
