@@ -212,10 +212,11 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
             emit(records, prefix=f"molecule {lab}: ", stacklevel=4)
         bar.update(lab)
 
-    settings, args, extra = template, (), {}
+    # the settings without the template's data (the whole table): each task has its rows
+    settings, args, extra = dataclasses.replace(template, data=None), (), {}
     if _is_dask_client(executor):  # one copy of the settings per worker, not one per task
-        settings, extra = None, {"pure": False}
-        args = (executor.scatter(template, broadcast=True, hash=False),)
+        args, extra = (executor.scatter(settings, broadcast=True, hash=False),), {"pure": False}
+        settings = None
     submit = executor.submit if executor is not None else None
     pending, pid = {}, os.getpid()
     try:
