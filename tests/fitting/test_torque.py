@@ -183,3 +183,23 @@ def test_fit_many_carries_the_torque_channel(true_dna, base):
     single = sc.fit_hat_curves(df[df["molecule"] == "m2"].reset_index(drop=True), base)
     assert table["twist_persistence"].iloc[1] == pytest.approx(
         single.parameters["twist_persistence"].m, rel=1e-6)
+
+
+@pytest.mark.filterwarnings("ignore:model marko2007:supercoil.exceptions.FitWarning",
+                            "ignore:model marko2007:supercoil.exceptions.ValidityWarning")
+def test_compare_models_on_torque_data_uses_fixed_scales(torque_data, base):
+    """With estimated channel noise every model's chi-square is N: the criterion must use
+    the fixed unit scales (1 nm, 1 pN nm), so it still ranks the models."""
+    from supercoil.dna.fitting import compare_models
+
+    table = compare_models(torque_data, base, models=["li-zhao", "marko2007"])
+    assert table["success"].all()
+    rows = {m: r for m, r in zip(table["model"], table.to_dict("records"), strict=True)}
+    for m in ("li-zhao", "marko2007"):
+        r = rows[m]
+        assert r["chi_square"] == pytest.approx(r["ndata"], rel=1e-2)  # estimated weights
+    # the AIC difference is not the trivial 2 * (difference of parameter counts)
+    d_aic = rows["marko2007"]["aic"] - rows["li-zhao"]["aic"]
+    assert abs(d_aic - 2 * (rows["marko2007"]["nparams"] - rows["li-zhao"]["nparams"])) > 1
+    # the data were made by li-zhao: it wins
+    assert rows["li-zhao"]["delta_aic"] == 0 and d_aic > 0
