@@ -107,3 +107,63 @@ def test_no_shipped_file_refers_outside_the_repository():
                 offenders.append(f"{p.relative_to(ROOT)}:{i}")
     assert not offenders, ("shipped files must cite docs/theory/ or papers, never a path "
                            f"outside the repository: {offenders[:20]} ({len(offenders)} lines)")
+
+
+def _code_lines(node):
+    """Lines of a function without its docstring."""
+    n = node.end_lineno - node.lineno + 1
+    body = node.body
+    if body and isinstance(body[0], ast.Expr) and isinstance(getattr(body[0], "value", None),
+                                                             ast.Constant) \
+            and isinstance(body[0].value.value, str):
+        n -= body[0].end_lineno - body[0].lineno + 1
+    return n
+
+
+def test_no_function_over_80_lines_without_a_reason():
+    """Functions stay under 80 lines of code (docstrings excluded) unless a comment
+    ``# long function: <why>`` says why."""
+    offenders = []
+    for path in _package_files():
+        src = path.read_text()
+        lines = src.splitlines()
+        for node in ast.walk(ast.parse(src)):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
+                    _code_lines(node) > 80:
+                text = "\n".join(lines[node.lineno - 1:node.end_lineno])
+                if "# long function:" not in text:
+                    offenders.append(f"{path.relative_to(ROOT)}:{node.name} "
+                                     f"({_code_lines(node)} lines)")
+    assert not offenders, f"functions over 80 lines of code: {offenders}"
+
+
+def _complexity(node):
+    """McCabe complexity as radon counts it (nested functions apart)."""
+    c = 1
+    stack = list(ast.iter_child_nodes(node))
+    while stack:
+        n = stack.pop()
+        if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda | ast.ClassDef):
+            continue
+        if isinstance(n, ast.If | ast.IfExp | ast.For | ast.AsyncFor | ast.While |
+                      ast.ExceptHandler | ast.Assert):
+            c += 1
+        elif isinstance(n, ast.comprehension):
+            c += 1 + len(n.ifs)
+        elif isinstance(n, ast.BoolOp):
+            c += len(n.values) - 1
+        elif isinstance(n, ast.match_case):
+            c += 1
+        stack.extend(ast.iter_child_nodes(n))
+    return c
+
+
+def test_no_function_more_complex_than_radon_grade_c():
+    """Cyclomatic complexity <= 20 (radon grade C) for every function."""
+    offenders = []
+    for path in _package_files():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
+                    (cc := _complexity(node)) > 20:
+                offenders.append(f"{path.relative_to(ROOT)}:{node.name} ({cc})")
+    assert not offenders, f"functions worse than radon grade C: {offenders}"

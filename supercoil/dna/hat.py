@@ -92,6 +92,7 @@ def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DE
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     b = m.buckling(f, si, thermal, inter)
+    _v.check_finite_output(m, f, {"buckling turns": b.turns}, allow_inf=True)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(b.turns, U.turn)
 
@@ -145,6 +146,7 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
     hp = m.points(N, F, si, thermal, inter, short)
+    _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
     msgs = (_v.force_messages(f) + _v.denaturation_messages(F, N) + inter.messages(si)
             + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
             + m.validity(N, F, hp, si, thermal))
@@ -163,12 +165,15 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
     ModelError
         For models without one free energy (the thermal ``"li-zhao"``
         construction).
+    ValueError, ValidityError
+        Turns not finite or empty; ``|N| > L / h`` (see :func:`hat_curve`).
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     n = _v.checked_turns(turns, si)
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
     g = m.free_energy(N, F, si, thermal, inter)
+    _v.check_finite_output(m, F, {"free energy": g}, N)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(np.asarray(g) * 1e21, U.pN_nm)
 
@@ -177,7 +182,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
               interaction=DEFAULT_INTERACTION):
     """Hat curves: extension, torque and phase versus turns at fixed forces.
 
-    Built exactly as MODEL.md section 6: stretched phase (torque
+    Built as docs/theory/li-zhao.md#hat-curve (default model): stretched phase (torque
     ``C_eff 2 pi N / L``, ``z = zeta L``), buckling where the torques match,
     plectoneme phase from the linking balance
     ``2 pi |N| = (C/C_eff) omega (L - S) + (omega + tau) S`` with
@@ -216,9 +221,17 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
 
     Raises
     ------
+    TypeError
+        ``dna`` not a DNA, ``thermal`` not True/False, turns or force not
+        real numbers (text, None, complex), a list mixing quantities and
+        plain numbers.
+    ValueError
+        Turns or force not finite; turns empty or not 1-D.
     NoEquilibriumError
         Naming the force, where no plectoneme equilibrium exists.
     ValidityError
+        ``|N|`` above the molecule's helical turns ``Lk0 = L / h`` (h = 3.57
+        nm, supercoiling density ``|sigma| > 1``), where no model applies;
         (thermal) naming force and torque where zeta's bracket is not positive:
         for the seed set in the plectoneme phase below 0.0954 pN, and above
         43.95 pN, where the plectoneme torque exceeds what the fluctuating tail

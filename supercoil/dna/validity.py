@@ -27,6 +27,7 @@ __all__ = [
     "OVERSTRETCHING_FORCE",
     "StateRecorder",
     "check_dna",
+    "check_finite_output",
     "checked_forces",
     "checked_turns",
     "denaturation_messages",
@@ -44,12 +45,27 @@ def check_dna(dna):
 
 
 def checked_forces(force, one_d=True):
-    """Force magnitudes in N (finite; 1-D if ``one_d``), ValueError naming ``force``."""
+    """Force magnitudes in N (finite, positive; 1-D if ``one_d``), errors naming ``force``.
+
+    Raises
+    ------
+    ValueError
+        Not finite; not 1-D (``one_d``).
+    NoEquilibriumError
+        A force <= 0 (a ValueError too): every DNA model describes a molecule
+        stretched by a positive tension (models differ in what else they need).
+    """
+    from supercoil.exceptions import NoEquilibriumError
+
     f = magnitude(force, U.N, "force")
     if np.iscomplexobj(f):
         raise TypeError("force must be real")
     if not np.all(np.isfinite(f)):
         raise ValueError(f"force must be finite, got {force}")
+    if np.any(f <= 0):
+        bad = float(np.asarray(f)[np.asarray(f) <= 0].flat[0])
+        raise NoEquilibriumError(f"no equilibrium at force {bad * 1e12:.6g} pN: the force "
+                                 "must be positive (a molecule stretched by a tension)")
     if one_d:
         f = np.atleast_1d(f)
         if f.ndim != 1:
@@ -94,6 +110,28 @@ def checked_turns(turns, dna):
             f"turns {n[big][0]:.6g}: |N| exceeds the molecule's helical turns Lk0 = L/h = "
             f"{lk0:.6g} (supercoiling density |sigma| > 1, h = 3.57 nm); no model applies")
     return n
+
+
+def check_finite_output(model, force, values, turns=None, allow_inf=False):
+    """ValidityError naming the model, force (and turns) where a model's output is not finite.
+
+    ``values`` maps output names to SI arrays of the shape of ``force``; the
+    models are expected to raise their own named errors first, so this is the
+    net under every model (a result never carries a silent NaN or inf).
+    ``allow_inf`` lets +-inf through (a buckling turns of inf: never buckles).
+    """
+    from supercoil.exceptions import ValidityError
+
+    for name, x in values.items():
+        x = np.asarray(x)
+        bad = np.isnan(x) if allow_inf else ~np.isfinite(x)
+        if x.dtype.kind == "f" and bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            at = f"force {np.asarray(force).flat[i] * 1e12:.6g} pN"
+            if turns is not None:
+                at += f", turns {np.asarray(turns).flat[i]:.6g}"
+            raise ValidityError(f"model {model.name!r} gives {name} = {x.flat[i]!r} at {at}: "
+                                "outside the model's range (no finite result)")
 
 
 def warn(messages, stacklevel=3):

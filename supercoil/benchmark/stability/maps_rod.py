@@ -84,14 +84,82 @@ def rough_reference(kind, alpha0, k, s, r, L, B, C):
     return y
 
 
+def _initial_problems(a0, n, r, L, B, C):
+    """[eq ini] backward error and the pi/4 guard for the returned alpha_0."""
+    from supercoil.core.rod import contact as sco
+
+    rhs = (C / B) * 4.0 * np.pi * r * n / L
+
+    def h_ini(a):
+        return float(sco.y_of_alpha(a) * np.sin(2 * a) - rhs * np.cos(2 * a))
+
+    problems = []
+    scale = abs(float(sco.y_of_alpha(a0) * np.sin(2 * a0))) + abs(rhs * np.cos(2 * a0))
+    if not root_ok(h_ini, a0, scale):
+        problems.append(f"[eq ini] not satisfied by alpha_0 = {a0!r}")
+    if np.cos(2 * a0) < sco.COS2A_MIN:
+        problems.append(f"alpha_0 = {a0!r} returned inside the pi/4 guard")
+    return problems
+
+
+def _point_problems(m, s_frac, num, finite, alpha, y, y_ref, bound):
+    """Accuracy problems of one profile point against the reference curve."""
+    from supercoil.core.rod import contact as sco
+
+    if not finite[m]:
+        bad = [c for c in num.columns if not np.isfinite(num[c].iloc[m])]
+        return [f"non-finite {', '.join(bad)} at s/s_max = {s_frac:.12g}"]
+    if not 0 < alpha[m] < np.pi / 4 or np.cos(2 * alpha[m]) < sco.COS2A_MIN:
+        return [f"alpha = {alpha[m]!r} outside (0, pi/4)"]
+    if abs(y[m] - y_ref[m]) > bound[m]:
+        return [f"y = 1 - cos 2 alpha = {y[m]:.12g} misses the reference {y_ref[m]:.12g} by "
+                f"{abs(y[m] - y_ref[m]):.2e} (tolerance {bound[m]:.2e})"]
+    return []
+
+
+def _point_flags(p, m, s_m, slip):
+    flags = []
+    if bool(p["curvature_error_flag"].iloc[m]):
+        e = abs(p["curvature_error"].iloc[m] - 1)
+        flags.append(f"curvature_error_flag (|e - 1| = {e:.3g})")
+    if slip is not None and s_m >= slip:
+        flags.append(f"slip (no-slip condition fails from s = {slip * 1e3:.6g} mm)")
+    return flags
+
+
+def _profile_column(rod, prof, warns, problems_row, ref, s, fr_in):
+    """Verdicts of the points of one profile (one twist load) against the reference."""
+    from supercoil.core.rod import rough as rh
+
+    u = prof.s_max._REGISTRY
+    si = rod.si
+    r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
+    kind, a0, k = ref
+    p = prof.profile
+    num = p.select_dtypes("number")
+    if rod.friction_coefficient is None:
+        num = num.drop(columns=["friction_torque_available"])
+    finite = np.isfinite(num.to_numpy(float)).all(axis=1)
+    alpha = p["alpha"].to_numpy()
+    with np.errstate(all="ignore"):
+        y = 2.0 * np.sin(alpha) ** 2
+        y_ref = rough_reference(kind, a0, k, s, r, L, B, C)
+        dyds = np.abs(rh.dy_ds(s, y_ref, np.full_like(s, k), r, L, B, C))
+        bound = ROUGH_TOL_Y + dyds * ROUGH_TOL_S * L
+    slip = None if prof.slip_onset is None else float(prof.slip_onset.m_as(u.m))
+    return [verdict(None, warns,
+                    problems_row + _point_problems(m, fr_in[m], num, finite, alpha, y, y_ref,
+                                                   bound),
+                    _point_flags(p, m, s[m], slip))
+            for m in range(s.size)]
+
+
 def rough_map(rod, method, k, quick):
     import supercoil as sc
-    from supercoil.core.rod import contact as sco
-    from supercoil.core.rod import rough as rh
 
     u = sc.ureg
     si = rod.si
-    r, L, B, C = si.radius, si.length, si.bending_rigidity, si.torsional_rigidity
+    r, L = si.radius, si.length
     # plus the paper's own twist loads (N r / L ~ 0.05-0.1: N = 30-60, r = 1 mm, L = 56.7 cm)
     loads = np.unique(np.concatenate([[0.0, 0.05, 0.1], log_grid(1e-9, 1e10, 7 if quick else 30)]))
     fr = end_fractions(quick)
@@ -108,55 +176,18 @@ def rough_map(rod, method, k, quick):
             continue
         a0 = float(res.alpha0.m_as(u.rad))
         s_max = float(res.s_max.m_as(u.m))
-        problems_row = []
-        rhs = (C / B) * 4.0 * np.pi * r * n / L
-
-        def h_ini(a, rhs=rhs):
-            return float(sco.y_of_alpha(a) * np.sin(2 * a) - rhs * np.cos(2 * a))
-
-        scale = abs(float(sco.y_of_alpha(a0) * np.sin(2 * a0))) + abs(rhs * np.cos(2 * a0))
-        if not root_ok(h_ini, a0, scale):
-            problems_row.append(f"[eq ini] not satisfied by alpha_0 = {a0!r}")
-        if np.cos(2 * a0) < sco.COS2A_MIN:
-            problems_row.append(f"alpha_0 = {a0!r} returned inside the pi/4 guard")
+        problems_row = _initial_problems(a0, n, r, L, si.bending_rigidity,
+                                         si.torsional_rigidity)
         inside = (fr < 1.0) | ((fr == 1.0) & (res.end == "s_stop"))
         s = fr[inside] * s_max
         prof, exc2, warns2 = call(lambda n=n, s=s: sc.rough_helix(rod, n, s=s * u.m, **kw))
         if prof is None:
             out[inside, i] = [verdict(exc2, warns2)] * int(inside.sum())
         else:
-            p = prof.profile
-            num = p.select_dtypes("number")
-            if rod.friction_coefficient is None:
-                num = num.drop(columns=["friction_torque_available"])
-            finite = np.isfinite(num.to_numpy(float)).all(axis=1)
-            alpha = p["alpha"].to_numpy()
-            with np.errstate(all="ignore"):
-                y = 2.0 * np.sin(alpha) ** 2
-                y_ref = rough_reference("closed_form" if ref_kind == "closed_form" else ref_kind,
-                                         a0, k, s, r, L, B, C)
-                dyds = np.abs(rh.dy_ds(s, y_ref, np.full_like(s, k), r, L, B, C))
-                bound = ROUGH_TOL_Y + dyds * ROUGH_TOL_S * L
-            slip = None if prof.slip_onset is None else float(prof.slip_onset.m_as(u.m))
-            rows = np.flatnonzero(inside)
-            for m, j in enumerate(rows):
-                problems = list(problems_row)
-                if not finite[m]:
-                    bad = [c for c in num.columns if not np.isfinite(num[c].iloc[m])]
-                    problems.append(f"non-finite {', '.join(bad)} at s/s_max = {fr[j]:.12g}")
-                elif not 0 < alpha[m] < np.pi / 4 or np.cos(2 * alpha[m]) < sco.COS2A_MIN:
-                    problems.append(f"alpha = {alpha[m]!r} outside (0, pi/4)")
-                elif abs(y[m] - y_ref[m]) > bound[m]:
-                    problems.append(f"y = 1 - cos 2 alpha = {y[m]:.12g} misses the reference "
-                                    f"{y_ref[m]:.12g} by {abs(y[m] - y_ref[m]):.2e} "
-                                    f"(tolerance {bound[m]:.2e})")
-                flags = []
-                if bool(p["curvature_error_flag"].iloc[m]):
-                    flags.append(f"curvature_error_flag (|e - 1| = "
-                                 f"{abs(p['curvature_error'].iloc[m] - 1):.3g})")
-                if slip is not None and s[m] >= slip:
-                    flags.append(f"slip (no-slip condition fails from s = {slip * 1e3:.6g} mm)")
-                out[j, i] = verdict(None, warns2, problems, flags)
+            cells = _profile_column(rod, prof, warns2, problems_row, (ref_kind, a0, k), s,
+                                    fr[inside])
+            for j, cell in zip(np.flatnonzero(inside), cells, strict=True):
+                out[j, i] = cell
         for j in np.flatnonzero(~inside):
             sj = fr[j] * s_max
             _, e3, w3 = call(lambda n=n, sj=sj: sc.rough_helix(rod, n, s=[sj] * u.m, **kw))

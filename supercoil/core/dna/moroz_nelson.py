@@ -34,8 +34,15 @@ __all__ = [
 
 def twist_rigidity_ratio(force, B, C, kT):
     """``C / C_eff = 1 + C kT / (4 B sqrt(B T))`` (> 1)."""
-    # sqrt(B) sqrt(T), not sqrt(B T): the product underflows for T below ~1e-280 N
-    return 1.0 + C * kT / (4.0 * B * np.sqrt(B) * np.sqrt(np.asarray(force, float)))
+    f = np.asarray(force, float)
+    with np.errstate(divide="ignore", over="ignore", under="ignore"):
+        bt = B * f
+        ratio = 1.0 + C * kT / (4.0 * B * np.sqrt(bt))
+        # T below ~1e-280 N: B T underflows; sqrt(B) sqrt(T) stays exact there
+        tiny = bt < np.finfo(float).tiny
+        if np.any(tiny):
+            ratio = np.where(tiny, 1.0 + C * kT / (4.0 * B * np.sqrt(B) * np.sqrt(f)), ratio)
+    return ratio
 
 
 def effective_twist_rigidity(force, B, C, kT):

@@ -52,6 +52,20 @@ class LiZhao(DNAModel):
             turns, force, *self._args(dna), thermal=thermal, short_tail_length=short_tail_length,
             equilibrium_solver=lambda f: interaction.equilibrium(f, dna))
 
+    def free_energy(self, turns, force, dna, thermal, interaction):
+        """Not available: raises :class:`~supercoil.exceptions.ModelError` (see the class docs)."""
+        from supercoil.exceptions import ModelError
+
+        if thermal:
+            raise ModelError("model 'li-zhao' with thermal=True is not derived from one free "
+                             "energy (its extension and torque violate the Maxwell relation, "
+                             "docs/theory/free-energy.md#maxwell), so it has none; use "
+                             "model='free-energy'")
+        raise ModelError("model 'li-zhao' with thermal=False gives no free energy: up to full "
+                         "coiling it is exactly model='free-energy', thermal=False (use that), "
+                         "and once fully coiled it holds the plateau torque, which no free "
+                         "energy does")
+
     def slope_validity(self, force, torque, dna):
         """Messages where the long-tail factor of zeta at the plectoneme torque fails."""
         Q = _mn.zeta_bracket(force, torque, dna.bending_rigidity, dna.kT)
