@@ -18,11 +18,13 @@ from concurrent.futures import Future, as_completed
 
 import numpy as np
 
+from supercoil._checks import check_material
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.fit import DEFAULT_VARY, FitSpec, emit, prepare, run_fit
 from supercoil.dna.fitting.prepare import strip_molecule_keys
 from supercoil.dna.fitting.progress import Progress
 from supercoil.dna.interactions import DEFAULT_INTERACTION
+from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
@@ -203,6 +205,7 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         Only for problems common to all molecules (malformed table, unknown
         parameter names); failures of single fits are reported in the table.
     """
+    check_material(dna, DNA, "dna")
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
     whole = RotationData.from_frame(data)
     if sigma is not None:

@@ -21,7 +21,7 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
-from supercoil._checks import check_flag
+from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting.covariance import covariance
@@ -31,6 +31,7 @@ from supercoil.dna.fitting.parameters import FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
+from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
 from supercoil.exceptions import (
     BoundWarning,
@@ -84,6 +85,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
     fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
+    check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     inter.check(dna.si)
     if rotation is None:
@@ -465,6 +467,7 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     Model and interaction parameters held fixed must be set on the model or
     interaction instance passed to the fit.
     """
+    check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
     return build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag
+from supercoil._checks import check_flag, check_material
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
+from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
 from supercoil.dna.models.li_zhao import LiZhao
 from supercoil.exceptions import FitError
@@ -38,8 +39,8 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     from supercoil.core.dna.hat import hat_parameters
 
     thermal = check_flag(thermal, "thermal")
+    si = check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
-    si = dna.si
     F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
     lmin = 4 * si.bending_persistence if min_tail is None else float(
         magnitude(min_tail, U.m, "min_tail"))
@@ -71,6 +72,29 @@ def _offsets(turns_offset, extension_offset, n):
         extension_offset if extension_offset is not None else 0 * U.nm, U.m,
         "extension_offset"), dtype=float), (n,))
     return n0, z0
+
+
+#: units of the simulated extension column and their factor from metres
+_EXTENSION_FACTORS = {"um": 1e6, "nm": 1e9}
+
+
+def _torque_sd(torque_noise):
+    """The torque noise (N m) or None; FitError unless finite and >= 0."""
+    if torque_noise is None:
+        return None
+    sd_t = float(magnitude(torque_noise, U.N * U.m, "torque_noise"))
+    if not (np.isfinite(sd_t) and sd_t >= 0):
+        raise FitError(f"torque_noise must be finite and >= 0, got {sd_t * 1e21:g} pN nm")
+    return sd_t
+
+
+def _add_torque(table, units, torques, sd_t, sigma_column):
+    """The ``torque`` (and ``torque_sigma``) columns, pN nm."""
+    table["torque"] = np.concatenate(torques)
+    units["torque"] = "pN nm"
+    if sigma_column:
+        table["torque_sigma"] = np.full(len(table["force"]), sd_t * 1e21)
+        units["torque_sigma"] = "pN nm"
 
 
 def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, noise=None,
@@ -122,14 +146,17 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     """
     thermal = check_flag(thermal, "thermal")
     sigma_column = check_flag(sigma_column, "sigma_column")
+    check_material(dna, DNA, "dna")
+    if extension_unit not in _EXTENSION_FACTORS:
+        raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
+                       f"{extension_unit!r}")
     m, inter = resolve_model(model, interaction)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
     sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
-    sd_t = None if torque_noise is None else float(magnitude(torque_noise, U.N * U.m,
-                                                             "torque_noise"))
-    if sd_t is not None and not (np.isfinite(sd_t) and sd_t >= 0):
-        raise FitError(f"torque_noise must be finite and >= 0, got {sd_t * 1e21:g} pN nm")
+    if not (np.isfinite(sd) and sd >= 0):
+        raise FitError(f"noise must be finite and >= 0, got {sd * 1e9:g} nm")
+    sd_t = _torque_sd(torque_noise)
     labels, has_mol = _labels(molecules)
     n0, z0 = _offsets(turns_offset, extension_offset, len(labels))
     if turns is None:
@@ -138,7 +165,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         grids = [np.linspace(-x, x, points_per_force) for x in nmax]
     else:
         grids = [np.asarray(as_turns(turns, "turns"), dtype=float)] * len(F)
-    factor = {"um": 1e6, "nm": 1e9}[extension_unit]
+    factor = _EXTENSION_FACTORS[extension_unit]
     N = np.concatenate(grids)
     FF = np.concatenate([np.full(len(g), f) for g, f in zip(grids, F, strict=True)])
     mol, Fs, Ns, Zs, Ts = [], [], [], [], []
@@ -161,11 +188,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         table["sigma"] = np.full(len(table["force"]), sd * 1e9)
         units["sigma"] = "nm"
     if sd_t is not None:
-        table["torque"] = np.concatenate(Ts)
-        units["torque"] = "pN nm"
-        if sigma_column:
-            table["torque_sigma"] = np.full(len(table["force"]), sd_t * 1e21)
-            units["torque_sigma"] = "pN nm"
+        _add_torque(table, units, Ts, sd_t, sigma_column)
     prov = provenance(
         dna, simulated=True, noise=f"{sd * 1e9:.6g} nm", seed=seed if isinstance(seed, int)
         else None, turns_offset=[float(v) for v in n0],
