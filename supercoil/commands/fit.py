@@ -139,8 +139,8 @@ def _bounds(items):
         if not sep:
             raise argparse.ArgumentTypeError(f"--bound {name}={value}: expected LO:HI")
         out[name] = (
-            _parse_quantity(lo, f"lower bound of {name}") if lo.strip() else None,
-            _parse_quantity(hi, f"upper bound of {name}") if hi.strip() else None,
+            _parse_quantity(lo, f"--bound {name} (lower)") if lo.strip() else None,
+            _parse_quantity(hi, f"--bound {name} (upper)") if hi.strip() else None,
         )
     return out
 
@@ -156,10 +156,10 @@ def run(args) -> int:
     from supercoil.tables import write_csv
 
     try:
-        fixed = {k: _parse_quantity(v, k) for k, v in args.fix}
-        start = {k: _parse_quantity(v, k) for k, v in args.start}
+        fixed = {k: _parse_quantity(v, f"--fix {k}") for k, v in args.fix}
+        start = {k: _parse_quantity(v, f"--start {k}") for k, v in args.start}
         bounds = _bounds(args.bound)
-        sigma = _parse_quantity(args.sigma, "sigma") if args.sigma else None
+        sigma = _parse_quantity(args.sigma, "--sigma") if args.sigma else None
         if args.jobs < 1:
             raise argparse.ArgumentTypeError(f"--jobs must be at least 1, got {args.jobs}")
     except argparse.ArgumentTypeError as exc:

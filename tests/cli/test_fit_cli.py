@@ -152,6 +152,12 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
     assert main(["fit", str(path), "--vary", "radius", "--start", "length=700nm",
                  "--out", out]) == 2
     assert "--start given for 'length'" in capsys.readouterr().err
+    # issue 15: values that do not parse name their flag
+    for flag, item in (("--fix", "length=abc"), ("--start", "radius=1 parsec/"),
+                       ("--bound", "radius=x:3nm"), ("--sigma", "5 blorp")):
+        assert main(["fit", str(path), flag, item, "--out", out]) == 2
+        err = capsys.readouterr().err
+        assert f"cannot read {flag}" in err, (flag, err)
 
 
 def test_fit_command_reports_a_molecule_whose_parameters_are_not_determined(
