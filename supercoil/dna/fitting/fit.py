@@ -24,6 +24,7 @@ from scipy.optimize import least_squares
 from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
+from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.model import HatCurveModel, guess_turns_center
@@ -194,69 +195,6 @@ def _solve(spec, prob, u0):
     return res
 
 
-def channel_noise(prob, u, nparams):
-    """Residual RMS of each channel (SI) with the degrees of freedom shared by point count.
-
-    ``sqrt(sum r_c^2 / (n_c - p n_c / n))`` for channel c with n_c of the n
-    points and p free parameters (docs/theory/fitting.md#joint-torque-fit).
-    """
-    d = prob.predicted(u) - prob.observed
-    n = len(d)
-    out = []
-    for part in (d[: prob.n_ext], d[prob.n_ext:]):
-        dof = len(part) * (1.0 - nparams / n)
-        out.append(float(np.sqrt(part @ part / dof)) if len(part) else float("nan"))
-    return out
-
-
-def _joint_noise(spec, prob, res):
-    """Re-solve with the noise estimates of the channels without sigmas until they settle.
-
-    Extension-only fits need none of this (the covariance is rescaled by the
-    noise); with torque each channel without sigmas gets its own weight, its
-    residual RMS (at most 6 re-solves, to 0.1 %).
-    """
-    data = spec.data
-    est_z, est_t = data.weighting == "unit", data.torque_weighting == "unit"
-    noise = {}
-    if not data.has_torque or not (est_z or est_t):
-        return res, noise
-    nfev = res.nfev
-    for _ in range(6):
-        sz, st = channel_noise(prob, res.x, len(res.x))
-        old = dict(noise)
-        if est_z:
-            noise["extension"] = max(sz, 1e-15)
-            prob.set_extension_sigma(noise["extension"])
-        if est_t:
-            noise["torque"] = max(st, 1e-27)
-            prob.set_torque_sigma(noise["torque"])
-        res = _solve(spec, prob, res.x)
-        nfev += res.nfev
-        if old and all(abs(noise[k] / old[k] - 1) < 1e-3 for k in noise):
-            break
-    res.nfev = nfev  # all solves
-    return res, noise
-
-
-def _channels_info(spec, prob, u, noise):
-    """Per-channel statistics: points, chi-square, residual RMS (SI), weighting, noise."""
-    r = prob.residual(u)
-    d = prob.predicted(u) - prob.observed
-    n, p = len(r), len(u)
-    info = {}
-    names = ("extension", "torque") if spec.data.has_torque else ("extension",)
-    for c, name in enumerate(names):
-        sl = slice(c * prob.n_ext, (c + 1) * prob.n_ext)
-        nc = prob.n_ext
-        weighting = spec.data.weighting if c == 0 else spec.data.torque_weighting
-        info[name] = {"n": nc, "chi_square": float(r[sl] @ r[sl]),
-                      "dof": nc * (1.0 - p / n),
-                      "rms": float(np.sqrt(d[sl] @ d[sl] / (nc * (1.0 - p / n)))),
-                      "weighting": weighting, "noise": noise.get(name)}
-    return info
-
-
 def run_fit(spec: FitSpec) -> dict:
     """Run one fit on a prepared spec; a dict of plain data (picklable), warnings as records."""
     t0 = time.perf_counter()
@@ -266,14 +204,14 @@ def run_fit(spec: FitSpec) -> dict:
     u0 = _start_vector(spec.params)
     start = u0 * spec.params.scales
     res = _solve(spec, prob, u0)
-    res, noise = _joint_noise(spec, prob, res)
+    res, noise = joint_noise(spec, prob, res, _solve)
     u = res.x
     J = prob.jacobian(u)
     r = prob.residual(u)
     n = len(r)
     chi2 = float(r @ r)
     nfree = n - len(u)
-    channels = _channels_info(spec, prob, u, noise)
+    channels = channels_info(spec, prob, u, noise)
     cov_u, undetermined, note = covariance(J, prob.names)
     records = [("FitWarning", note)] if note else []
     if spec.data.weighting == "unit" and not spec.data.has_torque:
@@ -289,7 +227,7 @@ def run_fit(spec: FitSpec) -> dict:
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
     records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
-    gof, gof_info = _diag.goodness_messages(spec.data.weighting, *_tested_chi2(channels, nfree),
+    gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
     return {
@@ -308,16 +246,6 @@ def run_fit(spec: FitSpec) -> dict:
         "channels": channels,
         "seconds": time.perf_counter() - t0,
     }
-
-
-def _tested_chi2(channels, nfree):
-    """Chi-square and degrees of freedom of the channels with stated sigmas (the test's)."""
-    given = [c for c in channels.values() if c["weighting"] != "unit"]
-    if len(given) == len(channels):
-        return sum(c["chi_square"] for c in given), nfree
-    if not given:
-        return sum(c["chi_square"] for c in channels.values()), nfree
-    return sum(c["chi_square"] for c in given), sum(c["dof"] for c in given)
 
 
 def _bound_records(params, u):
@@ -386,6 +314,10 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     data : pandas.DataFrame
         Long table as :func:`read_tweezers_csv` returns: ``force``, ``turns``,
         ``extension``, optional ``molecule`` and ``sigma`` (``attrs["units"]``).
+        With a ``torque`` column (optional ``torque_sigma``) extension and
+        torque are fitted jointly, each channel with its stated sigmas or its
+        own noise estimate (docs/theory/fitting.md#joint-torque-fit);
+        :attr:`FitResult.channels` has each channel's statistics.
     dna : DNA
         Start values of the varied parameters, values of all others.
     vary : sequence of str

@@ -84,14 +84,19 @@ class FitResult:
         1 nm, so they are the sum of squared residuals and the residual
         variance in nm^2 (not a goodness of fit; the report then shows
         :attr:`residual_rms`). Always ``chi_square / nfree == reduced_chi_square``.
+        A joint extension + torque fit sums both channels, each weighted by
+        its sigmas or its own noise estimate (then ``chi_square`` is about
+        ``nfree``; see :attr:`channels`).
     residual_rms : pint.Quantity
-        ``sqrt(sum((data - model)^2) / nfree)`` (nm): with unit weights the
-        estimate of the extension noise, by which the errors are scaled.
+        ``sqrt(sum((data - model)^2) / nfree)`` (nm) of the extensions (in a
+        joint fit with the extension channel's share of ``nfree``): with unit
+        weights the estimate of the extension noise, by which the errors are scaled.
     goodness : dict
         The goodness-of-fit test that applies (``"chi-square"`` with sigmas,
         ``"runs"`` with unit weights) and its ``p_value``.
     ndata, nfree, nfev : int
-        Data points, degrees of freedom, model evaluations.
+        Data points (extensions plus torques in a joint fit), degrees of
+        freedom, model evaluations (of all re-solves in a joint fit).
     weighting : str
         ``"sigma column"``, ``"sigma argument"`` or ``"unit"``.
     residuals, best_fit : pint.Quantity
