@@ -56,9 +56,12 @@ def _controller():
     """This process's threadpoolctl controller, made once: the library scan of a fresh
     ``threadpool_limits`` costs ~6 ms (half a fit), a cached controller's limit 0.1 ms."""
     if not _CONTROLLER:
-        from threadpoolctl import ThreadpoolController
-
-        _CONTROLLER.append(ThreadpoolController())
+        try:
+            from threadpoolctl import ThreadpoolController
+        except ImportError:  # not a dependency: without it BLAS keeps its threads
+            _CONTROLLER.append(None)
+        else:
+            _CONTROLLER.append(ThreadpoolController())
     return _CONTROLLER[0]
 
 
@@ -76,8 +79,9 @@ def _fit_worker(task, parent_pid=None, settings=None):
         if spec.data.n - n_free <= 0:
             raise FitError(f"{spec.data.n} data points cannot determine {n_free} free "
                            "parameters")
-        if parent_pid is not None and os.getpid() != parent_pid:
-            with _controller().limit(limits=1):
+        controller = _controller() if parent_pid not in (None, os.getpid()) else None
+        if controller is not None:
+            with controller.limit(limits=1):
                 core = run_fit(spec)
         else:  # serial or a thread: do not change the process-wide BLAS threads
             core = run_fit(spec)
