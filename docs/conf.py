@@ -38,8 +38,9 @@ extensions = [
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 # The generated fragments are included by api.rst and theory/index.md, not pages of their own.
+# docs/generated/ holds the README's generated blocks (`supercoil docs figures`), not pages.
 exclude_patterns = ["_build", "**/.ipynb_checkpoints", "_generated/api_names.rst",
-                    "_generated/theory_toctree.md"]
+                    "_generated/theory_toctree.md", "generated/**"]
 root_doc = "index"
 
 # MyST: $...$ / $$...$$ math, heading anchors (docs/theory/li-zhao.md#slope links

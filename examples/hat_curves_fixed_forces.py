@@ -1,6 +1,6 @@
 """The paper's DNA figure: hat curves of a 750 nm DNA at 0.4, 1.2 and 3.0 pN.
 
-Example III of Li, Zhao et al. (MODEL.md section 6): extension versus the
+Example III of Li, Zhao et al. (docs/theory/li-zhao.md): extension versus the
 supercoiling degree eta = 2 pi N xi_T / L and versus turns N, and torque
 versus N, for the seed parameter set. Solid lines: with the Moroz-Nelson
 thermal corrections; dashed: the athermal variant (C_eff = C, zeta = 1; the

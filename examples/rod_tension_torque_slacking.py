@@ -5,7 +5,7 @@ the silicone rubber values E = 4.20 MPa, G = 1.51 MPa, mu = 0.5). Rough rod,
 k = 0: tension [eq tension] and torque ``C omega(S/2)`` versus slack S; the
 smooth-rod (Case I) prediction at the same (N, S) is drawn for comparison.
 The model has no loop at the head, so the measured drop of T at S ~ 1 cm
-(buckling) is not in it (MODEL.md s.7).
+(buckling) is not in it (docs/theory/limits.md#not-modelled).
 
     python examples/rod_tension_torque_slacking.py --out OUT [--quick]
 """

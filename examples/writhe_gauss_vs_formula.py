@@ -1,6 +1,6 @@
 """Writhe of a double helix: Gauss double integral vs the formula vs the one-view count.
 
-MODEL.md section 1 gives ``Wr = (2/2pi) int tau ds``: 2 cos(alpha) per
+docs/theory/geometry.md gives ``Wr = (2/2pi) int tau ds``: 2 cos(alpha) per
 superhelical turn. This script builds discretised double helices (two strands
 joined at the head, closed far away), computes their writhe by the exact
 polygon Gauss integral, and tabulates it against the formula and the one-view

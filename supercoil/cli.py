@@ -21,7 +21,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="supercoil",
         description="Double helices of twisted filaments: rubber rods and DNA plectonemes "
-        "(Li, Zhao et al.; see MODEL.md).",
+        "(Li, Zhao et al.; theory in docs/theory/index.md).",
     )
     parser.add_argument("--version", action="version", version=f"supercoil {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -33,7 +33,11 @@ def build_parser() -> argparse.ArgumentParser:
                 continue  # subcommand not built yet
             raise
         module.register(sub)
-    return parser
+    from supercoil.commands._common import allow_negative_values
+
+    # "--turns -20:20:0.1" and "--turns=-20:20:0.1" mean the same (argparse alone would
+    # take "-20:20:0.1" for an option)
+    return allow_negative_values(parser)
 
 
 def main(argv=None) -> int:

@@ -372,7 +372,6 @@ def test_fitting_functions_name_a_rod_passed_as_dna(which):
         call()  # main: AttributeError 'RodSI' object has no attribute 'bending_persistence'
 
 
-@pytest.mark.xfail(strict=True, reason="rough helper")
 @pytest.mark.parametrize("material", [None, DNA])
 def test_rough_helix_names_a_wrong_material(material):
     with pytest.raises(TypeError, match=r"rod must be a supercoil\.ElasticRod"):

@@ -2,6 +2,8 @@
 
     supercoil docs build [--out DIR] [--source DIR]   # sphinx-build -W -b html (docs extra)
     supercoil docs dataset [NAME] [--out DIR]         # NAME.csv from supercoil.datasets
+    supercoil docs figures [--quick] [--skip-bench]   # rerun the scripts behind the docs'
+                                                      # numbers and figures (docs_figures)
 
 ``build`` needs the documentation extra (``pip install '.[docs]'``) and a source
 checkout (the ``docs/`` folder next to the package, or ``--source``); it builds
@@ -28,6 +30,9 @@ def register(sub):
     d = actions.add_parser("dataset", help="write a shipped sample data set as CSV")
     d.add_argument("name", nargs="?", help="data set name; omit to list them")
     d.add_argument("--out", default=".", help="output folder (default: .)")
+    from supercoil.commands import docs_figures
+
+    docs_figures.add_parser(actions)
     p.set_defaults(func=run, _parser=p)
 
 
@@ -36,6 +41,10 @@ def run(args) -> int:
         return _build(args)
     if args.action == "dataset":
         return _dataset(args)
+    if args.action == "figures":
+        from supercoil.commands import docs_figures
+
+        return docs_figures.run(args)
     args._parser.print_help()
     return 0
 

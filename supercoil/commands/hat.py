@@ -4,25 +4,42 @@ Example::
 
     supercoil hat --params dna --force 0.4pN --force 1.2pN --turns=-20:20:0.1 --out DIR
 
-writes ``DIR/hat_curve.csv`` (units in the headers, provenance in ``#`` lines)
-and ``DIR/hat_curve.png``. Forces and lengths are read with their units by
-:data:`supercoil.ureg`. With no option, the seed DNA set at 0.4, 1.2 and
-3.0 pN (the paper's DNA figure) is computed.
+writes ``DIR/hat_curve.csv`` (units in the headers, provenance in ``#`` lines),
+``DIR/buckling.csv`` (buckling turns, buckling torque and post-buckling slope per
+force; docs/theory/models.md#buckling) and ``DIR/hat_curve.png``. Forces and lengths
+are read with their units by :data:`supercoil.ureg`; ``--turns -20:20:0.1`` and
+``--turns=-20:20:0.1`` are the same.
+
+With no option (the main job), the seed DNA set is computed at 0.4, 1.2 and 3.0 pN
+(the paper's DNA figure): from -40 to 40 turns at 0.4 pN, and from 0 to 40 turns at
+the forces above 0.8 pN, where real DNA melts under negative supercoiling
+(docs/theory/limits.md) and the model, which ignores melting, would have to warn.
+Warnings of a run the user asked for are printed once each, in plain words.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-import warnings
 
 import numpy as np
 
+from supercoil.core.dna.hat import DENATURATION_FORCE
+
 DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
+#: default turns at forces up to DENATURATION_PN, and above it (positive turns only: real
+#: DNA melts under negative supercoiling there and the model ignores it, so the default
+#: job computes no point that it would have to warn about)
 DEFAULT_TURNS = "-40:40:0.1"
+DEFAULT_TURNS_HIGH_FORCE = "0:40:0.1"
+DENATURATION_PN = DENATURATION_FORCE * 1e12  # 0.8 pN
+#: what to do when the denaturation warning is shown (the user asked for those points)
+DENATURATION_HINT = "give --turns=0:40 to compute positive turns only"
 
 
-def _quantity(kind, unit_name):
+def _quantity(kind, unit_name, allow_zero=False):
+    """An argparse type: a pint quantity of dimension ``unit_name``; lengths positive."""
+
     def parse(text):
         import pint
 
@@ -33,12 +50,16 @@ def _quantity(kind, unit_name):
         except Exception as exc:  # pint raises several parser errors
             raise argparse.ArgumentTypeError(f"cannot read {kind} {text!r}: {exc}") from None
         try:
-            magnitude(q, getattr(U, unit_name), kind)
+            value = magnitude(q, getattr(U, unit_name), kind)
         except pint.DimensionalityError:
             raise argparse.ArgumentTypeError(
                 f"{kind} {text!r} is not a {kind} (give a unit, e.g. "
                 f"{'0.4pN' if kind == 'force' else '750nm'})"
             ) from None
+        if kind == "length" and not (np.isfinite(value) and (value > 0 or
+                                                             (allow_zero and value == 0))):
+            raise argparse.ArgumentTypeError(
+                f"length {text!r} must be {'>= 0' if allow_zero else 'positive'} and finite")
         return q
 
     return parse
@@ -46,27 +67,9 @@ def _quantity(kind, unit_name):
 
 def parse_turns(text):
     """``start:stop:step`` (both ends included), ``start:stop`` (step 0.1), or ``a,b,c``."""
-    try:
-        if ":" in text:
-            parts = [float(p) for p in text.split(":")]
-            if len(parts) == 2:
-                parts.append(0.1)
-            if len(parts) != 3:
-                raise ValueError
-            start, stop, step = parts
-            if not (step > 0 and stop >= start and np.isfinite([start, stop, step]).all()):
-                raise ValueError
-            n = int(np.floor((stop - start) / step + 1e-9)) + 1
-            return start + step * np.arange(n)
-        values = np.array([float(p) for p in text.split(",")])
-        if not np.isfinite(values).all():
-            raise ValueError
-        return values
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"turns {text!r}: expected start:stop:step with step > 0 and stop >= start, "
-            "or a comma-separated list"
-        ) from None
+    from supercoil.commands._common import parse_range
+
+    return parse_range(text, "--turns")
 
 
 def register(sub):
@@ -83,13 +86,16 @@ def register(sub):
                    help="a force with its unit, e.g. 0.4pN; repeat for several "
                    f"(default: {', '.join(DEFAULT_FORCES)})")
     p.add_argument("--turns", type=parse_turns, default=None,
-                   help=f"turns as start:stop:step (default {DEFAULT_TURNS}); "
-                   "write --turns=-20:20:0.1 for a negative start")
+                   help="turns as start:stop:step, start:stop (step 0.1) or a,b,c; "
+                   "--turns -20:20:0.1 and --turns=-20:20:0.1 are the same (default: "
+                   f"{DEFAULT_TURNS} at forces <= {DENATURATION_PN:g} pN, "
+                   f"{DEFAULT_TURNS_HIGH_FORCE} above, where real DNA melts under negative "
+                   "turns)")
     p.add_argument("--length", type=_quantity("length", "m"), default=None,
                    help="override the contour length L, e.g. 750nm")
-    p.add_argument("--short-tail", type=_quantity("length", "m"), default=None,
+    p.add_argument("--short-tail", type=_quantity("length", "m", allow_zero=True), default=None,
                    help="tail length below which points are flagged short_tail "
-                   "(default: 3 bending persistence lengths)")
+                   "(default: 3 bending persistence lengths; 0: flag none)")
     p.add_argument("--athermal", action="store_true",
                    help="no Moroz-Nelson corrections (C_eff = C, zeta = 1)")
     p.add_argument("--model", default="li-zhao", metavar="NAME",
@@ -100,7 +106,7 @@ def register(sub):
                    "Marko-Siggia w, default), screened (Debye-Hueckel with salt; needs a "
                    "parameter set with 'salt', e.g. --params dna_150mM_nacl) or any "
                    "registered interaction; models without a plectoneme take none")
-    p.add_argument("--out", default="hat_out", help="output folder (default: hat_out)")
+    p.add_argument("--out", default="hat_out", help="output folder (default: %(default)s)")
     p.add_argument("--no-plot", action="store_true", help="write only the CSV")
     p.set_defaults(func=run)
 
@@ -135,12 +141,60 @@ def _interaction_arg(args):
     return args.interaction
 
 
+def _curves(dna, force, turns, thermal, short_tail, mi):
+    """The hat-curve table; ``turns=None``: the default turns per force (see DEFAULT_TURNS)."""
+    import pandas as pd
+
+    from supercoil.dna.hat import hat_curve
+
+    if turns is not None:
+        return hat_curve(dna, force, turns, thermal=thermal, short_tail_length=short_tail,
+                         **mi)
+    low = force.m_as("N") <= DENATURATION_FORCE  # the library's own test, in SI
+    parts = [hat_curve(dna, force[mask], parse_turns(grid), thermal=thermal,
+                       short_tail_length=short_tail, **mi)
+             for mask, grid in ((low, DEFAULT_TURNS), (~low, DEFAULT_TURNS_HIGH_FORCE))
+             if mask.any()]
+    df = pd.concat(parts, ignore_index=True).sort_values(["force", "turns"], kind="stable")
+    df = df.reset_index(drop=True)
+    df.attrs = {"units": dict(parts[0].attrs["units"]),
+                "provenance": dict(parts[0].attrs["provenance"])}
+    df.attrs["provenance"]["turns"] = (f"{DEFAULT_TURNS} at forces <= {DENATURATION_PN:g} pN, "
+                                       f"{DEFAULT_TURNS_HIGH_FORCE} above (the default)")
+    return df
+
+
+def _buckling_table(dna, force, thermal, mi, provenance_dict):
+    """Buckling turns, buckling torque and post-buckling slope per force (a convention table).
+
+    The torque is the model's torque at buckling (``DNAModel.buckling``;
+    docs/theory/models.md#buckling): for li-zhao the plectoneme torque.
+    """
+    from supercoil.dna.hat import buckling_turns, post_buckling_slope, resolve
+    from supercoil.tables import make_table
+
+    nb = buckling_turns(dna, force, thermal=thermal, **mi).m_as("turn")
+    slope = post_buckling_slope(dna, force, thermal=thermal, **mi).m_as("nm/turn")
+    si, f, thermal, m, inter = resolve(dna, force, thermal, mi["model"], mi["interaction"])
+    torque = m.buckling(f, si, thermal, inter).torque * 1e21
+    return make_table({"force": force.m_as("pN"), "buckling_turns": nb,
+                       "buckling_torque": torque, "post_buckling_slope": slope},
+                      {"force": "pN", "buckling_turns": "turn", "buckling_torque": "pN nm",
+                       "post_buckling_slope": "nm/turn"}, provenance_dict)
+
+
+def _print_warnings(messages):
+    """Each warning once, in plain words, with what to do about the denaturation one."""
+    for text in messages:
+        hint = f"; {DENATURATION_HINT}" if "denatur" in text else ""
+        print(f"supercoil hat: note: {text}{hint}", file=sys.stderr)
+
+
 def run(args) -> int:
     from pathlib import Path
 
-    from supercoil.dna.hat import buckling_turns, hat_curve, plot_hat_curves, post_buckling_slope
+    from supercoil.commands._common import plain_warnings
     from supercoil.dna.material import DNA
-    from supercoil.dna.plectoneme import plectoneme_equilibrium
     from supercoil.exceptions import ParameterError
     from supercoil.parameters import load_parameters
     from supercoil.tables import write_csv
@@ -157,39 +211,34 @@ def run(args) -> int:
         dna = dna.replace(length=args.length)
     forces = args.force or [ureg.Quantity(f) for f in DEFAULT_FORCES]
     force = ureg.Quantity(np.array([f.m_as("pN") for f in forces]), "pN")
-    turns = args.turns if args.turns is not None else parse_turns(DEFAULT_TURNS)
     thermal = not args.athermal
     mi = {"model": args.model, "interaction": _interaction_arg(args)}
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        df = hat_curve(dna, force, turns, thermal=thermal, short_tail_length=args.short_tail,
-                       **mi)
-        nb = buckling_turns(dna, force, thermal=thermal, **mi).magnitude
-        slope = post_buckling_slope(dna, force, thermal=thermal, **mi).magnitude
-    for w in caught:
-        print(f"supercoil hat: warning: {w.message}", file=sys.stderr)
+
+    def compute():
+        df = _curves(dna, force, args.turns, thermal, args.short_tail, mi)
+        return df, _buckling_table(dna, force, thermal, mi, df.attrs["provenance"])
+
+    (df, buckling), messages = plain_warnings(compute)
+    _print_warnings(messages)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     csv = write_csv(df, out / "hat_curve.csv")
-    print(f"wrote {csv} ({len(df)} rows; model {args.model})")
+    write_csv(buckling, out / "buckling.csv")
+    print(f"wrote {csv} ({len(df)} rows; model {args.model}) and {out / 'buckling.csv'}")
     if not args.no_plot:
         import matplotlib
 
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
+        from supercoil.dna.plot import plot_hat_curves
+
         fig = plot_hat_curves(df, out / "hat_curve.png")
         plt.close(fig)
         print(f"wrote {out / 'hat_curve.png'}")
-    print(f"{'force [pN]':>10} {'N_b':>8} {'plectoneme torque [pN nm]':>26} "
+    print(f"{'force [pN]':>10} {'N_b':>8} {'buckling torque [pN nm]':>24} "
           f"{'dz/dN [nm/turn]':>16}")
-    torque_p = np.full(len(nb), np.nan)
-    if mi["interaction"] is not None:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # already reported above
-            torque_p = plectoneme_equilibrium(dna, force, interaction=mi["interaction"]
-                                              ).torque.m_as("pN nm")
-    for f, n, m, s in zip(force.magnitude, nb, torque_p, slope, strict=True):
-        torque = f"{m:26.4g}" if np.isfinite(m) else f"{'- (no plectoneme helix)':>26}"
-        print(f"{f:10.4g} {n:8.4g} {torque} {s:16.4g}")
+    for row in buckling.itertuples(index=False):
+        print(f"{row.force:10.4g} {row.buckling_turns:8.4g} {row.buckling_torque:24.4g} "
+              f"{row.post_buckling_slope:16.4g}")
     return 0

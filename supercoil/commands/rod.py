@@ -25,13 +25,15 @@ def register(sub):
     p = sub.add_parser(
         "rod",
         help="double helix of a twisted elastic rod (smooth or rough surface)",
-        description="Double helix of a rod twisted by N turns and slacked (MODEL.md s.3-4). "
+        description="Double helix of a rod twisted by N turns and slacked "
+        "(docs/theory/smooth.md, docs/theory/rough.md). "
         "Writes the table as CSV (units in the headers) and a PNG plot into --out.",
     )
     p.add_argument("--params", default="silicone_rubber_rod",
                    help="parameter set name or TOML path (default: silicone_rubber_rod)")
     p.add_argument("--turns", required=True,
-                   help="turns N (plain number, or a quantity such as '80 pi rad')")
+                   help="turns N (plain number, or a quantity such as '80 pi rad'); "
+                   "negative turns twist the other way: --turns -40 or --turns=-40")
     p.add_argument("--surface", choices=("rough", "smooth"), default="rough",
                    help="rough: frozen non-uniform helix, k = 0 (default); smooth: uniform helix")
     p.add_argument("--slack", nargs="+", default=None,
@@ -59,11 +61,26 @@ def _quantity(text, what):
         raise SystemExit(f"supercoil rod: error: cannot read {what} {text!r}: {exc}") from None
 
 
+def _turns(text) -> float:
+    """``--turns`` as a float number of turns; errors name the flag (exit status 2)."""
+    import pint
+
+    from supercoil.units import as_turns
+
+    try:
+        value = float(as_turns(_quantity(text, "--turns"), "--turns"))
+        if not np.isfinite(value):
+            raise ValueError(f"turns must be finite, got {value}")
+        return value
+    except (pint.DimensionalityError, ValueError, TypeError) as exc:
+        text_ = str(exc)
+        raise ValueError(text_ if "--turns" in text_ else f"--turns {text!r}: {text_}") from None
+
+
 def run(args) -> int:
     import pint
 
     from supercoil.parameters import load_parameters
-    from supercoil.units import as_turns
 
     rod = load_parameters(args.params)
     if not hasattr(rod, "bending_rigidity") or not hasattr(rod.si, "friction_coefficient"):
@@ -71,7 +88,7 @@ def run(args) -> int:
               file=sys.stderr)
         return 2
     try:
-        turns = float(as_turns(_quantity(args.turns, "--turns"), "turns"))
+        turns = _turns(args.turns)
         slack = None
         if args.slack is not None:
             slack = [_quantity(t, "--slack") for t in args.slack]

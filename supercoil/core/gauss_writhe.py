@@ -1,6 +1,6 @@
 """Writhe of a closed polygon by the Gauss double integral. Float-only kernel.
 
-Used to verify the writhe formula of MODEL.md section 1 independently: a
+Used to verify the writhe formula of docs/theory/geometry.md independently: a
 discretised double helix (two strands joined at the head, led straight out
 and closed by a large rectangle far away) has a well-defined writhe.
 

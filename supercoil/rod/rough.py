@@ -14,6 +14,7 @@ import pandas as pd
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import rough as _rh
 from supercoil.exceptions import DataError, ValidityError
+from supercoil.rod.material import check_rod
 from supercoil.rod.smooth import checked_turns
 from supercoil.rod.validity import check_finite, warn_hard_contact, warn_no_friction
 from supercoil.tables import column_quantity, provenance
@@ -384,7 +385,7 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     n_points = 2e5 and 5 at 1e6 (measured with tracemalloc; 1e6 points take
     about 3 s for k = 0).
     """
-    si = rod.si
+    si = check_rod(rod)
     n0 = checked_turns(turns, "turns")
     if np.ndim(n0) != 0:
         raise ValueError("rough_helix takes one value of turns (the profile is per N_0)")

@@ -39,7 +39,7 @@ import pandas as pd
 
 from ..exceptions import DataError
 from ..units import ureg
-from .trace import _check_increasing, build_trace, require_h5py
+from .trace import build_trace, check_increasing, require_h5py
 
 __all__ = ["read_calisto"]
 
@@ -55,7 +55,7 @@ def _factor(unit, target, name):
 
 
 def _interp(t_log, v, t, where):
-    _check_increasing(t_log, where, "motor time")
+    check_increasing(t_log, where, "motor time")
     out = np.interp(t, t_log, v)
     out[(t < t_log[0]) | (t > t_log[-1])] = np.nan
     return out
@@ -103,7 +103,7 @@ def _calisto_text(path, motor_path, f_t, f_xy, f_z, f_mag, f_mt):
         raise DataError(f"{path}, line {lines[0]}: {data.shape[1]} columns; expected "
                         "frame, time, then x, y, z per bead (2 + 3 n columns)")
     t = data[:, 1] * f_t
-    _check_increasing(t, f"{path}, column 1", "frame time")
+    check_increasing(t, f"{path}, column 1", "frame time")
     xyz = data[:, 2:].reshape(len(t), -1, 3) * np.array([f_xy, f_xy, f_z])
     motor, _ = _read_text(motor_path, 4, "motor")
     tm = motor[:, 1] * f_mt
@@ -159,7 +159,7 @@ def _calisto_hdf5(path, f_t, f_xy, f_z, f_mag, f_mt):
                 xyz[:, j, c] = v * (f_z if c == 2 else f_xy)
             if _bead_key(k)[0] == "R":
                 refs.append(k)
-    _check_increasing(t, f"{path}, dataset '/timestamp'", "frame time")
+    check_increasing(t, f"{path}, dataset '/timestamp'", "frame time")
     where = f"{path}, dataset '/stage/t_s'"
     return t, keys, xyz, _interp(tm, rot, t, where), _interp(tm, pos, t, where), refs
 

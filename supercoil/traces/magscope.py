@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..exceptions import DataError
-from .trace import _check_increasing, build_trace, hold_previous, require_h5py
+from .trace import build_trace, check_increasing, hold_previous, require_h5py
 
 __all__ = ["read_magscope", "read_motor_log"]
 
@@ -192,7 +192,7 @@ def read_magscope(path, *, rotation_log="ZaberNmsMotor.txt", rotation_column=1,
     ts_sorted = ts[order]
     t_rel = (ts_sorted - ts_sorted[0]).astype(np.int64) / 1e9
     where = path if len(paths) == 1 else f"{len(paths)} tracking files ({path.name}, ...)"
-    _check_increasing(t_rel, f"{where}, dataset '/tracking/frame_timestamps_ns' (sorted)",
+    check_increasing(t_rel, f"{where}, dataset '/tracking/frame_timestamps_ns' (sorted)",
                       "frame time")
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)

@@ -46,7 +46,7 @@ def require_h5py(path):
     return h5py
 
 
-def _check_increasing(t, where, what="time"):
+def check_increasing(t, where, what="time"):
     """DataError naming ``where`` and the first index where ``t`` does not increase."""
     t = np.asarray(t, dtype=float)
     bad = np.flatnonzero(~np.isfinite(t))

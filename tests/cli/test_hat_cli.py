@@ -1,5 +1,7 @@
 """``supercoil hat``: CSV with units in headers, the plot, units parsed, named failures."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -33,8 +35,89 @@ def test_hat_command_defaults_are_the_paper_figure(tmp_path):
     assert main(["hat", "--out", str(out), "--no-plot"]) == 0
     df = sc.read_csv(out / "hat_curve.csv")
     assert sorted(set(df["force"])) == [0.4, 1.2, 3.0]
-    assert df["turns"].min() == -40 and df["turns"].max() == 40
+    assert df["turns"].max() == 40
+    # negative turns only where real DNA does not melt (<= 0.8 pN)
+    low, high = df[df.force == 0.4]["turns"], df[df.force > 0.8]["turns"]
+    assert low.min() == -40 and len(low) == 801
+    assert high.min() == 0 and len(high) == 2 * 401
     assert not (out / "hat_curve.png").exists()
+
+
+def test_main_job_prints_no_warning(tmp_path, capsys):
+    """The README's main job: no Python warning and nothing on stderr."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert main(["hat", "--params", "dna", "--out", str(tmp_path), "--no-plot"]) == 0
+    assert caught == []
+    assert capsys.readouterr().err == ""
+
+
+def test_warning_asked_for_is_shown_once_in_plain_words(tmp_path, capsys):
+    assert main(["hat", "--force", "1.2pN", "--force", "3pN", "--turns", "-5:5:1",
+                 "--out", str(tmp_path), "--no-plot"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1, err
+    assert "denatures" in err[0] and "--turns=0:40" in err[0]
+    assert "Warning" not in err[0]  # no Python warning category / file:line text
+
+
+def test_help_shows_the_defaults(capsys):
+    with pytest.raises(SystemExit):
+        main(["hat", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for default in ("0.4pN, 1.2pN, 3.0pN", "-40:40:0.1", "0:40:0.1", "0.8 pN", "li-zhao",
+                    "hard-core", "hat_out"):
+        assert default in text, default
+
+
+def test_buckling_table_is_the_library_and_li_zhao_torque_is_the_plectoneme_torque(
+        tmp_path, dna, ureg):
+    forces = [0.4, 1.2, 3.0] * ureg.pN
+    tables = {}
+    for model in ("li-zhao", "free-energy"):
+        assert main(["hat", "--model", model, "--turns=0:1:1", "--out", str(tmp_path / model),
+                     "--no-plot"]) == 0
+        t = tables[model] = sc.read_csv(tmp_path / model / "buckling.csv")
+        assert t.attrs["units"]["buckling_torque"] == "pN nm"
+        np.testing.assert_allclose(t["buckling_turns"],
+                                   sc.buckling_turns(dna, forces, model=model).m_as("turn"),
+                                   rtol=1e-10)
+        np.testing.assert_allclose(
+            t["post_buckling_slope"],
+            sc.post_buckling_slope(dna, forces, model=model).m_as("nm/turn"), rtol=1e-10)
+    # li-zhao buckles where the tail torque reaches the plectoneme torque (an independent
+    # solve: the uniform plectoneme equilibrium at the same force)
+    eq = sc.plectoneme_equilibrium(dna, forces)
+    np.testing.assert_allclose(tables["li-zhao"]["buckling_torque"], eq.torque.m_as("pN nm"),
+                               rtol=1e-9)
+    # the stretched phase is linear in N up to buckling: M_b = C_eff 2 pi N_b / L, so the
+    # torque at buckling is the hat curve's torque just below N_b
+    for model, t in tables.items():
+        for f, nb, mb in zip(t["force"], t["buckling_turns"], t["buckling_torque"], strict=True):
+            ref = sc.hat_curve(dna, f * ureg.pN, [nb * (1 - 1e-9)], model=model)
+            assert ref["torque"].iloc[0] == pytest.approx(mb, rel=1e-6), (model, f)
+
+
+@pytest.mark.parametrize("spelling", [["--turns", "-20:20:0.5"], ["--turns=-20:20:0.5"],
+                                      ["--turns", "-20,-1.5,3"], ["--turns", "-.5:.5:0.5"]])
+def test_negative_ranges_in_both_spellings(tmp_path, spelling):
+    out = tmp_path / "o"
+    assert main(["hat", "--force", "0.4pN", *spelling, "--out", str(out), "--no-plot"]) == 0
+    got = sc.read_csv(out / "hat_curve.csv")["turns"].to_numpy()
+    expected = parse_turns(spelling[-1].removeprefix("--turns="))
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-12)
+    assert got[0] < 0
+
+
+@pytest.mark.parametrize("argv", [["--turns", "-20:x"], ["--turns=-20:-30:1"],
+                                  ["--turns", "-1:1:0"], ["--turns", "-inf:1"],
+                                  ["--force", "-0.4nm"], ["--length", "-5pN"],
+                                  ["--length", "-5nm"], ["--short-tail=-1nm"]])
+def test_bad_values_exit_2_naming_the_flag(argv, tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["hat", *argv, "--out", str(tmp_path)])
+    assert exc.value.code == 2
+    assert f"argument {argv[0].split('=')[0]}" in capsys.readouterr().err
 
 
 def test_hat_command_units_are_parsed(tmp_path):
@@ -82,3 +165,32 @@ def test_hat_command_with_each_registered_model_equals_the_library(tmp_path, dna
     ref = sc.hat_curve(dna, 0.5 * ureg.pN, np.arange(-6, 7.0), model=model)
     np.testing.assert_allclose(df["extension"], ref["extension"], rtol=1e-10)
     assert df.attrs["provenance"]["model"] == model
+
+
+def test_values_starting_with_a_minus_are_values_and_flags_stay_flags():
+    from supercoil.cli import build_parser
+
+    parser = build_parser()
+    args = parser.parse_args(["hat", "--turns", "-1:1", "--athermal", "--force", "-.4pN"])
+    assert list(args.turns) == pytest.approx(np.arange(-1, 1.05, 0.1))
+    assert args.athermal and args.force[0].magnitude == -0.4
+    args = parser.parse_args(["rod", "--turns", "-4", "--slack", "-1cm", "-2 cm", "--out", "o"])
+    assert args.turns == "-4" and args.slack == ["-1cm", "-2 cm"]
+    with pytest.raises(SystemExit):  # "-x" is still an (unknown) option
+        parser.parse_args(["rod", "--turns", "-x", "--out", "o"])
+
+
+def test_short_tail_zero_flags_no_point(tmp_path):
+    assert main(["hat", "--force", "1pN", "--turns=0:40:10", "--short-tail", "0nm",
+                 "--out", str(tmp_path), "--no-plot"]) == 0
+    assert not sc.read_csv(tmp_path / "hat_curve.csv")["short_tail"].any()
+
+
+def test_default_turns_switch_exactly_at_the_denaturation_force(tmp_path, capsys):
+    """0.8 pN itself keeps negative turns (the library warns above 0.8 pN only)."""
+    assert main(["hat", "--force", "0.8pN", "--force", "0.81pN", "--out", str(tmp_path),
+                 "--no-plot"]) == 0
+    assert capsys.readouterr().err == ""
+    df = sc.read_csv(tmp_path / "hat_curve.csv")
+    assert df[df.force == 0.8]["turns"].min() == -40
+    assert df[df.force == 0.81]["turns"].min() == 0

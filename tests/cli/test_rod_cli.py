@@ -66,3 +66,27 @@ def test_rough_stop_prints_the_helix_end_and_where_the_run_stopped(tmp_path, cap
 def test_errors_exit_2_with_a_named_reason(tmp_path, capsys, argv, message):
     assert main(["rod", *argv, "--out", str(tmp_path)]) == 2
     assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("spelling", [["--turns", "-40"], ["--turns=-40"],
+                                      ["--turns", "-40turn"], ["--turns", "-80 pi rad"]])
+def test_negative_turns_in_both_spellings_mirror_the_helix(tmp_path, capsys, spelling):
+    """Twisting the other way gives the mirror helix: the same tilt, s_max and pitch."""
+    assert main(["rod", *spelling, "--points", "51", "--out", str(tmp_path)]) == 0
+    t = sc.read_csv(tmp_path / "rod_profile.csv")
+    ref = sc.rough_helix(sc.load_parameters("silicone_rubber_rod"), 40, n_points=51)
+    np.testing.assert_allclose(t["pitch"], ref.profile["pitch"], rtol=1e-10)
+    assert "s_max = 214.668 mm" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("argv", "flag"), [
+    (["--turns", "-4m"], "--turns"), (["--turns=-nan"], "--turns"), (["--turns", "-x"], "--turns"),
+    (["--turns", "40", "--points", "-3x"], "--points"),
+    (["--turns", "40", "--curvature-tolerance", "-1:2"], "--curvature-tolerance")])
+def test_bad_values_name_the_flag(tmp_path, capsys, argv, flag):
+    try:
+        status = main(["rod", *argv, "--out", str(tmp_path)])
+    except SystemExit as exc:  # argparse's own type errors
+        status = exc.code
+    assert status == 2
+    assert flag in capsys.readouterr().err

@@ -1,4 +1,4 @@
-"""Geometry core (MODEL.md s.1): identities, derivatives, round trips, units, writhe."""
+"""Geometry core (docs/theory/geometry.md): identities, derivatives, round trips, units, writhe."""
 
 import numpy as np
 import pint

@@ -342,7 +342,7 @@ def test_model_through_the_public_functions(dna):
         np.testing.assert_array_equal(fe_df[col][keep], lz_df[col][keep])
     G = sc.free_energy(dna, F, turns, model="free-energy", thermal=False)
     np.testing.assert_allclose(G.to("pN nm").magnitude, fe_df["free_energy"], rtol=1e-15)
-    with pytest.raises(ModelError, match="li-zhao.*thermal=True is not derived"):
+    with pytest.raises(ModelError, match=r"li-zhao.*thermal=True is not derived"):
         sc.free_energy(dna, F, turns, model="li-zhao")
     with pytest.raises(ModelError, match="exactly model='free-energy', thermal=False"):
         sc.free_energy(dna, F, turns, model="li-zhao", thermal=False)

@@ -1,4 +1,5 @@
-"""Hat curves (MODEL.md s.6): phases, symmetry, continuity, slope, linking, athermal limit."""
+"""Hat curves (docs/theory/li-zhao.md): phases, symmetry, continuity, slope, linking, athermal.
+"""
 
 import warnings
 

@@ -1,4 +1,7 @@
-"""Marko-Siggia interaction (MODEL.md s.6): formula, analytic partials vs finite differences."""
+"""Marko-Siggia interaction (docs/theory/plectoneme.md#interaction).
+
+The formula, and analytic partials against finite differences.
+"""
 
 import numpy as np
 import pytest
@@ -14,7 +17,7 @@ B = 48e-9 * KT
 
 
 def w_model(alpha, R):
-    """MODEL.md s.6 written out literally, x = pi cot(alpha) = P/(2R)."""
+    """docs/theory/plectoneme.md#interaction written out literally, x = pi cot(alpha) = P/(2R)."""
     x = np.pi / np.tan(alpha)
     return ((1 + x**-12) * KT / R0 * (R / R0) ** -12
             + B ** (-1 / 3) * (1 + x ** (-2 / 3)) * KT ** (4 / 3) / R ** (2 / 3))

@@ -1,4 +1,7 @@
-"""Moroz-Nelson corrections (MODEL.md s.6): C_eff, zeta, and where zeta is not valid."""
+"""Moroz-Nelson corrections (docs/theory/li-zhao.md#moroz-nelson).
+
+C_eff, zeta, and where zeta is not valid.
+"""
 
 import numpy as np
 import pint

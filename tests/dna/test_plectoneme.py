@@ -1,4 +1,7 @@
-"""Plectoneme equilibrium (MODEL.md s.2, s.6): residuals, branch, trends, units, failures."""
+"""Plectoneme equilibrium (docs/theory/plectoneme.md#equations).
+
+Residuals, branch, trends, units, failures.
+"""
 
 import warnings
 

@@ -1,4 +1,4 @@
-"""Example II: the designed helix (MODEL.md s.4) and its round trip through rough_helix."""
+"""Example II: the designed helix (docs/theory/design.md) and its round trip through rough_helix."""
 
 import numpy as np
 import pytest

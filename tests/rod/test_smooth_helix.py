@@ -1,4 +1,4 @@
-"""Case I, smooth surface (MODEL.md s.3): physics checks of supercoil.smooth_helix."""
+"""Case I, smooth surface (docs/theory/smooth.md): physics checks of supercoil.smooth_helix."""
 
 import warnings
 

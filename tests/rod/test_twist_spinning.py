@@ -1,4 +1,4 @@
-"""Twist-spinning (MODEL.md s.5, Appendix F): stationarity and the T' = 0 limit."""
+"""Twist-spinning (docs/theory/spinning.md, Appendix F): stationarity and the T' = 0 limit."""
 
 import numpy as np
 import pint

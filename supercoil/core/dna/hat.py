@@ -1,4 +1,4 @@
-"""Hat curves of DNA in a magnetic tweezers (MODEL.md section 6). Float-only kernel.
+"""Hat curves of DNA in a magnetic tweezers (docs/theory/li-zhao.md). Float-only kernel.
 
 Extension z versus turns N at fixed force T, symmetric in N (denaturation
 ignored). With ``M_p = C omega`` the plectoneme torque at T (GE1), ``tau`` its

@@ -1,4 +1,6 @@
-"""Marko-Siggia inter-strand interaction of a DNA plectoneme (MODEL.md section 6). Float-only.
+"""Marko-Siggia inter-strand interaction of a DNA plectoneme. Float-only kernel.
+
+docs/theory/plectoneme.md#interaction.
 
 Per unit strand length, with ``x = pi cot(alpha) = P / (2 R)`` and ``r = r0``::
 

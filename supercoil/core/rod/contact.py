@@ -1,7 +1,7 @@
 """Hard-contact double helix (R = r): formulas shared by the smooth and rough rods.
 
 Float-only kernel (SI units: m, N, N m^2, rad); everything broadcasts; no pint.
-MODEL.md sections 2 to 4, paper [eq dom/ds1 self contact, eq ini, eq tension,
+docs/theory/contact.md, paper [eq dom/ds1 self contact, eq ini, eq tension,
 eq normal reaction, eq friction].
 
 Notation: ``c = cos 2 alpha``, ``y = 1 - cos 2 alpha = 2 sin^2 alpha`` (the
@@ -41,12 +41,12 @@ So :func:`normal_force` returns
 
     F = B (1 - cos 2a)^2 / (4 r^3 cos 2a) = B sin^4(a) / (r^3 cos 2a)     [N/m]
 
-(twice MODEL.md's / the paper's printed value; :func:`normal_force_paper`
+(twice the paper's printed value; :func:`normal_force_paper`
 keeps the printed formula for comparison).
 
 Dimensional fix of [eq friction]
 --------------------------------
-The paper (and MODEL.md s.4) writes the available friction torque per length as
+The paper writes the available friction torque per length as
 ``dM_fmax/ds = B mu cos(a) (1 - cos 2a)^2 / (8 R^3 cos 2a)``. That has the unit
 N/m, while the left side of the no-slip condition [eq friction con],
 ``C |d omega/ds|``, is a torque per length, N m / m = N. From [eq dM_f],
@@ -254,7 +254,7 @@ def tension(alpha, r, B):
 
 
 def smooth_tension(alpha, omega, r, B, C):
-    """``T = -dE_p/dS|_N = C omega tau - B kappa^2 / 2`` (N), MODEL.md s.3 with w = 0."""
+    """``T = -dE_p/dS|_N = C omega tau - B kappa^2 / 2`` (N), docs/theory/smooth.md with w = 0."""
     sa, ca = np.sin(alpha), np.cos(alpha)
     return C * omega * sa * ca / r - 0.5 * B * sa**4 / r**2
 

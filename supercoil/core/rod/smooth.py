@@ -1,6 +1,6 @@
 """Case I, smooth surface: the uniform hard-contact double helix. Float-only kernel.
 
-MODEL.md section 3, paper [smooth surface]. Without friction the twist moment
+docs/theory/smooth.md, paper [smooth surface]. Without friction the twist moment
 ``M_3 = C omega`` is the same everywhere, so omega and (by (HC)) alpha are
 uniform along the helix, and the linking number gives
 
