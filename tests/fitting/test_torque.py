@@ -203,3 +203,22 @@ def test_compare_models_on_torque_data_uses_fixed_scales(torque_data, base):
     assert abs(d_aic - 2 * (rows["marko2007"]["nparams"] - rows["li-zhao"]["nparams"])) > 1
     # the data were made by li-zhao: it wins
     assert rows["li-zhao"]["delta_aic"] == 0 and d_aic > 0
+
+
+def test_joint_errors_match_the_scatter_over_replicates(true_dna, base):
+    """The joint fit's errors (weights from the estimated channel noise) are the scatter of
+    its estimates: pulls (estimate - truth) / stderr over 40 noise replicates have sd 1
+    (sampling sd of the sd about 0.11: band 0.67-1.33) and mean 0 (band +-0.5)."""
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, np.array(FORCES) * u.pN, points_per_force=60,
+                                  molecules=40, turns_offset=0.4, extension_offset=30 * u.nm,
+                                  noise=5 * u.nm, torque_noise=TORQUE_NOISE * u.pN * u.nm,
+                                  seed=2026)
+    table = sc.fit_many(df, base, progress=False)
+    assert table["success"].all()
+    for name, value in truth(true_dna).items():
+        pull = (table[name] - value) / table[f"{name}_stderr"]
+        assert 0.67 < pull.std(ddof=1) < 1.33, (name, pull.std(ddof=1))
+        assert abs(pull.mean()) < 0.5, (name, pull.mean())
+    np.testing.assert_allclose(table["torque_residual_rms"], TORQUE_NOISE, rtol=0.2)
+    assert table.attrs["units"]["torque_residual_rms"] == "pN*nm"
