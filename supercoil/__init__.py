@@ -13,24 +13,6 @@ package's single unit registry :data:`supercoil.ureg`::
 
 __version__ = "0.1.0"
 
-from supercoil import geometry
-from supercoil.dna.fitting import (
-    FitParameter,
-    FitParameters,
-    FitResult,
-    compare_models,
-    fit_hat_curves,
-    fit_many,
-    fit_parameters,
-    simulate_rotation_curves,
-)
-from supercoil.dna.hat import buckling_turns, free_energy, hat_curve, post_buckling_slope
-from supercoil.dna.interactions import available_interactions, register_interaction
-from supercoil.dna.material import DNA
-from supercoil.dna.models import DNAModel, available_models, register_model
-from supercoil.dna.moroz_nelson import effective_twist_rigidity, extension_factor
-from supercoil.dna.plectoneme import plectoneme_equilibrium
-from supercoil.dna.tweezers import read_tweezers_csv
 from supercoil.exceptions import (
     BoundWarning,
     DataError,
@@ -48,14 +30,72 @@ from supercoil.exceptions import (
     ValidityError,
     ValidityWarning,
 )
-from supercoil.parameters import available_parameter_sets, load_parameters
-from supercoil.rod.design import design_twist_schedule
-from supercoil.rod.material import ElasticRod
-from supercoil.rod.rough import rough_helix
-from supercoil.rod.smooth import smooth_helix
-from supercoil.rod.spinning import twist_spinning
-from supercoil.tables import read_csv, write_csv
 from supercoil.units import ureg
+
+#: public names imported on first use (PEP 562): ``import supercoil`` builds only the
+#: unit registry; pandas, scipy and matplotlib load with the first function that needs them
+_LAZY = {
+    "DNA": ("supercoil.dna.material", 'DNA'),
+    "DNAModel": ("supercoil.dna.models", 'DNAModel'),
+    "ElasticRod": ("supercoil.rod.material", 'ElasticRod'),
+    "FitParameter": ("supercoil.dna.fitting", 'FitParameter'),
+    "FitParameters": ("supercoil.dna.fitting", 'FitParameters'),
+    "FitResult": ("supercoil.dna.fitting", 'FitResult'),
+    "available_interactions": ("supercoil.dna.interactions", 'available_interactions'),
+    "available_models": ("supercoil.dna.models", 'available_models'),
+    "available_parameter_sets": ("supercoil.parameters", 'available_parameter_sets'),
+    "buckling_turns": ("supercoil.dna.hat", 'buckling_turns'),
+    "compare_models": ("supercoil.dna.fitting", 'compare_models'),
+    "core": ("supercoil.core", None),
+    "datasets": ("supercoil.datasets", None),
+    "design_twist_schedule": ("supercoil.rod.design", 'design_twist_schedule'),
+    "dna": ("supercoil.dna", None),
+    "effective_twist_rigidity": ("supercoil.dna.moroz_nelson", 'effective_twist_rigidity'),
+    "extension_factor": ("supercoil.dna.moroz_nelson", 'extension_factor'),
+    "fit_hat_curves": ("supercoil.dna.fitting", 'fit_hat_curves'),
+    "fit_many": ("supercoil.dna.fitting", 'fit_many'),
+    "fit_parameters": ("supercoil.dna.fitting", 'fit_parameters'),
+    "free_energy": ("supercoil.dna.hat", 'free_energy'),
+    "geometry": ("supercoil.geometry", None),
+    "hat_curve": ("supercoil.dna.hat", 'hat_curve'),
+    "load_parameters": ("supercoil.parameters", 'load_parameters'),
+    "parameters": ("supercoil.parameters", None),
+    "plectoneme_equilibrium": ("supercoil.dna.plectoneme", 'plectoneme_equilibrium'),
+    "post_buckling_slope": ("supercoil.dna.hat", 'post_buckling_slope'),
+    "read_csv": ("supercoil.tables", 'read_csv'),
+    "read_tweezers_csv": ("supercoil.dna.tweezers", 'read_tweezers_csv'),
+    "register_interaction": ("supercoil.dna.interactions", 'register_interaction'),
+    "register_model": ("supercoil.dna.models", 'register_model'),
+    "rod": ("supercoil.rod", None),
+    "rough_helix": ("supercoil.rod.rough", 'rough_helix'),
+    "simulate_rotation_curves": ("supercoil.dna.fitting", 'simulate_rotation_curves'),
+    "smooth_helix": ("supercoil.rod.smooth", 'smooth_helix'),
+    "tables": ("supercoil.tables", None),
+    "traces": ("supercoil.traces", None),
+    "twist_spinning": ("supercoil.rod.spinning", 'twist_spinning'),
+    "units": ("supercoil.units", None),
+    "validation": ("supercoil.validation", None),
+    "write_csv": ("supercoil.tables", 'write_csv'),
+}
+
+
+def __getattr__(name):
+    try:
+        module, attr = _LAZY[name]
+    except KeyError:
+        raise AttributeError(f"module 'supercoil' has no attribute {name!r}") from None
+    import importlib
+
+    value = importlib.import_module(module)
+    if attr is not None:
+        value = getattr(value, attr)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = [
     "DNA",

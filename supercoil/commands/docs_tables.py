@@ -120,12 +120,18 @@ def _default_in_unit(p):
 
 
 def models_markdown() -> str:
-    """Every registered model: name, summary, its own parameters with units and defaults."""
+    """Every model the package registers: name, summary, own parameters with units, defaults.
+
+    Models registered by user code (``register_model`` from outside the package) are not
+    the package's and are left out.
+    """
     from supercoil.dna.models import available_models, get_model
 
     rows = []
     for name in available_models():
         m = get_model(name)
+        if not type(m).__module__.startswith("supercoil."):
+            continue
         params = "; ".join(
             f"`{p.name}` = {_g(_default_in_unit(p))}{' ' + p.unit if p.unit else ''} "
             f"({p.description})" for p in m.parameters.values()) or "none"

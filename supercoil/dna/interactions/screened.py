@@ -25,6 +25,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil.core.blocks import in_blocks
 from supercoil.core.dna import contact as _ct
 from supercoil.core.dna import electrostatics as _el
 from supercoil.core.dna import equilibrium as _eq
@@ -199,11 +200,18 @@ class Screened(Interaction):
             If the DNA has no salt.
         """
         si, lam, pref = self._functions(dna)
-        B, C = si.bending_rigidity, si.torsional_rigidity
+        B = si.bending_rigidity
         partials = _partials_function(B, si.kT, lam, pref, self.values["confinement"])
+        branch, contact = self.branch(si), self.contact_branch(si)
         force = np.asarray(tension, dtype=float)
-        alpha, R, M = _eq.solve_equilibrium(force, B, partials, self.branch(si),
-                                            self.contact_branch(si))
+        # blocks of 1024 forces: the solver's temporaries (~8 kB per force) stay bounded
+        return in_blocks(lambda f: self._state(f, si, partials, branch, contact), force, 1024,
+                         keep="force")
+
+    @staticmethod
+    def _state(force, si, partials, branch, contact):
+        B, C = si.bending_rigidity, si.torsional_rigidity
+        alpha, R, M = _eq.solve_equilibrium(force, B, partials, branch, contact)
         s, c = np.sin(alpha), np.cos(alpha)
         kappa, tau = s * s / R, s * c / R
         omega = M / C
