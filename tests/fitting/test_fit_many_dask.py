@@ -20,7 +20,9 @@ def _frame(true_dna):
                                     extension_offset=[10, 0, -5, 20] * u.nm, seed=8)
 
 
-def test_fit_many_on_a_local_cluster_equals_serial(true_dna, base):
+def test_fit_many_on_a_local_cluster_equals_serial(true_dna, base, monkeypatch):
+    from supercoil.dna.fitting import batch
+
     df = _frame(true_dna)
     serial = sc.fit_many(df, base, progress=False)
     seen = []
@@ -29,11 +31,14 @@ def test_fit_many_on_a_local_cluster_equals_serial(true_dna, base):
         on_client = sc.fit_many(df, base, executor=client,
                                 progress=lambda d, t, m: seen.append((d, t, m)))
         on_executor = sc.fit_many(df, base, executor=client.get_executor(), progress=False)
+        # large tables go to dask in chunks of molecules: chunks of 3 and 1 here
+        monkeypatch.setattr(batch, "_chunk_size", lambda n: 3)
+        chunked = sc.fit_many(df, base, executor=client, progress=False)
         # the fits ran in the worker processes, not in this one
         pids = set(client.run(lambda: __import__("os").getpid()).values())
     assert len(pids) == 2 and __import__("os").getpid() not in pids
     cols = [c for c in serial.columns if c != "warnings"]
-    for par in (on_client, on_executor):
+    for par in (on_client, on_executor, chunked):
         pd.testing.assert_frame_equal(serial[cols], par[cols], rtol=1e-9)
         assert par.attrs["units"] == serial.attrs["units"]
     assert serial["success"].all()

@@ -150,15 +150,31 @@ def _completed(pending, executor):
     return futs  # other futures with .result(): in submission order
 
 
+def _fit_chunk(tasks, parent_pid=None, settings=None):
+    """Several molecules in one task (a dask client: its cost per task is ~2 ms)."""
+    return [_fit_worker(t, parent_pid, settings) for t in tasks]
+
+
+def _chunk_size(n_molecules):
+    """Molecules per dask task: 1 up to 64 molecules, then up to 16 (>= 4 tasks per 64)."""
+    return max(1, min(16, n_molecules // 64))
+
+
 def _collect(pending, executor, finished):
-    """Results of the submitted fits as they complete (``finished(label, row, records)``)."""
+    """Results of the submitted fits as they complete (``finished(label, row, records)``).
+
+    ``pending`` maps a future to its task, or to a list of tasks (a chunk).
+    """
     for fut in _completed(pending, executor):
+        tasks = pending[fut]
+        chunk = isinstance(tasks, list)
+        tasks = tasks if chunk else [tasks]
         try:
-            row, records = fut.result()
+            results = fut.result() if chunk else [fut.result()]
         except Exception as exc:  # the executor itself failed (e.g. a worker died)
-            task = pending[fut]
-            row, records = _row(task, None, f"{type(exc).__name__}: {exc}"), []
-        finished(pending[fut].label, row, records)
+            results = [(_row(t, None, f"{type(exc).__name__}: {exc}"), []) for t in tasks]
+        for task, (row, records) in zip(tasks, results, strict=True):
+            finished(task.label, row, records)
 
 
 def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=None, sigma=None,
@@ -237,13 +253,19 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         settings = None
     submit = executor.submit if executor is not None else None
     pending, pid = {}, os.getpid()
+    tasks = [MoleculeTask(lab, whole.take(index, lab), settings, layout)
+             for lab, index in zip(labels, whole.groups(), strict=True)]
     try:
-        for lab, index in zip(labels, whole.groups(), strict=True):
-            task = MoleculeTask(lab, whole.take(index, lab), settings, layout)
+        if args:  # dask: chunks of molecules, the client's cost per task is ~2 ms
+            k = _chunk_size(len(tasks))
+            for i in range(0, len(tasks), k):
+                chunk = tasks[i:i + k]
+                pending[executor.submit(_fit_chunk, chunk, pid, *args, **extra)] = chunk
+        for task in tasks if not args else ():
             if submit is None:
-                finished(lab, *_fit_worker(task))
+                finished(task.label, *_fit_worker(task))
             else:
-                pending[submit(_fit_worker, task, pid, *args, **extra)] = task
+                pending[submit(_fit_worker, task, pid)] = task
         _collect(pending, executor, finished)
     finally:
         bar.close()
