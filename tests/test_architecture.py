@@ -167,3 +167,11 @@ def test_no_function_more_complex_than_radon_grade_c():
                     (cc := _complexity(node)) > 20:
                 offenders.append(f"{path.relative_to(ROOT)}:{node.name} ({cc})")
     assert not offenders, f"functions worse than radon grade C: {offenders}"
+
+
+def test_contributing_maps_every_module():
+    """CONTRIBUTING.md has one line per module of the package (the map a reader uses)."""
+    text = (ROOT / "CONTRIBUTING.md").read_text()
+    missing = [str(p.relative_to(ROOT)) for p in _package_files()
+               if f"`{p.relative_to(ROOT)}`" not in text]
+    assert not missing, f"modules missing from CONTRIBUTING.md's map: {missing}"

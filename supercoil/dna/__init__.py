@@ -1,1 +1,1 @@
-"""."""
+"""DNA in a magnetic tweezers: the molecule, models, interactions, hat curves, fits."""

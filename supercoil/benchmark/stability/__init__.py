@@ -1,4 +1,4 @@
-"""Stability map: where each solver fails or loses accuracy over its inputs (issue 5).
+"""Stability map: where each solver fails or loses accuracy over its inputs.
 
 Every public solver is evaluated on a 2-D grid of its natural inputs that runs
 well into its failure regions, and every cell is classified:
