@@ -84,7 +84,7 @@ def main(argv=None):
 
     sd = np.sqrt(P68 * (1 - P68) / max(n_ok, 1))
     lo, hi = (0.61, 0.75) if n_ok >= 200 else (max(0.0, P68 - 3.5 * sd), min(1.0, P68 + 3.5 * sd))
-    rows = {"parameter": [], "truth": [], "mean_estimate": [], "mean_stderr": [],
+    rows = {"parameter": [], "unit": [], "truth": [], "mean_estimate": [], "mean_stderr": [],
             "scatter_of_estimates": [], "coverage": [], "binomial_sd": [], "band_low": [],
             "band_high": [], "pull_mean": [], "pull_sd": [], "in_band": []}
     pulls = {}
@@ -93,16 +93,17 @@ def main(argv=None):
         pull = (est - value) / err
         pulls[name] = pull
         cov = float(np.mean(np.abs(pull) <= 1))
-        for k, v in (("parameter", name), ("truth", value), ("mean_estimate", est.mean()),
+        for k, v in (("parameter", name), ("unit", table.attrs["units"][name]),
+                     ("truth", value), ("mean_estimate", est.mean()),
                      ("mean_stderr", err.mean()), ("scatter_of_estimates", est.std(ddof=1)),
                      ("coverage", cov), ("binomial_sd", sd), ("band_low", lo),
                      ("band_high", hi), ("pull_mean", pull.mean()),
                      ("pull_sd", pull.std(ddof=1)), ("in_band", bool(lo <= cov <= hi))):
             rows[k].append(v)
     pooled = float(np.mean([np.abs(p) <= 1 for p in pulls.values()]))
+    # one unit per row (nm, or turn for turns_offset): in the "unit" column, so that the
+    # headers keep the package convention "name [unit]" (issue 15)
     units = {k: "" for k in rows}
-    for k in ("truth", "mean_estimate", "mean_stderr", "scatter_of_estimates"):
-        units[k] = "(parameter unit: nm, or turn for turns_offset)"
     summary = make_table(rows, units, provenance(
         true, replicates=n_rep, fitted=n_ok, noise="5 nm", forces_pN=list(FORCES),
         points_per_force=110, seed=args.seed, pooled_coverage=pooled))

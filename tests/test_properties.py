@@ -10,8 +10,7 @@
    numpy RuntimeWarning...).
 
 The fitting package (``simulate_rotation_curves``, ``fit_hat_curves``) is
-driven through the public API only; the checks it does not pass yet are
-marked ``xfail(strict=True, reason="fitting helper")``.
+driven through the public API only.
 """
 
 import dataclasses
@@ -344,14 +343,12 @@ def test_simulate_rotation_curves_lists_and_arrays():
     pd.testing.assert_frame_equal(a, c)
 
 
-@pytest.mark.xfail(strict=True, reason="fitting helper")
 def test_simulate_rotation_curves_unknown_extension_unit_is_named():
     with pytest.raises((ValueError, TypeError), match="extension_unit"):
         sc.simulate_rotation_curves(DNA, [1 * u.pN], np.linspace(-5, 5, 3),
                                     extension_unit="mm")  # main: KeyError 'mm'
 
 
-@pytest.mark.xfail(strict=True, reason="fitting helper")
 @pytest.mark.parametrize("noise", [np.nan, np.inf, -1.0])
 def test_simulate_rotation_curves_rejects_bad_noise(noise):
     with pytest.raises(ValueError, match="noise"):  # main: all-NaN data
@@ -364,7 +361,6 @@ def test_fit_thermal_flag_rejects_strings():
         sc.fit_hat_curves(data, DNA, thermal="no")  # main: runs the thermal fit
 
 
-@pytest.mark.xfail(strict=True, reason="fitting helper")
 @pytest.mark.parametrize("which", ["simulate_rotation_curves", "fit_hat_curves", "fit_many"])
 def test_fitting_functions_name_a_rod_passed_as_dna(which):
     data = sc.simulate_rotation_curves(DNA, [0.5] * u.pN, np.linspace(-10, 10, 5), seed=1)

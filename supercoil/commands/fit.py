@@ -5,8 +5,10 @@ Example::
     supercoil fit data.csv --vary twist_persistence radius --out DIR
 
 ``DATA.csv`` is a long table read by :func:`supercoil.read_tweezers_csv`
-(``force [pN]``, ``turns``, ``extension [um]``, optional ``molecule`` and
-``sigma [nm]``). With one molecule (or ``--global``: all molecules share the
+(``force [pN]``, ``turns``, ``extension [um]``, optional ``molecule``,
+``sigma [nm]``, ``torque [pN nm]`` and ``torque_sigma [pN nm]``; with a torque
+column extension and torque are fitted jointly, docs/theory/fitting.md#joint-torque-fit).
+With one molecule (or ``--global``: all molecules share the
 physical parameters, each keeps its own offsets) the command writes
 
 * ``DIR/fit_report.txt``: the fit report (parameter table with units);
@@ -18,7 +20,8 @@ With several molecules (and no ``--global``) each molecule is fitted alone
 (:func:`supercoil.fit_many`, ``--jobs N`` processes) and the command writes
 ``fit_molecules.csv`` (one row per molecule; failed fits are reported there
 and on stderr, they do not stop the batch), ``fit_report.txt`` and
-``fit_molecules.png``; a progress line is printed on stderr. The exit status
+``fit_molecules.png``; progress goes to stderr (a bar on a terminal, one line
+per molecule in a log; ``--no-progress``: none). The exit status
 is 1 when a molecule's fit failed or left a parameter not determined (column
 ``determined``), else 0. Error messages name the command's flags
 (``--no-turns-offset``, ``--fix``, ...).
@@ -90,7 +93,7 @@ def register(sub):
         "BIC).",
     )
     p.add_argument("data", help="CSV: force [pN], turns, extension [um], optional molecule, "
-                   "sigma [nm]")
+                   "sigma [nm], torque [pN nm], torque_sigma [pN nm]")
     p.add_argument("--params", default="dna", help="DNA parameter set (start values and fixed "
                    "values; default: dna)")
     p.add_argument("--vary", nargs="+", default=["twist_persistence", "radius"],
@@ -124,6 +127,8 @@ def register(sub):
                    help="worker processes for per-molecule fits (default 1)")
     p.add_argument("--out", default="fit_out", help="output folder (default: fit_out)")
     p.add_argument("--no-plot", action="store_true", help="do not write the figure")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar or lines on stderr (several molecules)")
     p.set_defaults(func=run)
 
 
@@ -134,8 +139,8 @@ def _bounds(items):
         if not sep:
             raise argparse.ArgumentTypeError(f"--bound {name}={value}: expected LO:HI")
         out[name] = (
-            _parse_quantity(lo, f"lower bound of {name}") if lo.strip() else None,
-            _parse_quantity(hi, f"upper bound of {name}") if hi.strip() else None,
+            _parse_quantity(lo, f"--bound {name} (lower)") if lo.strip() else None,
+            _parse_quantity(hi, f"--bound {name} (upper)") if hi.strip() else None,
         )
     return out
 
@@ -151,10 +156,12 @@ def run(args) -> int:
     from supercoil.tables import write_csv
 
     try:
-        fixed = {k: _parse_quantity(v, k) for k, v in args.fix}
-        start = {k: _parse_quantity(v, k) for k, v in args.start}
+        fixed = {k: _parse_quantity(v, f"--fix {k}") for k, v in args.fix}
+        start = {k: _parse_quantity(v, f"--start {k}") for k, v in args.start}
         bounds = _bounds(args.bound)
-        sigma = _parse_quantity(args.sigma, "sigma") if args.sigma else None
+        sigma = _parse_quantity(args.sigma, "--sigma") if args.sigma else None
+        if args.jobs < 1:
+            raise argparse.ArgumentTypeError(f"--jobs must be at least 1, got {args.jobs}")
     except argparse.ArgumentTypeError as exc:
         print(f"supercoil fit: error: {exc}", file=sys.stderr)
         return 2
@@ -293,23 +300,22 @@ def _compare_report(table, results):
 
 def _run_many(args, data, dna, fixed, bounds, start, options):
     from supercoil.dna.fitting import fit_many
+    from supercoil.dna.fitting.progress import Progress
 
-    total_width = [0]
+    n = data["molecule"].astype(str).nunique()
+    # a tqdm bar on a terminal, one line per molecule in a log (issue 15)
+    bar = Progress(False if args.no_progress else None, n, prefix="supercoil fit: ")
+    kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start,
+                  progress=lambda done, total, molecule: bar.update(molecule), **options)
+    try:
+        if args.jobs > 1:
+            from concurrent.futures import ProcessPoolExecutor
 
-    def progress(done, total, molecule):
-        line = f"supercoil fit: {done}/{total} molecules done (last: {molecule})"
-        total_width[0] = max(total_width[0], len(line))
-        end = "\n" if done == total else ""
-        print(f"\r{line:<{total_width[0]}}", end=end, file=sys.stderr, flush=True)
-
-    kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start, progress=progress,
-                  **options)
-    if args.jobs > 1:
-        from concurrent.futures import ProcessPoolExecutor
-
-        with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-            return fit_many(data, dna, executor=pool, **kwargs)
-    return fit_many(data, dna, **kwargs)
+            with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+                return fit_many(data, dna, executor=pool, **kwargs)
+        return fit_many(data, dna, **kwargs)
+    finally:
+        bar.close()
 
 
 def _many_report(table, args):

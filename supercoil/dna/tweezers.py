@@ -16,6 +16,10 @@ with the columns
 * ``molecule`` (any label): optional, one label per tethered molecule, read as
   text exactly as written (``01``, ``1`` and ``1.0`` are three molecules);
 * ``sigma`` (a length unit): optional, the standard error of each extension;
+* ``torque`` (a torque unit, e.g. ``pN nm``): optional, the measured torque of
+  each point (sign of the turns), fitted jointly with the extension by
+  :func:`~supercoil.fit_hat_curves` (docs/theory/fitting.md#joint-torque-fit);
+  ``torque_sigma`` (a torque unit): optional with it, its standard error;
 * any other column is kept as it is.
 
 :func:`read_tweezers_csv` reads it with :func:`supercoil.tables.read_csv` (units
@@ -44,7 +48,13 @@ from supercoil.exceptions import DataError, DataWarning
 from supercoil.tables import header_hint, read_csv_source
 from supercoil.units import U, ureg
 
-__all__ = ["COLUMN_DIMENSIONS", "REQUIRED_COLUMNS", "check_tweezers_frame", "read_tweezers_csv"]
+__all__ = [
+    "COLUMN_DIMENSIONS",
+    "OPTIONAL_COLUMNS",
+    "REQUIRED_COLUMNS",
+    "check_tweezers_frame",
+    "read_tweezers_csv",
+]
 
 #: Columns every rotation-curve table must have.
 REQUIRED_COLUMNS = ("force", "turns", "extension")
@@ -56,7 +66,15 @@ COLUMN_DIMENSIONS = {
     "turns": (U.turn, "turns: no unit, or an angle unit (turn, rad, deg)"),
     "extension": (U.m, "a length (e.g. nm, um)"),
     "sigma": (U.m, "a length (e.g. nm), the extension's standard error"),
+    "torque": (U.pN * U.nm, "a torque (e.g. pN nm)"),
+    "torque_sigma": (U.pN * U.nm, "a torque (e.g. pN nm), the torque's standard error"),
 }
+
+#: Optional numeric columns (checked like the required ones when present).
+OPTIONAL_COLUMNS = ("sigma", "torque", "torque_sigma")
+
+#: Columns that must be positive.
+_POSITIVE = ("force", "sigma", "torque_sigma")
 
 
 def _unit_for(column, unit_str, where):
@@ -89,7 +107,7 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
     ----------
     df : pandas.DataFrame
         Columns ``force``, ``turns``, ``extension`` (optional ``molecule``,
-        ``sigma``) and ``df.attrs["units"]``.
+        ``sigma``, ``torque``, ``torque_sigma``) and ``df.attrs["units"]``.
     lines : sequence of int, optional
         The file line of every row (for error messages); without it rows are
         named by their DataFrame index.
@@ -100,8 +118,9 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
     ------
     DataError
         Missing column or units, unknown or wrong-dimension unit, non-numeric
-        or missing (NaN) cell, non-positive force or sigma; the message names
-        the row and the column.
+        or missing (NaN) cell, non-positive force, sigma or torque_sigma, a
+        ``torque_sigma`` column without ``torque``; the message names the row
+        and the column.
     """
     if not isinstance(df, pd.DataFrame):
         raise DataError(f"{source}: expected a pandas DataFrame, got {type(df).__name__}")
@@ -126,8 +145,10 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
         label = label.item() if hasattr(label, "item") else label
         return f"line {lines[i]}" if lines is not None else f"row {label!r}"
 
+    if "torque_sigma" in df.columns and "torque" not in df.columns:
+        raise DataError(f"{header}, column 'torque_sigma': no 'torque' column to go with it")
     out = df.copy() if _copy else df  # read_tweezers_csv owns its frame: checked in place
-    for col in (*REQUIRED_COLUMNS, "sigma"):
+    for col in (*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS):
         if col not in df.columns:
             continue
         if col not in units:
@@ -167,7 +188,7 @@ def _checked_values(raw, col, is_float, where):
             what = f"non-numeric value {cell!r}"
         more = f" ({bad.size - 1} more rows in this column)" if bad.size > 1 else ""
         raise DataError(f"{where(i)}, column {col!r}: {what}{more}")
-    if col in ("force", "sigma"):
+    if col in _POSITIVE:
         nonpos = np.flatnonzero(values <= 0)
         if nonpos.size:
             i = int(nonpos[0])
@@ -219,7 +240,8 @@ _NA_STRINGS = {
 
 def _drop_incomplete(df, lines, source):
     """``df`` (and ``lines``) without the rows that have a missing cell; DataWarning lists them."""
-    checked = [c for c in (*REQUIRED_COLUMNS, "sigma", "molecule") if c in df.columns]
+    checked = [c for c in (*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS, "molecule")
+               if c in df.columns]
     missing = np.zeros(len(df), dtype=bool)
     for col in checked:
         missing |= _missing_mask(df[col])
@@ -252,11 +274,13 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     path : str or Path
         CSV with columns ``force [force unit]``, ``turns`` (no unit = turns, or
         an angle unit), ``extension [length unit]``, optionally ``molecule``
-        and ``sigma [length unit]``; ``# key: json`` lines above the header are
+        and ``sigma [length unit]``, ``torque [torque unit]`` (e.g. ``torque
+        [pN nm]``) and ``torque_sigma [torque unit]``; ``# key: json`` lines above the header are
         kept as provenance.
     drop_incomplete : bool
         If True, rows with a missing value (empty cell or NaN) in ``force``,
-        ``turns``, ``extension``, ``sigma`` or ``molecule`` are removed, and a
+        ``turns``, ``extension``, ``sigma``, ``torque``, ``torque_sigma`` or
+        ``molecule`` are removed, and a
         :class:`~supercoil.exceptions.DataWarning` says how many and lists
         their file lines. If False (default) such a row is an error.
 
@@ -273,7 +297,8 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     DataError
         No such file; missing column; unknown unit or unit of the wrong
         dimension; non-numeric, missing or non-finite cell; non-positive force
-        or sigma; a column named twice. The message names the file line and
+        sigma or torque_sigma; ``torque_sigma`` without ``torque``; a column
+        named twice. The message names the file line and
         the column.
     TypeError
         ``drop_incomplete`` not True/False (e.g. the string ``"False"``), or
@@ -310,7 +335,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
                 f"{hdr}: missing column {col!r}; columns found: {list(map(str, df.columns))}"
                 + header_hint(",".join(map(str, df.columns)))
             )
-    for col in (*REQUIRED_COLUMNS, "sigma"):
+    for col in (*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS):
         if col in df.columns:
             _unit_for(col, units[col], hdr)
     if drop_incomplete:

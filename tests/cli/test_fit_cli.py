@@ -67,7 +67,11 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     rc = main(["fit", str(path), "--out", str(out), "--jobs", "2"])
     assert rc == 1  # one molecule failed: reported, the others fitted
     captured = capsys.readouterr()
-    assert "3/3 molecules done" in captured.err
+    # issue 15: not a terminal, so one line per molecule (no carriage returns piling up)
+    done = [line for line in captured.err.splitlines() if " done (" in line]
+    assert sorted(line[-4:-1] for line in done) == ["1/3", "2/3", "3/3"]
+    assert all(line.startswith("supercoil fit: molecule m") for line in done)
+    assert "\r" not in captured.err
     table = sc.read_csv(out / "fit_molecules.csv")
     assert list(table["success"]) == [True, False, True]
     assert "no plectoneme equilibrium" in table["error"].iloc[1]
@@ -87,6 +91,22 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     assert main(["fit", str(path2), "--global", "--out", str(tmp_path / "g"), "--no-plot"]) == 0
     params = sc.read_csv(tmp_path / "g" / "fit_parameters.csv")
     assert "turns_offset[m1]" in params.columns and "turns_offset[m3]" in params.columns
+
+
+def test_fit_command_joint_torque_fit_and_flags(tmp_path, capsys, true_dna):
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, [0.3, 0.5, 0.7] * u.pN, points_per_force=40,
+                                  seed=9, torque_noise=2 * u.pN * u.nm)
+    path = _write(df, tmp_path / "torque.csv")
+    out = tmp_path / "t"
+    assert main(["fit", str(path), "--out", str(out), "--no-plot"]) == 0
+    report = (out / "fit_report.txt").read_text()
+    assert "torque channel" in report
+    points = sc.read_csv(out / "fit_points.csv")
+    assert points.attrs["units"]["torque_residual"] == "pN*nm"
+    assert np.std(points["torque_residual"]) == pytest.approx(2.0, rel=0.25)
+    assert main(["fit", str(path), "--jobs", "0", "--out", str(out)]) == 2
+    assert "--jobs must be at least 1" in capsys.readouterr().err
 
 
 def test_fit_command_bad_input(tmp_path, capsys):
@@ -132,6 +152,12 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
     assert main(["fit", str(path), "--vary", "radius", "--start", "length=700nm",
                  "--out", out]) == 2
     assert "--start given for 'length'" in capsys.readouterr().err
+    # issue 15: values that do not parse name their flag
+    for flag, item in (("--fix", "length=abc"), ("--start", "radius=1 parsec/"),
+                       ("--bound", "radius=x:3nm"), ("--sigma", "5 blorp")):
+        assert main(["fit", str(path), flag, item, "--out", out]) == 2
+        err = capsys.readouterr().err
+        assert f"cannot read {flag}" in err, (flag, err)
 
 
 def test_fit_command_reports_a_molecule_whose_parameters_are_not_determined(

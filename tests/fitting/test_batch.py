@@ -138,6 +138,7 @@ def test_worker_limits_blas_threads_only_in_a_worker_process(many, base, monkeyp
     one = many[many["molecule"] == "m1"].drop(columns="molecule").reset_index(drop=True)
     one.attrs = dict(many.attrs)
     spec = prepare(one, base)
+    task = batch.MoleculeTask("m1", spec.data, spec, batch._layout(spec))
     seen = []
     real = batch.run_fit
 
@@ -147,8 +148,9 @@ def test_worker_limits_blas_threads_only_in_a_worker_process(many, base, monkeyp
 
     monkeypatch.setattr(batch, "run_fit", spy)
     with threadpool_limits(limits=2):
-        assert batch._fit_worker(spec, parent_pid=-1)["ok"]  # "another process"
-        assert batch._fit_worker(spec, parent_pid=os.getpid())["ok"]  # a thread of the parent
+        assert batch._fit_worker(task, parent_pid=-1)[0]["success"]  # "another process"
+        # a thread of the parent
+        assert batch._fit_worker(task, parent_pid=os.getpid())[0]["success"]
         after = max(i["num_threads"] for i in threadpool_info())
     assert seen == [1, 2] and after == 2
 
@@ -188,3 +190,18 @@ def test_fit_many_checks_and_splits_the_table_once(many, base, monkeypatch):
     sc.fit_many(many, base, executor=Recording())
     assert calls == [len(many)]
     assert submitted == [int((many["molecule"] == m).sum()) for m in ("m1", "m2", "m3", "m4")]
+
+
+def test_each_task_carries_its_molecule_only_not_the_table():
+    """A task's pickled size does not grow with the number of molecules (issue 16: the
+    template once held the whole table, 26 MB per task at 2,000 molecules)."""
+    from supercoil.benchmark.fit_many import client_cost
+
+    small = client_cost(n_molecules=5, points_per_force=30, repeat=1)
+    large = client_cost(n_molecules=60, points_per_force=30, repeat=1)
+    assert small.attrs["units"]["client_time_per_molecule"] == "ms"
+    kb_small = small["pickled_per_task"].iloc[0]
+    kb_large = large["pickled_per_task"].iloc[0]
+    assert kb_large == pytest.approx(kb_small, rel=0.02)
+    # 90 points x 5 float arrays = 3.6 kB of data; the settings add a few kB at most
+    assert 3.6 < kb_small < 12

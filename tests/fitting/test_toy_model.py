@@ -41,7 +41,17 @@ class ToyRod(DNAModel):
                          z / dna.length)
 
 
-sc.register_model(ToyRod, replace=True)
+@pytest.fixture(autouse=True, scope="module")
+def _toy_registered():
+    """The toy is registered for this module's tests only: the registry is global, and
+    other tests (the README's model list) check it holds the package's own models."""
+    from supercoil.dna import models
+
+    before = dict(models._REGISTRY._classes)
+    sc.register_model(ToyRod, replace=True)
+    yield
+    models._REGISTRY._classes.clear()
+    models._REGISTRY._classes.update(before)
 
 WIDTH = 3.0  # true width of the toy data, turns
 FORCES = [0.3, 0.5, 0.7]  # pN

@@ -8,7 +8,9 @@ through the DNA model interface), :mod:`~supercoil.dna.fitting.covariance`
 limits, goodness of fit), :mod:`~supercoil.dna.fitting.fit` (fit_hat_curves),
 :mod:`~supercoil.dna.fitting.result` (FitResult), :mod:`~supercoil.dna.fitting.report`,
 :mod:`~supercoil.dna.fitting.plot`, :mod:`~supercoil.dna.fitting.batch`
-(fit_many), :mod:`~supercoil.dna.fitting.compare` (compare_models),
+(fit_many), :mod:`~supercoil.dna.fitting.progress` (its progress bar or lines),
+:mod:`~supercoil.dna.fitting.channels` (extension and torque channels of a
+joint fit), :mod:`~supercoil.dna.fitting.compare` (compare_models),
 :mod:`~supercoil.dna.fitting.simulate` (simulate_rotation_curves).
 """
 

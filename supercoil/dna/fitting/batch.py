@@ -1,101 +1,180 @@
 """Per-molecule fits of a large table: :func:`fit_many` (serial or on any executor).
 
-The table is checked and converted to SI once; its rows are split by molecule
-once (one stable sort, :meth:`RotationData.groups`); each molecule's spec holds
-only its own slice (no copy of the table or of its ``attrs``) and is submitted
-as soon as it is ready. A worker process limits BLAS to one thread
-(:mod:`threadpoolctl`) for the duration of its fit only.
+The table is checked and converted to SI once and the arguments are validated
+once (a template :class:`~supercoil.dna.fitting.fit.FitSpec`); the rows are
+split by molecule once (one stable sort, :meth:`RotationData.groups`). Each
+task (:class:`MoleculeTask`) holds only its molecule's slice and the shared
+settings and is submitted as soon as it is ready; the worker fits and builds
+the molecule's table row, so the client only stacks rows (its cost per
+molecule: :mod:`supercoil.benchmark.fit_many`). A worker process limits BLAS
+to one thread (:mod:`threadpoolctl`) for the duration of its fit only.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from concurrent.futures import Future, as_completed
 
 import numpy as np
 
+from supercoil._checks import check_material
 from supercoil.dna.fitting.data import RotationData
-from supercoil.dna.fitting.fit import DEFAULT_VARY, emit, prepare, run_fit
+from supercoil.dna.fitting.fit import DEFAULT_VARY, FitSpec, emit, prepare, run_fit
 from supercoil.dna.fitting.prepare import strip_molecule_keys
+from supercoil.dna.fitting.progress import Progress
 from supercoil.dna.interactions import DEFAULT_INTERACTION
+from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
-from supercoil.exceptions import SupercoilError
+from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
 
 __all__ = ["fit_many"]
 
-_KEEP = ("names", "values", "stderr", "reduced_chi_square", "ndata", "nfree", "nfev",
-         "warnings", "seconds", "n0", "z0", "undetermined")
+
+@dataclasses.dataclass
+class MoleculeTask:
+    """What a worker gets: one molecule's points (SI arrays) and the shared fit settings.
+
+    ``settings`` is the :class:`~supercoil.dna.fitting.fit.FitSpec` validated
+    once on the whole table (its parameters are copied on the worker); with a
+    dask client it is None here: the settings are scattered once and their
+    future is a separate argument of the task (dask resolves only top-level
+    futures).
+    """
+
+    label: str
+    data: RotationData
+    settings: FitSpec | None
+    row: dict  # names, display factors and units of the table columns
 
 
-def _fit_worker(spec, parent_pid=None):
-    """Module-level (picklable) worker of :func:`fit_many`: never raises."""
+_CONTROLLER = []
+
+
+def _controller():
+    """This process's threadpoolctl controller, made once: the library scan of a fresh
+    ``threadpool_limits`` costs ~6 ms (half a fit), a cached controller's limit 0.1 ms."""
+    if not _CONTROLLER:
+        try:
+            from threadpoolctl import ThreadpoolController
+        except ImportError:  # not a dependency: without it BLAS keeps its threads
+            _CONTROLLER.append(None)
+        else:
+            _CONTROLLER.append(ThreadpoolController())
+    return _CONTROLLER[0]
+
+
+def _fit_worker(task, parent_pid=None, settings=None):
+    """Module-level (picklable) worker of :func:`fit_many`: builds the molecule's table row.
+
+    ``settings`` replaces ``task.settings`` (a dask client passes the scattered
+    settings here). Never raises: a failure is the row's ``error``. Returns
+    ``(row, warning records)``.
+    """
     try:
-        if parent_pid is not None and os.getpid() != parent_pid:
-            from threadpoolctl import threadpool_limits
-
-            with threadpool_limits(limits=1):
+        settings = task.settings if settings is None else settings
+        spec = dataclasses.replace(settings, data=task.data, params=settings.params.copy())
+        n_free = len(spec.params.free)
+        if spec.data.n - n_free <= 0:
+            raise FitError(f"{spec.data.n} data points cannot determine {n_free} free "
+                           "parameters")
+        controller = _controller() if parent_pid not in (None, os.getpid()) else None
+        if controller is not None:
+            with controller.limit(limits=1):
                 core = run_fit(spec)
         else:  # serial or a thread: do not change the process-wide BLAS threads
             core = run_fit(spec)
     except Exception as exc:  # reported per molecule, not raised for the batch
-        return {"ok": False, "error": f"{type(exc).__name__}: {exc}"}
-    return {"ok": True, **{k: core[k] for k in _KEEP}}
+        return _row(task, None, f"{type(exc).__name__}: {exc}"), []
+    return _row(task, core, ""), core["warnings"]
 
 
-def _sigma_slice(sigma, index):
-    if sigma is None:
-        return None
-    if np.ndim(getattr(sigma, "magnitude", sigma)):
-        return sigma[index]
-    return sigma
+def _row(task, core, error):
+    """The table row of one molecule (the worker builds it; the client only stacks rows)."""
+    layout = task.row
+    ok = core is not None
+    row = {"molecule": task.label, "success": ok, "determined": ok and not np.any(
+        core["undetermined"]), "error": error, "ndata": int(task.data.n),
+        "reduced_chi_square": float(core["reduced_chi_square"]) if ok else np.nan,
+        "nfev": int(core["nfev"]) if ok else 0}
+    by_name = {n: j for j, n in enumerate(core["names"])} if ok else {}
+    for name, factor in layout["factors"].items():
+        j = by_name.get(name)
+        row[name] = np.nan if j is None else float(core["values"][j] * factor)
+        row[f"{name}_stderr"] = np.nan if j is None else float(core["stderr"][j] * factor)
+    if layout["torque"]:
+        row["torque_residual_rms"] = (core["channels"]["torque"]["rms"] * 1e21 if ok
+                                      else np.nan)
+    row["warnings"] = "; ".join(m for _, m in core["warnings"]) if ok else ""
+    return row
 
 
-def _table(labels, results, template, ndata, dna, options):
+def _layout(template):
+    """Column names, display factors and units of the result table (from the template)."""
     names = list(template.params.free)
-    cols = {k: [] for k in ("molecule", "success", "determined", "error", "ndata",
-                            "reduced_chi_square", "nfev")}
-    units = dict.fromkeys(cols, "")
+    units = {k: "" for k in ("molecule", "success", "determined", "error", "ndata",
+                             "reduced_chi_square", "nfev")}
     for name in names:
-        cols[name], cols[f"{name}_stderr"] = [], []
         units[name] = units[f"{name}_stderr"] = template.params[name].unit
-    cols["warnings"], units["warnings"] = [], ""
-    factors = {n: template.params[n].factor for n in names}
-    for lab in labels:
-        res = results[lab]
-        ok = bool(res["ok"])
-        cols["molecule"].append(lab)
-        cols["success"].append(ok)
-        cols["error"].append("" if ok else res["error"])
-        cols["determined"].append(ok and not np.any(res.get("undetermined", [])))
-        cols["ndata"].append(int(res["ndata"]) if ok else ndata[lab])
-        cols["reduced_chi_square"].append(float(res["reduced_chi_square"]) if ok else np.nan)
-        cols["nfev"].append(int(res["nfev"]) if ok else 0)
-        by_name = dict(zip(res.get("names", []), range(len(res.get("names", []))), strict=True))
-        for name in names:
-            j = by_name.get(name)
-            cols[name].append(np.nan if j is None else res["values"][j] * factors[name])
-            cols[f"{name}_stderr"].append(np.nan if j is None
-                                          else res["stderr"][j] * factors[name])
-        cols["warnings"].append("; ".join(m for _, m in res["warnings"]) if ok else "")
-        if ok:
-            emit(res["warnings"], prefix=f"molecule {lab}: ")
+    torque = template.data.has_torque
+    if torque:
+        units["torque_residual_rms"] = "pN*nm"
+    units["warnings"] = ""
+    return {"factors": {n: template.params[n].factor for n in names}, "units": units,
+            "torque": torque}
+
+
+def _table(rows, layout, template, dna, options):
+    cols = {k: [r[k] for r in rows] for k in layout["units"]}
     prov = provenance(dna, vary=list(template.vary), thermal=template.thermal,
                       weighting=template.data.weighting, model=template.model.name,
                       interaction=template.interaction.name, **options)
-    return make_table(cols, units, prov)
+    return make_table(cols, dict(layout["units"]), prov)
 
 
-def _collect(pending, finished):
-    """Results of the submitted fits as they complete (``finished(label, result)``)."""
-    order = as_completed(pending) if all(isinstance(f, Future) for f in pending) else list(
-        pending)  # e.g. a dask.distributed Client used directly: not cf.Futures
-    for fut in order:
+def _is_dask_client(executor):
+    return hasattr(executor, "scatter") and hasattr(executor, "gather") and hasattr(
+        executor, "get_executor")
+
+
+def _completed(pending, executor):
+    """The submitted futures as they complete (any executor's futures)."""
+    futs = list(pending)
+    if futs and all(isinstance(f, Future) for f in futs):
+        return as_completed(futs)
+    if _is_dask_client(executor):
+        from distributed import as_completed as dask_as_completed
+
+        return dask_as_completed(futs)
+    return futs  # other futures with .result(): in submission order
+
+
+def _fit_chunk(tasks, parent_pid=None, settings=None):
+    """Several molecules in one task (a dask client: its cost per task is ~2 ms)."""
+    return [_fit_worker(t, parent_pid, settings) for t in tasks]
+
+
+def _chunk_size(n_molecules):
+    """Molecules per dask task: 1 up to 64 molecules, then up to 16 (>= 4 tasks per 64)."""
+    return max(1, min(16, n_molecules // 64))
+
+
+def _collect(pending, executor, finished):
+    """Results of the submitted fits as they complete (``finished(label, row, records)``).
+
+    ``pending`` maps a future to its task, or to a list of tasks (a chunk).
+    """
+    for fut in _completed(pending, executor):
+        tasks = pending[fut]
+        chunk = isinstance(tasks, list)
+        tasks = tasks if chunk else [tasks]
         try:
-            res = fut.result()
+            results = fut.result() if chunk else [fut.result()]
         except Exception as exc:  # the executor itself failed (e.g. a worker died)
-            res = {"ok": False, "error": f"{type(exc).__name__}: {exc}"}
-        finished(pending[fut], res)
+            results = [(_row(t, None, f"{type(exc).__name__}: {exc}"), []) for t in tasks]
+        for task, (row, records) in zip(tasks, results, strict=True):
+            finished(task.label, row, records)
 
 
 def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=None, sigma=None,
@@ -113,12 +192,18 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
     max_nfev, tol, model, interaction
         As for :func:`fit_hat_curves` (offsets are named without the molecule
         suffix: ``"turns_offset"``; a per-point ``sigma`` is split by molecule).
-    executor : concurrent.futures.Executor, optional
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
         Runs the fits in parallel (``ProcessPoolExecutor``, ``ThreadPoolExecutor``,
-        ``dask.distributed.Client(...).get_executor()`` or the client itself):
-        each molecule is one ``executor.submit`` of a module-level function with
-        picklable arguments (SI floats, no pint objects). None: serial.
-    progress : callable, optional
+        ``client.get_executor()`` or a ``dask.distributed.Client`` itself): each
+        molecule is one ``submit`` of a module-level function with that
+        molecule's points only and the fit settings (SI floats and numpy
+        arrays, no pint or pandas objects); the worker fits and builds the
+        molecule's table row. A dask client gets the settings once per worker
+        (``scatter``) and the tasks with ``pure=False``. None: serial.
+    progress : None, bool or callable
+        None (default): a :mod:`tqdm` bar on stderr when stderr is a terminal,
+        else one line per finished molecule (``molecule m3 done (3/20)``);
+        False: silent; True: always the bar (tqdm installed); a callable:
         ``progress(done, total, molecule)`` after each molecule finishes.
 
     Returns
@@ -140,41 +225,50 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         Only for problems common to all molecules (malformed table, unknown
         parameter names); failures of single fits are reported in the table.
     """
+    check_material(dna, DNA, "dna")
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
     whole = RotationData.from_frame(data)
-    kw = dict(vary=vary, fixed=fixed, bounds=bounds, start=start,
-              fit_turns_offset=fit_turns_offset, fit_extension_offset=fit_extension_offset,
-              thermal=thermal, max_nfev=max_nfev, tol=tol, model=model,
-              interaction=interaction)
-    groups = whole.groups()
-    # validate the arguments once on the whole table as one molecule (names, units, vary)
-    template = prepare(None, dna, sigma=sigma, rotation=whole.take(np.arange(whole.n), "all"),
-                       **kw)
+    if sigma is not None:
+        whole = whole.with_sigma(sigma)  # converted once; split with the rows
+    # validate the arguments once on the whole table as one molecule (names, units, vary):
+    # the settings every worker gets (SI floats, no pint objects)
+    template = prepare(None, dna, vary, fixed, bounds, start, None, fit_turns_offset,
+                       fit_extension_offset, thermal, max_nfev, tol, model, interaction,
+                       rotation=whole.take(np.arange(whole.n), "all"))
+    layout = _layout(template)
     labels = list(whole.labels)
-    ndata = {lab: len(g) for lab, g in zip(labels, groups, strict=True)}
-    results, pending, done = {}, {}, [0]
+    bar = Progress(progress, len(labels))
+    rows = {}
 
-    def finished(lab, res):
-        results[lab] = res
-        done[0] += 1
-        if progress is not None:
-            progress(done[0], len(labels), lab)
+    def finished(lab, row, records):
+        rows[lab] = row
+        if row["success"]:
+            emit(records, prefix=f"molecule {lab}: ", stacklevel=4)
+        bar.update(lab)
 
-    pid = os.getpid()
-    for lab, index in zip(labels, groups, strict=True):
-        rot = whole.take(index, lab)
-        sig = _sigma_slice(sigma, index)
-        try:
-            spec = prepare(None, dna, sigma=sig, rotation=rot, **kw)
-        except SupercoilError as exc:
-            finished(lab, {"ok": False, "error": f"{type(exc).__name__}: {exc}"})
-            continue
-        if executor is None:
-            finished(lab, _fit_worker(spec))
-        else:
-            pending[executor.submit(_fit_worker, spec, pid)] = lab
-    _collect(pending, finished)
+    # the settings without the template's data (the whole table): each task has its rows
+    settings, args, extra = dataclasses.replace(template, data=None), (), {}
+    if _is_dask_client(executor):  # one copy of the settings per worker, not one per task
+        args, extra = (executor.scatter(settings, broadcast=True, hash=False),), {"pure": False}
+        settings = None
+    submit = executor.submit if executor is not None else None
+    pending, pid = {}, os.getpid()
+    tasks = [MoleculeTask(lab, whole.take(index, lab), settings, layout)
+             for lab, index in zip(labels, whole.groups(), strict=True)]
+    try:
+        if args:  # dask: chunks of molecules, the client's cost per task is ~2 ms
+            k = _chunk_size(len(tasks))
+            for i in range(0, len(tasks), k):
+                chunk = tasks[i:i + k]
+                pending[executor.submit(_fit_chunk, chunk, pid, *args, **extra)] = chunk
+        for task in tasks if not args else ():
+            if submit is None:
+                finished(task.label, *_fit_worker(task))
+            else:
+                pending[submit(_fit_worker, task, pid)] = task
+        _collect(pending, executor, finished)
+    finally:
+        bar.close()
     options = {"fixed": {k: str(v) for k, v in (fixed or {}).items()},
                "bounds": {k: [str(x) for x in v] for k, v in (bounds or {}).items()}}
-    return _table(labels, results, template, ndata, dna, options)
-
+    return _table([rows[lab] for lab in labels], layout, template, dna, options)

@@ -12,6 +12,13 @@ Lower is better; only differences between models fitted to the same data with
 the same weights mean anything (``delta_aic``, ``delta_bic`` from the best).
 With unit weights ``chi2`` is in nm^2, which shifts every model's AIC by the
 same constant.
+
+A joint extension + torque fit has one such term per channel c with n_c
+points, ``sum_c n_c ln(chi2_c / n_c)`` (the Gaussian log-likelihood with each
+channel's noise profiled out). ``chi2_c`` uses the channel's stated sigmas, or
+its fixed unit scale (1 nm, 1 pN nm) where the fit estimated the noise: the
+estimated noise itself differs between models and must not enter the
+criterion (with it every model's ``chi2`` would be ``N``).
 """
 
 from __future__ import annotations
@@ -38,6 +45,22 @@ def information_criteria(chi2, ndata, nvarys):
     return core + 2 * nvarys, core + math.log(ndata) * nvarys
 
 
+def _log_likelihood_term(result):
+    """``N ln(chi2 / N)``, or its sum over the channels of a joint fit (module docstring)."""
+    if "torque" not in result.channels:
+        return None
+    total = 0.0
+    for name, c in result.channels.items():
+        n = c["ndata"]
+        if c["noise"] is None:  # stated sigmas
+            chi2 = c["chi_square"]
+        else:  # sum of squares on the channel's fixed unit scale
+            unit = "nm" if name == "extension" else "pN*nm"
+            chi2 = c["residual_rms"].m_as(unit) ** 2 * c["dof"]
+        total += n * math.log(chi2 / n)
+    return total
+
+
 def _fit_one(data, dna, model, vary, own, kw):
     m = get_model(model)
     names = list(vary) + [k for k in m.parameters if own and k not in vary]
@@ -53,6 +76,9 @@ def _row(label, result, error):
         return row, {}
     n, k = result.ndata, len(result.names)
     aic, bic = information_criteria(result.chi_square, n, k)
+    core = _log_likelihood_term(result)
+    if core is not None:  # a joint fit: one term per channel
+        aic, bic = core + 2 * k, core + math.log(n) * k
     row.update(nparams=k, ndata=n, chi_square=result.chi_square,
                reduced_chi_square=result.reduced_chi_square, aic=aic, bic=bic,
                residual_rms=result.residual_rms.m_as("nm"),

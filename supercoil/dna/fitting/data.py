@@ -17,10 +17,13 @@ from supercoil.dna.tweezers import check_tweezers_frame
 from supercoil.exceptions import FitError
 from supercoil.units import U, as_turns, magnitude, ureg
 
-__all__ = ["UNIT_WEIGHT", "RotationData"]
+__all__ = ["UNIT_TORQUE_WEIGHT", "UNIT_WEIGHT", "RotationData"]
 
 #: residual scale with unit weights (1 nm); it cancels in the rescaled covariance
 UNIT_WEIGHT = 1e-9
+#: start scale of the torque residuals without ``torque_sigma`` (1 pN nm); the fit
+#: replaces it by the torque channel's own noise estimate
+UNIT_TORQUE_WEIGHT = 1e-21
 
 
 def _column_si(df, column, unit, converter=None):
@@ -55,6 +58,13 @@ class RotationData:
         The table had a ``molecule`` column.
     units : dict
         The table's ``attrs["units"]``.
+    torque : ndarray or None
+        Measured torque (N m), None without a ``torque`` column.
+    torque_sigma : ndarray or None
+        Standard error of the torque (N m); ``UNIT_TORQUE_WEIGHT`` per point
+        without a ``torque_sigma`` column (the fit then estimates the torque noise).
+    torque_weighting : str
+        ``"sigma column"``, ``"unit"`` or ``""`` (no torque).
     """
 
     force: np.ndarray
@@ -66,6 +76,9 @@ class RotationData:
     labels: tuple
     has_molecule: bool
     units: dict
+    torque: np.ndarray | None = None
+    torque_sigma: np.ndarray | None = None
+    torque_weighting: str = ""
 
     @classmethod
     def from_frame(cls, data, sigma=None, source="data") -> RotationData:
@@ -87,8 +100,16 @@ class RotationData:
             sig, weighting = _column_si(df, "sigma", U.m), "sigma column"
         else:
             sig, weighting = np.full(n, UNIT_WEIGHT), "unit"
+        tq = tsig = None
+        tweighting = ""
+        if "torque" in df.columns:
+            tq = _column_si(df, "torque", U.N * U.m)
+            if "torque_sigma" in df.columns:
+                tsig, tweighting = _column_si(df, "torque_sigma", U.N * U.m), "sigma column"
+            else:
+                tsig, tweighting = np.full(n, UNIT_TORQUE_WEIGHT), "unit"
         rot = cls(force, turns, extension, sig, weighting, mol_index, labels, has_molecule,
-                  dict(df.attrs["units"]))
+                  dict(df.attrs["units"]), tq, tsig, tweighting)
         return rot if sigma is None else rot.with_sigma(sigma)
 
     def with_sigma(self, sigma) -> RotationData:
@@ -115,10 +136,16 @@ class RotationData:
 
     def take(self, index, label) -> RotationData:
         """The points ``index`` as a one-molecule data set labelled ``label`` (no column)."""
+        tq = None if self.torque is None else self.torque[index]
+        ts = None if self.torque_sigma is None else self.torque_sigma[index]
         return RotationData(self.force[index], self.turns[index], self.extension[index],
                             self.sigma[index], self.weighting,
                             np.zeros(len(index), dtype=np.intp), (str(label),), False,
-                            self.units)
+                            self.units, tq, ts, self.torque_weighting)
+
+    @property
+    def has_torque(self) -> bool:
+        return self.torque is not None
 
     def curve_order(self) -> np.ndarray:
         """Point indices sorted by molecule, force and turns (the curves one after another)."""

@@ -21,9 +21,10 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
-from supercoil._checks import check_flag
+from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
+from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.model import HatCurveModel, guess_turns_center
@@ -31,6 +32,7 @@ from supercoil.dna.fitting.parameters import FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
+from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
 from supercoil.exceptions import (
     BoundWarning,
@@ -84,6 +86,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
     fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
+    check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     inter.check(dna.si)
     if rotation is None:
@@ -201,15 +204,17 @@ def run_fit(spec: FitSpec) -> dict:
     u0 = _start_vector(spec.params)
     start = u0 * spec.params.scales
     res = _solve(spec, prob, u0)
+    res, noise = joint_noise(spec, prob, res, _solve)
     u = res.x
     J = prob.jacobian(u)
     r = prob.residual(u)
-    n = spec.data.n
+    n = len(r)
     chi2 = float(r @ r)
     nfree = n - len(u)
+    channels = channels_info(spec, prob, u, noise)
     cov_u, undetermined, note = covariance(J, prob.names)
     records = [("FitWarning", note)] if note else []
-    if spec.data.weighting == "unit":
+    if spec.data.weighting == "unit" and not spec.data.has_torque:
         cov_u = cov_u * (chi2 / nfree)
     scales = spec.params.scales
     cov = cov_u * np.outer(scales, scales)
@@ -222,7 +227,7 @@ def run_fit(spec: FitSpec) -> dict:
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
     records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
-    gof, gof_info = _diag.goodness_messages(spec.data.weighting, chi2, nfree,
+    gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
     return {
@@ -238,6 +243,7 @@ def run_fit(spec: FitSpec) -> dict:
         "torque": np.asarray(pts.torque, dtype=float),
         "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),
         "residual_weighted": r, "goodness": gof_info, "warnings": records,
+        "channels": channels,
         "seconds": time.perf_counter() - t0,
     }
 
@@ -308,6 +314,10 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     data : pandas.DataFrame
         Long table as :func:`read_tweezers_csv` returns: ``force``, ``turns``,
         ``extension``, optional ``molecule`` and ``sigma`` (``attrs["units"]``).
+        With a ``torque`` column (optional ``torque_sigma``) extension and
+        torque are fitted jointly, each channel with its stated sigmas or its
+        own noise estimate (docs/theory/fitting.md#joint-torque-fit);
+        :attr:`FitResult.channels` has each channel's statistics.
     dna : DNA
         Start values of the varied parameters, values of all others.
     vary : sequence of str
@@ -389,6 +399,7 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     Model and interaction parameters held fixed must be set on the model or
     interaction instance passed to the fit.
     """
+    check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
     return build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,

@@ -11,6 +11,11 @@ molecule (DNA fields, at the float level: a :class:`~supercoil.dna.material.DNAS
 with the derived rigidities recomputed), to ``model.replace(...)``, to
 ``interaction.replace(...)`` or to the per-molecule offsets.
 
+With a ``torque`` column the measured torques are a second channel: the
+residual vector is ``[(z_model - z) / sigma_z, (tau_model - tau) / sigma_tau]``
+(docs/theory/fitting.md#joint-torque-fit); the turns offsets act on both
+channels, the extension offsets on the extensions only.
+
 Numerics
 --------
 The optimiser works on scaled variables of order one (``value / scale``). The
@@ -110,6 +115,12 @@ class HatCurveModel:
         self.names = [p.name for p in self.free]
         self.scales = params.scales
         self.w = 1.0 / data.sigma
+        self.n_ext = data.n
+        self.observed = data.extension
+        self.weights = self.w
+        if data.has_torque:
+            self.observed = np.concatenate([data.extension, data.torque])
+            self.set_torque_sigma(data.torque_sigma)
         self.n_kernel_failures = 0
         self.n_kernel_calls = 0
         self.last_failure = None
@@ -120,6 +131,25 @@ class HatCurveModel:
         # the kernel does not depend on the extension offsets: leave them out of the cache key
         self._kernel_mask = np.array([p.kind != "extension_offset" for p in self.free], bool)
         self._per_force = any(p.shared == "per-force" for p in params.values())
+
+    def set_torque_sigma(self, sigma):
+        """Weights of the torque channel: ``1 / sigma`` (N m, scalar or per point)."""
+        wt = np.broadcast_to(1.0 / np.asarray(sigma, dtype=float), (self.n_ext,))
+        self.weights = np.concatenate([self.w, wt])
+        self._jac = None
+
+    def set_extension_sigma(self, sigma):
+        """Weights of the extension channel: ``1 / sigma`` (m, scalar or per point)."""
+        self.w = np.broadcast_to(1.0 / np.asarray(sigma, dtype=float), (self.n_ext,)).copy()
+        self.weights = np.concatenate([self.w, self.weights[self.n_ext:]])
+        self._jac = None
+
+    def channels(self, pts):
+        """Kernel points as the model vector (extension, then torque if fitted; no offsets)."""
+        z = np.array(pts.extension, dtype=float)  # a copy: the points are cached
+        if not self.data.has_torque:
+            return z
+        return np.concatenate([z, np.asarray(pts.torque, dtype=float)])
 
     # ---- parameters -> kernel arguments ----
     def unpack(self, u, force=None):
@@ -201,16 +231,23 @@ class HatCurveModel:
         pts, z0 = self.points(u)
         return np.asarray(pts.extension, dtype=float) + z0
 
+    def predicted(self, u):
+        """The model vector at ``u``: extensions with offsets, then torques (if fitted)."""
+        pts, z0 = self.points(u)
+        y = self.channels(pts)
+        y[: self.n_ext] += z0
+        return y
+
     def residual(self, u):
         """Weighted residuals ``(model - data) / sigma``; ``inf`` where the kernel fails."""
         try:
-            r = (self.extension(u) - self.data.extension) * self.w
+            r = (self.predicted(u) - self.observed) * self.weights
         except _KERNEL_ERRORS as exc:
             self.n_kernel_failures += 1
             self.last_failure = f"{type(exc).__name__}: {exc}"
-            return np.full(len(self.w), np.inf)
+            return np.full(len(self.weights), np.inf)
         if not np.all(np.isfinite(r)):
-            return np.full(len(self.w), np.inf)
+            return np.full(len(self.weights), np.inf)
         return r
 
     # ---- Jacobian ----
@@ -226,10 +263,11 @@ class HatCurveModel:
         J = np.zeros((len(f0), len(u)))
         lo, hi = self.params.bounds_vector()
         mol = self.data.mol_index
+        mol_all = np.concatenate([mol, mol]) if self.data.has_torque else mol
         turns_cols = []
         for j, p in enumerate(self.free):
             if p.owner == "offset" and p.kind == "extension_offset":
-                sel = mol == p.molecule
+                sel = np.flatnonzero(mol == p.molecule)  # extension rows only
                 J[sel, j] = p.scale * self.w[sel]
             elif p.owner == "offset":
                 turns_cols.append(j)
@@ -238,8 +276,8 @@ class HatCurveModel:
         if turns_cols:
             dzdn = self.dz_dturns(u)
             for j in turns_cols:
-                sel = mol == self.free[j].molecule
-                J[sel, j] = -dzdn[sel] * self.w[sel] * self.free[j].scale
+                sel = mol_all == self.free[j].molecule
+                J[sel, j] = -dzdn[sel] * self.weights[sel] * self.free[j].scale
         self._jac = (u.copy(), J.copy())
         return J
 
@@ -251,15 +289,15 @@ class HatCurveModel:
             up = u.copy()
             up[j] += step
             try:
-                zp = self.extension(up)
+                yp = self.predicted(up)
             except _KERNEL_ERRORS:
                 continue
-            return ((zp - self.data.extension) * self.w - f0) / step
+            return ((yp - self.observed) * self.weights - f0) / step
         raise FitError(f"cannot differentiate the model in {self.names[j]} at "
                        f"{self.describe(u)}: the kernel fails on both sides")
 
     def dz_dturns(self, u):
-        """dz/dN at every point: one kernel call at N -/+ h (central difference)."""
+        """dz/dN (then dtau/dN if fitted) at every point: one kernel call at N -/+ h."""
         h = 1e-4
         n0 = self.unpack(u)[3]
         n_eff = self.data.turns - n0[self.data.mol_index]
@@ -267,15 +305,17 @@ class HatCurveModel:
         try:
             pts = self.kernel_at(np.concatenate([n_eff - h, n_eff + h]),
                                  np.concatenate([force, force]), u)
-            z = np.asarray(pts.extension, dtype=float)
-            return (z[len(n_eff):] - z[: len(n_eff)]) / (2 * h)
+            m = len(n_eff)
+            lo_pts = type(pts)(*(None if a is None else np.asarray(a)[:m] for a in pts))
+            hi_pts = type(pts)(*(None if a is None else np.asarray(a)[m:] for a in pts))
+            return (self.channels(hi_pts) - self.channels(lo_pts)) / (2 * h)
         except _KERNEL_ERRORS:
             pass
-        base = np.asarray(self.points(u)[0].extension, dtype=float)
+        base = self.channels(self.points(u)[0])
         for sgn in (1.0, -1.0):
             try:
-                z = np.asarray(self.kernel_at(n_eff + sgn * h, force, u).extension)
-                return (z - base) / (sgn * h)
+                y = self.channels(self.kernel_at(n_eff + sgn * h, force, u))
+                return (y - base) / (sgn * h)
             except _KERNEL_ERRORS:
                 continue
         raise FitError(f"cannot differentiate the model in turns at {self.describe(u)}")

@@ -12,14 +12,38 @@ __all__ = ["plot_comparison", "plot_fit"]
 _MARKERS = "osd^v<>p*hX"
 
 
-def _curve(result, force, grid):
-    """The fitted hat curve (offset-free, nm) on ``grid`` turns at ``force`` (N)."""
+def _curve(result, force, grid, field="extension"):
+    """The fitted hat curve (offset-free, nm; or the torque, pN nm) on ``grid`` turns at
+    ``force`` (N)."""
     c = result._core
     dna, model, inter = c["dna"], c["model_obj"], c["interaction_obj"]
     if c.get("states"):  # per-force parameters: the molecule and model at this force
         dna, model, inter = c["states"][float(force)]
     pts = model.points(grid, np.full_like(grid, force), dna, result.thermal, inter, None)
-    return np.asarray(pts.extension) * 1e9
+    return np.asarray(getattr(pts, field)) * (1e9 if field == "extension" else 1e21)
+
+
+def _torque_panels(result, axes, k, f, grid):
+    """Rows 3 and 4 of a joint fit: measured torque with the fitted torque, residuals."""
+    d, c = result._spec.data, result._core
+    ax, axr = axes[2, k], axes[3, k]
+    mol = d.mol_index
+    n_eff = d.turns - c["n0"][mol]
+    for i in range(len(d.labels)):
+        m = (d.force == f) & (mol == i)
+        if not m.any():
+            continue
+        kw = {"marker": _MARKERS[i % len(_MARKERS)], "ms": 3, "ls": "none", "alpha": 0.6}
+        ax.plot(n_eff[m], d.torque[m] * 1e21, **kw)
+        axr.plot(n_eff[m], (d.torque[m] - c["torque"][m]) * 1e21, **kw)
+    try:
+        ax.plot(grid, _curve(result, f, grid, "torque"), "k-", lw=1.5)
+    except SupercoilError:
+        pass  # the points themselves are shown; the model fails between them
+    axr.axhline(0, color="k", lw=0.8)
+    if k == 0:
+        ax.set_ylabel("torque (pN nm)")
+        axr.set_ylabel("residual (pN nm)")
 
 
 def _data_panels(result, axes, k, f):
@@ -45,18 +69,21 @@ def plot_fit(result, fig=None, n_curve=300):
     """Data, fit and residuals per force (offset-corrected); returns the Figure.
 
     Top row: extension minus the molecule's extension offset against turns
-    minus its turns offset, with the fitted hat curve. Bottom row: residuals
-    ``data - model``.
+    minus its turns offset, with the fitted hat curve. Second row: residuals
+    ``data - model``. With torque data (a joint fit) two more rows: the
+    measured torque with the fitted torque, and the torque residuals.
     """
     import matplotlib.pyplot as plt
 
     d, c = result._spec.data, result._core
     forces = np.unique(d.force)
     nf = len(forces)
+    torque = d.has_torque
     if fig is None:
-        fig = plt.figure(figsize=(min(4.2 * nf, 16), 5.2), layout="constrained")
-    axes = fig.subplots(2, nf, sharex="col", squeeze=False,
-                        gridspec_kw={"height_ratios": [3, 1]})
+        fig = plt.figure(figsize=(min(4.2 * nf, 16), 9.0 if torque else 5.2),
+                         layout="constrained")
+    axes = fig.subplots(4 if torque else 2, nf, sharex="col", squeeze=False,
+                        gridspec_kw={"height_ratios": [3, 1, 3, 1] if torque else [3, 1]})
     for k, f in enumerate(forces):
         ax, axr = axes[0, k], axes[1, k]
         n_sel = _data_panels(result, axes, k, f)
@@ -70,7 +97,9 @@ def plot_fit(result, fig=None, n_curve=300):
             ax.plot(n_sel[order], z, "k-", lw=1.5, label="fit" if k == 0 else None)
         ax.set_title(f"F = {f * 1e12:.3g} pN")
         axr.axhline(0, color="k", lw=0.8)
-        axr.set_xlabel("turns - turns offset")
+        if torque:
+            _torque_panels(result, axes, k, f, grid)
+        axes[-1, k].set_xlabel("turns - turns offset")
         if k == 0:
             ax.set_ylabel("extension - offset (nm)")
             axr.set_ylabel("residual (nm)")

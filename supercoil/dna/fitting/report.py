@@ -22,7 +22,14 @@ def _in_data_unit(result, nm):
 def _statistics(result):
     noise = result.residual_rms.magnitude
     g = result.goodness
-    if result.weighting == "unit":
+    if result.weighting == "unit" and "torque" in result.channels:
+        stats = [
+            f"    noise estimate     = {_in_data_unit(result, noise)} (extension residual RMS)",
+            f"    chi-square         = {result.chi_square:.6g} (both channels, each weighted "
+            "by its sigmas or its own noise estimate)",
+        ]
+        wtext = "per channel (below); no rescaling of the covariance"
+    elif result.weighting == "unit":
         stats = [
             f"    noise estimate     = {_in_data_unit(result, noise)} (residual RMS, "
             "sqrt(sum of squared residuals / degrees of freedom))",
@@ -46,6 +53,21 @@ def _statistics(result):
         wtext = (f"per-point sigma ({result.weighting}); covariance not rescaled "
                  "(absolute uncertainties)")
     return stats, wtext
+
+
+def _channel_lines(result):
+    """One line per channel of a joint extension and torque fit (none for extension only)."""
+    if "torque" not in result.channels:
+        return []
+    lines = []
+    for name, c in result.channels.items():
+        rms = c["residual_rms"]
+        how = (f"noise estimate {c['noise'].magnitude:.4g} {c['noise'].units:~P} used as "
+               "its sigma" if c["noise"] is not None else f"sigmas from the {c['weighting']}")
+        lines.append(f"    {name + ' channel':<19}= {c['ndata']} points, residual RMS "
+                     f"{rms.magnitude:.4g} {rms.units:~P}, chi-square {c['chi_square']:.6g} "
+                     f"for {c['dof']:.1f} degrees of freedom ({how})")
+    return lines
 
 
 def _parameter_lines(result, width):
@@ -87,11 +109,13 @@ def fit_report(result, min_correlation=0.1) -> str:
     forces = np.unique(d.force)
     force_text = ", ".join(f"{f * 1e12:.4g}" for f in forces)
     stats, wtext = _statistics(result)
+    torque = ", torque = tau(N - turns_offset)" if "torque" in result.channels else ""
     inter = (f", interaction {result.interaction.name!r}" if result.model.uses_interaction
              else "")
     lines = [
         "[[Model]]",
-        f"    z = hat(N - turns_offset) + extension_offset, model {result.model.name!r}{inter}, "
+        f"    z = hat(N - turns_offset) + extension_offset{torque}, model "
+        f"{result.model.name!r}{inter}, "
         + ("thermal" if result.thermal else "athermal"),
         "[[Fit statistics]]",
         f"    fitting method     = least_squares (trf), {result.nfev} model evaluations "
@@ -103,6 +127,7 @@ def fit_report(result, min_correlation=0.1) -> str:
         f"    degrees of freedom = {result.nfree}",
         *stats,
         f"    weighting          = {wtext}",
+        *_channel_lines(result),
         f"    converged          = {result.success} ({result.message})",
         "[[Parameters]]",
     ]

@@ -36,6 +36,24 @@ def _correlation(cov, undetermined):
     return corr
 
 
+_CHANNEL_UNITS = {"extension": U.nm, "torque": U.pN * U.nm}
+
+
+def _channel_stats(channels):
+    """Per-channel statistics with quantities (each channel in its own unit)."""
+    out = {}
+    for name, c in channels.items():
+        unit = _CHANNEL_UNITS[name]
+        si = U.m if name == "extension" else U.N * U.m
+        out[name] = {
+            "ndata": int(c["n"]), "chi_square": float(c["chi_square"]),
+            "dof": float(c["dof"]), "weighting": c["weighting"],
+            "residual_rms": quantity(c["rms"], si).to(unit),
+            "noise": None if c["noise"] is None else quantity(c["noise"], si).to(unit),
+        }
+    return out
+
+
 class FitResult:
     """The result of :func:`fit_hat_curves`.
 
@@ -66,14 +84,19 @@ class FitResult:
         1 nm, so they are the sum of squared residuals and the residual
         variance in nm^2 (not a goodness of fit; the report then shows
         :attr:`residual_rms`). Always ``chi_square / nfree == reduced_chi_square``.
+        A joint extension + torque fit sums both channels, each weighted by
+        its sigmas or its own noise estimate (then ``chi_square`` is about
+        ``nfree``; see :attr:`channels`).
     residual_rms : pint.Quantity
-        ``sqrt(sum((data - model)^2) / nfree)`` (nm): with unit weights the
-        estimate of the extension noise, by which the errors are scaled.
+        ``sqrt(sum((data - model)^2) / nfree)`` (nm) of the extensions (in a
+        joint fit with the extension channel's share of ``nfree``): with unit
+        weights the estimate of the extension noise, by which the errors are scaled.
     goodness : dict
         The goodness-of-fit test that applies (``"chi-square"`` with sigmas,
         ``"runs"`` with unit weights) and its ``p_value``.
     ndata, nfree, nfev : int
-        Data points, degrees of freedom, model evaluations.
+        Data points (extensions plus torques in a joint fit), degrees of
+        freedom, model evaluations (of all re-solves in a joint fit).
     weighting : str
         ``"sigma column"``, ``"sigma argument"`` or ``"unit"``.
     residuals, best_fit : pint.Quantity
@@ -84,6 +107,16 @@ class FitResult:
         The model and interaction instances with the fitted parameters.
     data : pandas.DataFrame
         The data as given.
+    channels : dict of str -> dict
+        Per fitted channel (``"extension"``, and ``"torque"`` with a torque
+        column): ``ndata``, ``chi_square`` (that channel's weighted sum),
+        ``dof`` (the degrees of freedom shared by point count), ``weighting``,
+        ``residual_rms`` (Quantity, nm or pN nm) and ``noise`` (the channel's
+        own noise estimate used as its sigma in a joint fit without sigmas,
+        else None); docs/theory/fitting.md#joint-torque-fit.
+    torque_best_fit, torque_residuals : pint.Quantity or None
+        With a torque column: the model torque at the data points and
+        ``data - model`` (pN nm); else None.
     warnings : list of str
         Every warning of the fit (also in :meth:`report`).
     """
@@ -112,7 +145,9 @@ class FitResult:
         self.reduced_chi_square = float(core["reduced_chi_square"])
         resid = spec.data.extension - core["model"]
         self.nfree = int(core["nfree"])
-        self.residual_rms = quantity(math.sqrt(float(resid @ resid) / self.nfree) * 1e9, U.nm)
+        self.channels = _channel_stats(core["channels"])
+        # the extension channel's own degrees of freedom (all of nfree without torque)
+        self.residual_rms = self.channels["extension"]["residual_rms"]
         self.goodness = dict(core["goodness"])
         self.ndata = int(core["ndata"])
         self.nfev = int(core["nfev"])
@@ -124,6 +159,11 @@ class FitResult:
         self.best_fit = quantity(core["model"] * 1e9, U.nm)
         self.residuals = quantity(resid * 1e9, U.nm)
         self.warnings = [m for _, m in core["warnings"]]
+        self.torque_best_fit = self.torque_residuals = None
+        if spec.data.has_torque:
+            self.torque_best_fit = quantity(core["torque"] * 1e21, U.pN * U.nm)
+            self.torque_residuals = quantity((spec.data.torque - core["torque"]) * 1e21,
+                                             U.pN * U.nm)
         self.model = core["model_obj"]
         self.interaction = core["interaction_obj"]
         self.fixed = self._fixed(core, spec)
@@ -179,7 +219,9 @@ class FitResult:
         (``attrs["units"]``; the stderr is ``inf`` for an undetermined
         parameter), then ``reduced_chi_square``, ``chi_square`` (see the class
         docstring), ``residual_rms`` (nm), ``ndata``, ``nfree``, ``nfev``,
-        ``weighting``, ``determined`` (False if any parameter is undetermined).
+        ``weighting``, ``determined`` (False if any parameter is undetermined);
+        with torque data also ``torque_residual_rms`` (pN nm),
+        ``torque_chi_square``, ``torque_weighting``.
         """
         cols, units = {}, {}
         for name in self.names:
@@ -194,6 +236,13 @@ class FitResult:
                            ("determined", not self.undetermined, "")):
             cols[k] = [v]
             units[k] = unit
+        if "torque" in self.channels:
+            t = self.channels["torque"]
+            cols["torque_residual_rms"] = [t["residual_rms"].m_as("pN*nm")]
+            cols["torque_chi_square"] = [t["chi_square"]]
+            cols["torque_weighting"] = [t["weighting"]]
+            units.update(torque_residual_rms="pN*nm", torque_chi_square="",
+                         torque_weighting="")
         prov = provenance(self.dna, vary=list(self._spec.vary), fixed=dict(self.fixed),
                           thermal=self.thermal, model=self.model.name,
                           interaction=self.interaction.name)
@@ -215,6 +264,9 @@ class FitResult:
             ("best_fit", c["model"] * 1e9, "nm"),
             ("residual", (d.extension - c["model"]) * 1e9, "nm"),
             ("torque", c["torque"] * 1e21, "pN*nm"),
+            *(() if d.torque is None else (
+                ("torque_measured", d.torque * 1e21, "pN*nm"),
+                ("torque_residual", (d.torque - c["torque"]) * 1e21, "pN*nm"))),
             ("plectoneme_length", c["plectoneme_length"] * 1e9, "nm"),
             ("phase", c["phase"].astype(int), ""),
             ("short_tail", c["short_tail"], ""),

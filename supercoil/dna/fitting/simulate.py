@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag
+from supercoil._checks import check_flag, check_material
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
+from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
 from supercoil.dna.models.li_zhao import LiZhao
 from supercoil.exceptions import FitError
@@ -38,8 +39,8 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     from supercoil.core.dna.hat import hat_parameters
 
     thermal = check_flag(thermal, "thermal")
+    si = check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
-    si = dna.si
     F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
     lmin = 4 * si.bending_persistence if min_tail is None else float(
         magnitude(min_tail, U.m, "min_tail"))
@@ -73,10 +74,34 @@ def _offsets(turns_offset, extension_offset, n):
     return n0, z0
 
 
+#: units of the simulated extension column and their factor from metres
+_EXTENSION_FACTORS = {"um": 1e6, "nm": 1e9}
+
+
+def _torque_sd(torque_noise):
+    """The torque noise (N m) or None; FitError unless finite and >= 0."""
+    if torque_noise is None:
+        return None
+    sd_t = float(magnitude(torque_noise, U.N * U.m, "torque_noise"))
+    if not (np.isfinite(sd_t) and sd_t >= 0):
+        raise FitError(f"torque_noise must be finite and >= 0, got {sd_t * 1e21:g} pN nm")
+    return sd_t
+
+
+def _add_torque(table, units, torques, sd_t, sigma_column):
+    """The ``torque`` (and ``torque_sigma``) columns, pN nm."""
+    table["torque"] = np.concatenate(torques)
+    units["torque"] = "pN nm"
+    if sigma_column:
+        table["torque_sigma"] = np.full(len(table["force"]), sd_t * 1e21)
+        units["torque_sigma"] = "pN nm"
+
+
 def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, noise=None,
                              turns_offset=0.0, extension_offset=None, molecules=None, seed=None,
                              thermal=True, extension_unit="um", sigma_column=False,
-                             model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION):
+                             model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION,
+                             torque_noise=None):
     """Synthetic rotation curves: a hat-curve model plus offsets and Gaussian noise.
 
     Parameters
@@ -103,22 +128,35 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     extension_unit : str
         Unit of the extension column (``"um"`` or ``"nm"``).
     sigma_column : bool
-        Add a ``sigma`` column (nm) holding the noise level.
+        Add a ``sigma`` column (nm) holding the noise level (and, with
+        ``torque_noise``, a ``torque_sigma`` column in pN nm).
     model, interaction : str or instance
         The DNA model (default ``"li-zhao"``) and interaction (``"hard-core"``).
+    torque_noise : Quantity [torque], optional
+        With it the table has a ``torque [pN nm]`` column: the model torque
+        (sign of the turns) plus Gaussian noise of this standard deviation
+        (drawn after the extension noise of each molecule).
 
     Returns
     -------
     pandas.DataFrame
         The table convention of :func:`~supercoil.read_tweezers_csv`:
-        ``[molecule,] force [pN], turns, extension [extension_unit][, sigma [nm]]``.
+        ``[molecule,] force [pN], turns, extension [extension_unit][, sigma [nm]]``
+        ``[, torque [pN nm][, torque_sigma [pN nm]]]``.
     """
     thermal = check_flag(thermal, "thermal")
     sigma_column = check_flag(sigma_column, "sigma_column")
+    check_material(dna, DNA, "dna")
+    if extension_unit not in _EXTENSION_FACTORS:
+        raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
+                       f"{extension_unit!r}")
     m, inter = resolve_model(model, interaction)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
     sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
+    if not (np.isfinite(sd) and sd >= 0):
+        raise FitError(f"noise must be finite and >= 0, got {sd * 1e9:g} nm")
+    sd_t = _torque_sd(torque_noise)
     labels, has_mol = _labels(molecules)
     n0, z0 = _offsets(turns_offset, extension_offset, len(labels))
     if turns is None:
@@ -127,14 +165,17 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         grids = [np.linspace(-x, x, points_per_force) for x in nmax]
     else:
         grids = [np.asarray(as_turns(turns, "turns"), dtype=float)] * len(F)
-    factor = {"um": 1e6, "nm": 1e9}[extension_unit]
+    factor = _EXTENSION_FACTORS[extension_unit]
     N = np.concatenate(grids)
     FF = np.concatenate([np.full(len(g), f) for g, f in zip(grids, F, strict=True)])
-    mol, Fs, Ns, Zs = [], [], [], []
+    mol, Fs, Ns, Zs, Ts = [], [], [], [], []
     for i, lab in enumerate(labels):
-        z = np.asarray(m.points(N - n0[i], FF, dna.si, thermal, inter, None).extension,
-                       dtype=float)
+        pts = m.points(N - n0[i], FF, dna.si, thermal, inter, None)
+        z = np.asarray(pts.extension, dtype=float)
         z = z + z0[i] + rng.normal(0.0, sd, z.shape)
+        if sd_t is not None:
+            tq = np.asarray(pts.torque, dtype=float)
+            Ts.append((tq + rng.normal(0.0, sd_t, tq.shape)) * 1e21)
         mol.extend([lab] * len(N))
         Fs.append(FF * 1e12)
         Ns.append(N)
@@ -146,9 +187,12 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     if sigma_column:
         table["sigma"] = np.full(len(table["force"]), sd * 1e9)
         units["sigma"] = "nm"
+    if sd_t is not None:
+        _add_torque(table, units, Ts, sd_t, sigma_column)
     prov = provenance(
         dna, simulated=True, noise=f"{sd * 1e9:.6g} nm", seed=seed if isinstance(seed, int)
         else None, turns_offset=[float(v) for v in n0],
         extension_offset=[f"{v * 1e9:.6g} nm" for v in z0], thermal=thermal, model=m.name,
-        interaction=inter.name)
+        interaction=inter.name,
+        torque_noise=None if sd_t is None else f"{sd_t * 1e21:.6g} pN nm")
     return make_table(table, {k: units[k] for k in table}, prov)
