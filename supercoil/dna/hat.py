@@ -39,6 +39,7 @@ HELICAL_REPEAT = _v.HELICAL_REPEAT  # DNA helical repeat h (m per helical turn)
 #: phase labels of the ``phase`` column, indexed by the kernel's phase code
 PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
 _PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
+_PHASE_DTYPE = pd.CategoricalDtype(_PHASE_CATEGORIES)
 
 _UNITS = {
     "force": "pN",
@@ -144,7 +145,7 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
             raise ValueError(f"short_tail_length must be a non-negative finite scalar, "
                              f"got {short_tail_length}")
     F = np.repeat(f, n.size)
-    N = np.tile(n, f.size)
+    N = _tiled(n, f.size, turns)
     hp = m.points(N, F, si, thermal, inter, short)
     _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
     msgs = (_v.force_messages(f) + _v.denaturation_messages(F, N) + inter.messages(si)
@@ -152,6 +153,19 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
             + m.validity(N, F, hp, si, thermal))
     _v.warn(msgs, stacklevel=stacklevel + 1)
     return si, F, N, hp, m, inter.interaction, thermal, short
+
+
+def _tiled(n, times, given):
+    """``n`` repeated ``times`` times: the turns column, never a view of the caller's ``given``.
+
+    One force and a fresh ``n`` (read from a list or converted from a
+    quantity): ``n`` itself, no copy.
+    """
+    if times == 1 and n.flags.owndata and n.flags.writeable:
+        src = getattr(given, "magnitude", given)
+        if not (isinstance(src, np.ndarray) and np.may_share_memory(n, src)):
+            return n
+    return np.tile(n, times)
 
 
 def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
@@ -258,13 +272,16 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     L = si.length
     if short is None:
         short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
+    # The checks above read the SI arrays; now each fresh array becomes its display-unit
+    # column in place (no second copy: peak memory ~1.3x the table, issue 14).
+    own = _Owned(N)
     columns = {
-        "force": F * 1e12,
+        "force": own.scaled(F, 1e12),
         "turns": N,
-        "extension": hp.extension * 1e9,
-        "phase": pd.Categorical.from_codes(hp.phase, categories=_PHASE_CATEGORIES),
-        "torque": hp.torque * 1e21,
-        "plectoneme_length": hp.plectoneme_length * 1e9,
+        "extension": own.scaled(hp.extension, 1e9),
+        "phase": pd.Categorical.from_codes(hp.phase, dtype=_PHASE_DTYPE),
+        "torque": own.scaled(hp.torque, 1e21),
+        "plectoneme_length": own.scaled(hp.plectoneme_length, 1e9),
         "supercoiling_density": N * (HELICAL_REPEAT / L),
         "eta": N * (2.0 * np.pi * si.wlc_persistence / L),
         "short_tail": hp.short_tail,
@@ -273,7 +290,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     if m.has_free_energy(thermal):
         g = hp.free_energy if hp.free_energy is not None else m.free_energy(N, F, si, thermal,
                                                                              inter)
-        columns["free_energy"] = np.asarray(g) * 1e21
+        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float), 1e21)
     else:
         units.pop("free_energy")
     return make_table(
@@ -290,6 +307,26 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
             helical_repeat=f"{HELICAL_REPEAT * 1e9:.6g} nm",
         ),
     )
+
+
+class _Owned:
+    """Scales a model's fresh result arrays in place, each at most once (else copies).
+
+    An array is scaled in place only if it owns its data, is writeable, is a
+    float64 array and has not been seen before (a model returning one array for
+    two fields, or the turns column, gets a scaled copy instead).
+    """
+
+    def __init__(self, *seen):
+        self.seen = {id(a) for a in seen}
+
+    def scaled(self, a, factor):
+        fresh = (isinstance(a, np.ndarray) and a.dtype == np.float64 and a.flags.owndata
+                 and a.flags.writeable and id(a) not in self.seen)
+        if not fresh:
+            return np.multiply(a, factor)
+        self.seen.add(id(a))
+        return np.multiply(a, factor, out=a)
 
 
 @lru_cache(maxsize=32)

@@ -206,35 +206,32 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         turns, force = np.broadcast_arrays(turns, force)
     if not (np.isfinite(length) and length > 0):
         raise ValueError(f"length must be positive and finite, got {length!r}")
-    if not np.all(np.isfinite(turns)):
-        raise ValueError("turns must be finite")
-    if not np.all(np.isfinite(force)):
-        raise ValueError("force must be finite")
     if short_tail_length is None:
         short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * B / kT
     if turns.size == 0:
         empty = np.empty(turns.shape)
         return HatPoints(empty, empty, empty, empty.astype(np.int8), empty.astype(bool), empty,
                          None, empty if thermal else None)
-
-    fmin, fmax = force.min(), force.max()
-    if fmin == fmax:
-        uf, inv = np.array([fmin]), None
-    else:
-        uf, inv = np.unique(force, return_inverse=True)
-        inv = inv.reshape(-1)
-    eq = None if equilibrium_solver is None else equilibrium_solver(uf)
-    par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
     shape = turns.shape
     turns, force = turns.reshape(-1), force.reshape(-1)
-    out = HatPoints(np.empty(turns.size), np.empty(turns.size), np.empty(turns.size),
-                    np.empty(turns.size, np.int8), np.empty(turns.size, bool),
-                    np.empty(turns.size), None, np.empty(turns.size) if thermal else None)
-    for start in range(0, turns.size, BLOCK):
-        sl = slice(start, start + BLOCK)
-        idx = None if inv is None else inv[sl]
-        _fill_block(turns[sl], force[sl], idx, par, length, B, kT, thermal, short_tail_length,
-                    out, sl)
+    uf, ranges = _forces(force)
+    eq = None if equilibrium_solver is None else equilibrium_solver(uf)
+    par = hat_parameters(uf, length, B, C, kT, r0, thermal, rtol, False, eq)
+    # per-force constants of the per-point formulas (docs/theory/li-zhao.md#hat-curve)
+    const = (par.buckling_turns, par.torque, _TWO_PI / par.linking_rate,
+             par.effective_twist_rigidity * (_TWO_PI / length), uf * (B / (kT * kT)) - 1.0 / 32)
+    n = turns.size
+    out = HatPoints(np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8),
+                    np.empty(n, bool), np.empty(n), None, np.empty(n) if thermal else None)
+    for (start, stop), (lo, hi) in zip(_blocks(n), ranges, strict=True):
+        sl = slice(start, stop)
+        if lo == hi:  # one force in the block (the force-major tables): scalar constants
+            i = int(np.searchsorted(uf, lo))
+            c = tuple(a[i] for a in const)
+        else:
+            i = np.searchsorted(uf, force[sl])
+            c = tuple(a[i] for a in const)
+        _fill_block(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length, out, sl)
     if shape != turns.shape:
         out = HatPoints(*(None if a is None else a.reshape(shape) for a in out))
     return out
@@ -245,51 +242,75 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
 BLOCK = 1 << 15
 
 
-def _fill_block(turns, force, idx, par, length, B, kT, thermal, short_tail_length, out, sl):
-    """Hat-curve points of one block, written into the slices ``sl`` of ``out``."""
-    def take(a):
-        return a[0] if idx is None else a[idx]
+def _blocks(n):
+    """``(start, stop)`` of the blocks of ``n`` points."""
+    return [(s, min(s + BLOCK, n)) for s in range(0, n, BLOCK)]
 
-    Nb, Mp = take(par.buckling_turns), take(par.torque)
+
+def _forces(force):
+    """Sorted distinct forces and each block's ``(min, max)``; ValueError if not finite.
+
+    One pass of two cache-resident reductions per block: a block of one force
+    (every block but the seams of a force-major table) needs no sort.
+    """
+    ranges, values = [], []
+    for start, stop in _blocks(force.size):
+        f = force[start:stop]
+        lo, hi = f.min(), f.max()  # NaN propagates into both; inf shows in one
+        if not (np.isfinite(lo) and np.isfinite(hi)):
+            raise ValueError("force must be finite")
+        ranges.append((lo, hi))
+        values.append(np.array([lo]) if lo == hi else np.unique(f))
+    return np.unique(np.concatenate(values)), ranges
+
+
+def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
+    """Hat-curve points of one block, written into the slices ``sl`` of ``out``.
+
+    ``const``: per-force constants (scalars, or arrays of the block) ``N_b``,
+    ``M_p``, ``2 pi / D``, ``C_eff 2 pi / L`` and ``B T / kT^2 - 1/32``. Each
+    quantity is computed once, in place where possible (about 25 passes over the
+    block, all cache-resident).
+    """
+    Nb, Mp, k, c, s = const
     n = np.abs(turns)
-    stretched = n <= Nb
+    if not np.isfinite(n.max()):  # NaN propagates into the max
+        raise ValueError("turns must be finite")
     S = out.plectoneme_length[sl]
     np.subtract(n, Nb, out=S)
     np.maximum(S, 0.0, out=S)
-    np.multiply(S, _TWO_PI / take(par.linking_rate), out=S)
+    np.multiply(S, k, out=S)  # S = 2 pi (|N| - N_b) / D in the plectoneme phase
     coiled = S >= length
     np.minimum(S, length, out=S)
-    tail = length - S
+    tail = np.subtract(length, S)
+    phase = out.phase[sl]
+    np.greater(n, Nb, out=phase.view(bool))  # 1 past buckling, 0 stretched
+    phase += coiled.view(np.int8)  # fully coiled (S >= L) only past buckling: 2
     M = out.torque[sl]
-    np.multiply(n, take(par.effective_twist_rigidity) * (_TWO_PI / length), out=M)
-    np.copyto(M, Mp, where=~stretched)
+    np.multiply(n, c, out=M)  # stretched tail C_eff 2 pi |N| / L, equal to M_p at N_b
+    np.minimum(M, Mp, out=M)
     zeta, extension = out.zeta[sl], out.extension[sl]
     if thermal:
-        Q = out.bracket[sl]
+        Q = out.bracket[sl]  # Q = B T/kT^2 - 1/32 - (M / 2 kT)^2
         np.multiply(M, 0.5 / kT, out=Q)
         np.square(Q, out=Q)
-        np.subtract(force * (B / (kT * kT)) - 1.0 / 32.0, Q, out=Q)
-        if not np.all((Q > 0.0) | coiled):
+        np.subtract(s, Q, out=Q)
+        if not Q.min() > 0.0 and not np.all((Q > 0.0) | coiled):
             _mn.check_bracket(np.where(coiled, 1.0, Q), force, np.sign(turns) * M)
         with np.errstate(divide="ignore", invalid="ignore"):
+            # zeta = 1 - Q^(-1/2)/2 + B kT / ((B T - M^2/4) l), B T - M^2/4 = kT^2 (Q + 1/32)
+            np.add(Q, 1.0 / 32.0, out=extension)
+            extension *= tail
+            np.divide(B / kT, extension, out=extension)
             np.sqrt(Q, out=zeta)
             np.divide(-0.5, zeta, out=zeta)
             zeta += 1.0
-            np.multiply(M, M, out=extension)
-            np.multiply(extension, -0.25, out=extension)
-            extension += B * force
-            extension *= tail
-            np.divide(B * kT, extension, out=extension)
             zeta += extension
-        zeta[coiled] = 0.0
+        np.copyto(zeta, 0.0, where=coiled)
         np.multiply(zeta, tail, out=extension)
     else:
-        zeta[:] = 1.0
-        zeta[coiled] = 0.0
+        zeta.fill(1.0)
+        np.copyto(zeta, 0.0, where=coiled)
         extension[:] = tail
-    phase = out.phase[sl]
-    phase[:] = PLECTONEME
-    phase[coiled] = FULLY_COILED
-    phase[stretched] = STRETCHED
     np.copysign(M, turns, out=M)
     np.less(tail, short_tail_length, out=out.short_tail[sl])
