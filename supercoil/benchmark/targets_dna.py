@@ -7,7 +7,9 @@ its docstring exactly what it times:
   columns) and the kernel it calls,
   ``supercoil.core.dna.hat.hat_curve_points`` (float arrays), against one numpy
   pass over the same turns array (``np.multiply(turns, 2.0)``, a new array),
-  CPU time, median of interleaved samples;
+  CPU time, median of interleaved samples; beside them the write of the
+  table's 9 columns alone (``columns_write``) and, with numba installed, the
+  compiled kernel (``kernel_fast``, ``hat_curve_points(..., fast=True)``);
 * :func:`hat_memory`: peak traced memory of one public ``sc.hat_curve`` call
   against the memory its result holds;
 * :func:`equilibrium_cost`: the public ``sc.plectoneme_equilibrium`` and the
@@ -53,6 +55,7 @@ def hat_throughput(n, samples=9):
     """
     import supercoil as sc
     from supercoil.core.dna import hat as hat_kernel
+    from supercoil.core.dna import hat_fast
 
     dna = _dna()
     d = dna.si
@@ -60,14 +63,31 @@ def hat_throughput(n, samples=9):
     forces = np.full(n, HAT_FORCE)
     force_q = HAT_FORCE * sc.ureg.N
     args = (d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)
-    t = interleaved_cpu({
+    funcs = {
         "public": lambda: sc.hat_curve(dna, force_q, turns),
-        "kernel": lambda: hat_kernel.hat_curve_points(turns, forces, *args),
+        "kernel": lambda: hat_kernel.hat_curve_points(turns, forces, *args, fast=False),
         "numpy_pass": lambda: np.multiply(turns, 2.0),
-    }, samples=samples)
-    t["public_ratio"] = t["public"] / t["numpy_pass"]
-    t["kernel_ratio"] = t["kernel"] / t["numpy_pass"]
+        "columns_write": lambda: _columns_write(turns),
+    }
+    if hat_fast.available():  # the compiled kernel (supercoil[fast]): compiled in warm-up
+        funcs["kernel_fast"] = lambda: hat_kernel.hat_curve_points(turns, forces, *args,
+                                                                   fast=True)
+    t = interleaved_cpu(funcs, samples=samples)
+    for k in ("public", "kernel", "columns_write", "kernel_fast"):
+        if k in t:
+            t[f"{k}_ratio"] = t[k] / t["numpy_pass"]
     return t
+
+
+def _columns_write(turns):
+    """What writing the table's columns alone costs: 7 fresh float64 and 2 one-byte arrays.
+
+    The floor of any ``hat_curve`` that returns them (``public``): each is one
+    numpy pass over ``turns`` into a new array, all kept until the end of the call.
+    """
+    cols = [np.multiply(turns, 2.0) for _ in range(7)]
+    cols += [np.greater(turns, 1.0), np.greater(turns, 2.0)]
+    return cols
 
 
 def hat_memory(n):

@@ -226,15 +226,9 @@ def run(args) -> int:
     write_csv(buckling, out / "buckling.csv")
     print(f"wrote {csv} ({len(df)} rows; model {args.model}) and {out / 'buckling.csv'}")
     if not args.no_plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
         from supercoil.dna.plot import plot_hat_curves
 
-        fig = plot_hat_curves(df, out / "hat_curve.png")
-        plt.close(fig)
+        plot_hat_curves(df, out / "hat_curve.png", pyplot=False)  # Agg canvas, no pyplot
         print(f"wrote {out / 'hat_curve.png'}")
     print(f"{'force [pN]':>10} {'N_b':>8} {'buckling torque [pN nm]':>24} "
           f"{'dz/dN [nm/turn]':>16}")

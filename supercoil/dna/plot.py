@@ -7,14 +7,30 @@ import numpy as np
 __all__ = ["plot_hat_curves"]
 
 
-def plot_hat_curves(df, path=None, dna=None):
+#: fixed margins of the 15 x 4.5 inch figure (a layout engine would cost a second
+#: draw: ~0.2 s of the CLI's ``supercoil hat``)
+_MARGINS = {"left": 0.05, "right": 0.99, "bottom": 0.12, "top": 0.90, "wspace": 0.22}
+
+
+def plot_hat_curves(df, path=None, dna=None, pyplot=True):
     """Plot a :func:`hat_curve` table: extension vs N, vs eta, and torque vs N.
 
-    Short-tail points are drawn dotted. Returns the figure; writes ``path`` if given.
+    Short-tail points are drawn dotted. Returns the figure; writes ``path`` if
+    given (drawn once). ``pyplot=False`` builds a bare
+    :class:`matplotlib.figure.Figure` on the Agg canvas, without pyplot (for
+    scripts that only write the file: nothing to close, no GUI backend).
     """
-    import matplotlib.pyplot as plt
+    if pyplot:
+        import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5), constrained_layout=True)
+        fig = plt.figure(figsize=(15, 4.5))
+    else:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(15, 4.5))
+        FigureCanvasAgg(fig)
+    axes = fig.subplots(1, 3, gridspec_kw=_MARGINS)
     for force, g in df.groupby("force", sort=True):
         g = g.sort_values("turns")
         label = f"{force:g} pN"
@@ -28,7 +44,7 @@ def plot_hat_curves(df, path=None, dna=None):
             line = ln.get_color()
             ax.plot(xs, np.where(long_tail, np.nan, ys), ":", color=line)
     axes[0].set(xlabel="turns N", ylabel="extension z [nm]")
-    axes[1].set(xlabel=r"$\eta = 2\pi N \xi_T / L$", ylabel="extension z [nm]")
+    axes[1].set(xlabel="η = 2π N ξ_T / L", ylabel="extension z [nm]")  # no mathtext: 0.07 s
     axes[2].set(xlabel="turns N", ylabel="torque [pN nm]")
     for ax in axes:
         ax.grid(alpha=0.3)

@@ -133,8 +133,8 @@ def check_finite_output(model, force, values, turns=None, allow_inf=False):
             at = f"force {np.asarray(force).flat[i] * 1e12:.6g} pN"
             if turns is not None:
                 at += f", turns {np.asarray(turns).flat[i]:.6g}"
-            raise ValidityError(f"model {model.name!r} gives {name} = {x.flat[i]!r} at {at}: "
-                                "outside the model's range (no finite result)")
+            raise ValidityError(f"model {model.name!r} gives {name} = {float(x.flat[i])!r} at "
+                                f"{at}: outside the model's range (no finite result)")
 
 
 def _all_finite(x, allow_inf=False):

@@ -329,3 +329,126 @@ def test_blocked_points_equal_one_block(monkeypatch):
                 assert b is None
             else:
                 np.testing.assert_array_equal(a, b)
+
+
+def test_blocked_points_equal_one_block_with_interleaved_forces(monkeypatch):
+    """Mixed-force blocks (per-point constants) and one-force blocks give the same points."""
+    rng = np.random.default_rng(7)
+    F = np.repeat(np.array([0.4, 1.2, 3.0]) * 1e-12, 301)
+    N = np.tile(np.linspace(-60, 60, 301), 3)
+    order = rng.permutation(F.size)
+    whole = hc.hat_curve_points(N, F, *ARGS)
+    monkeypatch.setattr(hc, "BLOCK", 5)
+    shuffled = hc.hat_curve_points(N[order], F[order], *ARGS)
+    for a, b in zip(whole, shuffled, strict=True):
+        if a is None:
+            assert b is None
+        else:
+            np.testing.assert_array_equal(a[order], b)
+
+
+def test_plectoneme_phase_extension_is_moroz_nelson_at_the_tail(dna, ureg):
+    """z = zeta(M_p, L - S) (L - S) against the independent Moroz-Nelson function."""
+    f = 1.2e-12
+    n = np.array([10.0, 15.0, 20.0])
+    p = points(n, f)
+    assert np.all(p.phase == hc.PLECTONEME)
+    tail = L - p.plectoneme_length
+    z = sc.extension_factor(dna, 1.2 * ureg.pN, p.torque * ureg.N * ureg.m,
+                            tail * ureg.m).magnitude
+    np.testing.assert_allclose(p.zeta, z, rtol=1e-13)
+    np.testing.assert_allclose(p.extension, z * tail, rtol=1e-13)
+    np.testing.assert_allclose(p.bracket, mn.zeta_bracket(f, p.torque, B, KT), rtol=1e-13)
+
+
+def test_public_table_is_the_kernel_in_display_units_and_owns_its_columns(dna, ureg):
+    """Columns scaled in place from the kernel's arrays: equal to the kernel, no aliasing."""
+    si = dna.si
+    turns = np.linspace(-30, 30, 241)
+    force = np.array([0.4, 3.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.ValidityWarning)
+        df = sc.hat_curve(dna, force * ureg.pN, turns)
+        one = sc.hat_curve(dna, 0.4 * ureg.pN, turns)
+    F, N = np.repeat(force * 1e-12, turns.size), np.tile(turns, force.size)
+    p = hc.hat_curve_points(N, F, si.length, si.bending_rigidity, si.torsional_rigidity,
+                            si.kT, si.radius)
+    for col, si_values, factor in (("force", F, 1e12), ("extension", p.extension, 1e9),
+                                   ("torque", p.torque, 1e21),
+                                   ("plectoneme_length", p.plectoneme_length, 1e9)):
+        np.testing.assert_allclose(df[col].to_numpy(), si_values * factor, rtol=1e-15)
+    np.testing.assert_array_equal(df["turns"].to_numpy(), N)
+    np.testing.assert_array_equal(df["phase"].cat.codes.to_numpy(), p.phase)
+    np.testing.assert_array_equal(df["short_tail"].to_numpy(), p.short_tail)
+    for table in (df, one):
+        arrays = [table[c].to_numpy() for c in table.columns if c != "phase"]
+        assert not any(np.shares_memory(a, turns) for a in arrays)
+        for i, a in enumerate(arrays):
+            assert not any(np.shares_memory(a, b) for b in arrays[i + 1:])
+    before = one["turns"].to_numpy().copy()
+    turns *= 2.0  # the caller's array is not a column (one force: the no-tile path)
+    np.testing.assert_array_equal(one["turns"].to_numpy(), before)
+    listed = sc.hat_curve(dna, 0.4 * ureg.pN, [0.0, 5.0, 10.0])  # a fresh array: used as is
+    assert list(listed["turns"]) == [0.0, 5.0, 10.0]
+
+
+def test_scaling_in_place_copies_shared_or_foreign_arrays():
+    from supercoil.dna.hat import _Owned
+
+    turns = np.arange(3.0)
+    own = _Owned(turns)
+    a = np.ones(3)
+    assert own.scaled(a, 2.0) is a and a[0] == 2.0  # fresh: in place
+    b = own.scaled(a, 3.0)  # the same array for a second field: a copy
+    assert b is not a and a[0] == 2.0 and b[0] == 6.0
+    assert own.scaled(turns, 2.0) is not turns and turns[1] == 1.0  # the turns column
+    view = np.ones(4)[:3]
+    assert own.scaled(view, 2.0) is not view and view[0] == 1.0  # not owning its data
+    ro = np.ones(3)
+    ro.flags.writeable = False
+    assert own.scaled(ro, 2.0)[0] == 2.0 and ro[0] == 1.0
+
+
+def test_peak_memory_of_the_public_table_is_bounded(dna, ureg):
+    """Peak traced memory <= 1.5 x the returned table (issue 14), at 2e5 points."""
+    import tracemalloc
+
+    turns = np.linspace(0.0, 25.0, 200_000)
+    sc.hat_curve(dna, 1.2 * ureg.pN, turns[:100])  # caches outside the trace
+    tracemalloc.start()
+    try:
+        base = tracemalloc.get_traced_memory()[0]
+        df = sc.hat_curve(dna, 1.2 * ureg.pN, turns)
+        held, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert len(df) == turns.size
+    assert df.memory_usage(deep=False, index=False).sum() <= held - base
+    assert peak - base <= 1.5 * (held - base)
+
+
+def test_shared_checks_find_what_their_reductions_skip():
+    from supercoil.dna import validity as v
+
+    class Model:
+        name = "toy"
+
+    x = np.array([1.0, np.inf, 2.0])
+    v.check_finite_output(Model, [1e-12] * 3, {"buckling turns": x}, allow_inf=True)
+    with pytest.raises(sc.ValidityError, match=r"toy.*extension = inf.*turns 5"):
+        v.check_finite_output(Model, [1e-12] * 3, {"extension": x}, [4.0, 5.0, 6.0])
+    with pytest.raises(sc.ValidityError, match="nan"):
+        v.check_finite_output(Model, [1e-12] * 3, {"buckling turns": x * np.nan},
+                              allow_inf=True)
+    si = sc.load_parameters("dna").si
+    for z in ([0.0, si.length * 1.01], [-1e-12, 1e-7]):
+        pts = hc.HatPoints(np.array(z), *(np.zeros(2),) * 5)
+        assert "outside [0, L" in v.extension_messages([1e-12] * 2, [1.0, 2.0], pts, si)[0]
+    pts = hc.HatPoints(np.array([0.0, si.length]), *(np.zeros(2),) * 5)
+    assert v.extension_messages([1e-12] * 2, [1.0, 2.0], pts, si) == []
+    with pytest.raises(ValueError, match="finite"):
+        v.checked_turns([1.0, np.nan], si)
+    with pytest.raises(ValueError, match="finite"):
+        v.checked_turns([-np.inf, 1.0], si)
+    with pytest.raises(sc.ValidityError, match="-300"):
+        v.checked_turns([1.0, -300.0], si)  # Lk0 = 750 nm / 3.57 nm = 210

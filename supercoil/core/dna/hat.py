@@ -41,6 +41,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.dna import hat_fast as _fast
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.plectoneme import EQUILIBRIUM_RTOL, equilibrium
 from supercoil.exceptions import ValidityError
@@ -157,7 +158,7 @@ def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
 
 
 def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUILIBRIUM_RTOL,
-                     short_tail_length=None, equilibrium_solver=None):
+                     short_tail_length=None, equilibrium_solver=None, fast=None):
     """Hat-curve points: one (turns, force) pair per point, equilibrium once per force.
 
     Parameters
@@ -185,6 +186,11 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
     equilibrium_solver : callable, optional
         ``tension -> PlectonemeState`` for another interaction (default: the
         hard-core solver at ``r0``).
+    fast : bool, optional
+        Use the compiled kernel :mod:`supercoil.core.dna.hat_fast` (numba, the
+        ``supercoil[fast]`` extra); it agrees with the numpy path to rounding.
+        Default ``None``: only if the environment variable ``SUPERCOIL_FAST``
+        is ``1``. The numpy path is the default.
 
     Returns
     -------
@@ -199,6 +205,8 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         at a point that is not fully coiled.
     ValueError
         For non-finite turns or forces, or a non-positive length.
+    ImportError
+        If the compiled kernel is asked for and numba is not installed.
     """
     turns = np.asarray(turns, dtype=float)
     force = np.asarray(force, dtype=float)
@@ -223,6 +231,10 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
     n = turns.size
     out = HatPoints(np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8),
                     np.empty(n, bool), np.empty(n), None, np.empty(n) if thermal else None)
+    fill = _fill_block
+    if _fast.wanted(fast):
+        _fast.compiled()  # ImportError naming the extra if numba is missing
+        fill = _fill_fast
     for (start, stop), (lo, hi) in zip(_blocks(n), ranges, strict=True):
         sl = slice(start, stop)
         if lo == hi:  # one force in the block (the force-major tables): scalar constants
@@ -231,7 +243,7 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         else:
             i = np.searchsorted(uf, force[sl])
             c = tuple(a[i] for a in const)
-        _fill_block(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length, out, sl)
+        fill(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length, out, sl)
     if shape != turns.shape:
         out = HatPoints(*(None if a is None else a.reshape(shape) for a in out))
     return out
@@ -262,6 +274,12 @@ def _forces(force):
         ranges.append((lo, hi))
         values.append(np.array([lo]) if lo == hi else np.unique(f))
     return np.unique(np.concatenate(values)), ranges
+
+
+def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
+    """The compiled fused loop on one block; the numpy path names any failure."""
+    if _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl) != _fast.OK:
+        _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl)
 
 
 def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
