@@ -226,13 +226,19 @@ def test_failures_are_named():
         _consts(2e-12, True, short)
     with pytest.raises(ValidityError, match="curl"):
         LOOP.points(np.array([5.0]), np.array([2e-12]), short, True, HC, None)
-    # below ~0.4 pN and above ~15 pN (seed set) the loop would not delay buckling
+    # below 0.390 pN and above 13.74 pN (seed set) the loop would not delay buckling
     for F in (0.3e-12, 20e-12):
         with pytest.raises(ValidityError, match=rf"force {F * 1e12:g} pN would not delay "
                                                 r"buckling.*not positive"):
             _consts(F)
         with pytest.raises(ValidityError, match="would not delay buckling"):
             sc.hat_curve(sc.load_parameters("dna"), F * 1e12 * sc.ureg.pN, [1.0], model=LOOP)
+    # near the edges of that window the jump is too small to hold a plectoneme (750 nm)
+    for F in (0.49e-12, 12.8e-12):
+        with pytest.raises(ValidityError, match="curl"):
+            _consts(F)
+    for F in (0.51e-12, 12.7e-12):  # inside: a jump into a (short) plectoneme
+        assert _consts(F)[1].plectoneme_length[0] > 0
     # the same molecule without the loop has a hat curve there
     FreeEnergy().points(np.array([1.0]), np.array([20e-12]), SEED, True, HC, None)
     with pytest.raises(TypeError, match="end_loop must be True or False"):
