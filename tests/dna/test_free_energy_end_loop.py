@@ -17,6 +17,8 @@ import pickle
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 import supercoil as sc
@@ -136,6 +138,26 @@ def test_jump_is_where_the_stretched_branch_crosses_the_raised_coexistence(F, th
     # the loop's radius is set by the plectoneme's tension (the tail's effective pull)
     assert lp.radius[0] == pytest.approx(np.sqrt(B / (2 * co.pull[0])), rel=1e-12)
     assert M[0] == pytest.approx(lp.overshoot_torque[0], rel=1e-9)
+
+
+@given(force=st.floats(0.6, 12.0), frac=st.floats(0.05, 0.95), thermal=st.booleans())
+def test_jump_property(force, frac, thermal):
+    """Anywhere the loop fits (seed set, 0.6-12 pN): z drops by the documented jump and the
+    torque by the overshoot at N*, G is continuous, and the looped coexistence z is linear
+    in N with the loop-free slope."""
+    F = force * 1e-12
+    co, lp = _consts(F, thermal)
+    Ns, Nf = lp.jump_turns[0], _coiling_turns(co, lp)
+    e = 1e-9
+    p = _pts([Ns - e, Ns + e, Ns + frac * (Nf - Ns)], F, thermal)
+    assert p.phase.tolist() == [STRETCHED, PLECTONEME, PLECTONEME]
+    assert lp.extension_jump[0] > 0 and lp.overshoot_torque[0] > co.torque[0]
+    assert p.extension[0] - p.extension[1] == pytest.approx(lp.extension_jump[0], rel=1e-6)
+    assert p.torque[0] - p.torque[1] == pytest.approx(
+        lp.overshoot_torque[0] - co.torque[0], rel=1e-6)
+    assert abs(p.free_energy[1] - p.free_energy[0]) < 1e-6 * lp.excess[0]
+    slope = (p.extension[2] - p.extension[1]) / (frac * (Nf - Ns) + e)
+    assert slope == pytest.approx(co.slope[0], rel=1e-6)
 
 
 def _maxwell_ratio(N, F, thermal):
