@@ -50,8 +50,11 @@ def hat_throughput(n, samples=9):
     Returns
     -------
     dict
-        ``public``, ``kernel``, ``numpy_pass`` (s per call) and the ratios
-        ``public_ratio``, ``kernel_ratio`` (to the numpy pass).
+        ``public``, ``kernel`` (the numpy path), ``numpy_pass``,
+        ``columns_write`` (:func:`_columns_write`) and, with numba installed,
+        ``kernel_fast`` (s per call); the ratios ``public_ratio``,
+        ``kernel_ratio``, ``columns_write_ratio``, ``kernel_fast_ratio`` (to the
+        numpy pass).
     """
     import supercoil as sc
     from supercoil.core.dna import hat as hat_kernel
