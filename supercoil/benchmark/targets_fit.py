@@ -8,7 +8,9 @@
   such kernel call on the arguments the fit passed, timed interleaved with the
   fit, both with BLAS limited to one thread (``threadpoolctl``), and the fit
   again with the default BLAS threads. The lower bound of a fit is calls x
-  kernel cost.
+  kernel cost. The re-timed calls carry the fit's memoised equilibrium
+  solver, so they solve no plectoneme equilibrium: ``kernel_in_fit`` is the
+  kernel CPU the fit itself pays, its equilibrium solves included.
 * :func:`fit_many_cost`: the parent's CPU time per molecule of the public
   ``sc.fit_many``: with a real ``ProcessPoolExecutor(2)`` (the parent prepares,
   pickles, submits, collects and builds the table while the workers fit), and
@@ -76,6 +78,45 @@ class _KernelCounter:
         self.module.hat_curve_points = self.original
 
 
+class _KernelTimer:
+    """Sums the CPU time spent inside ``hat_curve_points`` (no copies, only a clock)."""
+
+    def __init__(self):
+        from supercoil.core.dna import hat
+
+        self.module, self.original, self.cpu = hat, hat.hat_curve_points, 0.0
+
+    def __enter__(self):
+        def timed(*args, **kwargs):
+            t0 = time.process_time()
+            try:
+                return self.original(*args, **kwargs)
+            finally:
+                self.cpu += time.process_time() - t0
+
+        self.module.hat_curve_points = timed
+        return self
+
+    def __exit__(self, *exc):
+        self.module.hat_curve_points = self.original
+
+
+def kernel_cpu_in_fit(fit, samples=9):
+    """Median over ``samples`` calls of ``fit()`` of the CPU time spent inside the kernel.
+
+    Unlike the re-timed calls of :func:`fit_cost`'s ``lower_bound`` (whose
+    equilibrium solver is the fit's own memoised one, so every re-timed call
+    finds its plectoneme equilibrium already solved), this counts the
+    equilibria the fit really solves: the kernel cost the fit itself pays.
+    """
+    sums = []
+    for _ in range(samples):
+        with _KernelTimer() as timer:
+            fit()
+        sums.append(timer.cpu)
+    return float(np.median(sums))
+
+
 def fit_cost(samples=9):
     """CPU time per fit, kernel calls per fit and the kernel-cost lower bound.
 
@@ -89,7 +130,11 @@ def fit_cost(samples=9):
         ``nfev`` (the fit result's, or NaN if it has none), ``call_sizes``
         (text: how many calls of each size), ``lower_bound`` (the sum over the
         calls of the CPU cost of a kernel call of that size, timed on the
-        arguments the fit passed) and ``ratio`` (fit / lower_bound).
+        arguments the fit passed; the fit's memoised equilibrium solver comes
+        with them, so these re-timed calls solve no plectoneme equilibrium) and
+        ``ratio`` (fit / lower_bound); ``kernel_in_fit`` (CPU s inside the
+        kernel during one fit, its equilibrium solves included:
+        :func:`kernel_cpu_in_fit`) and ``ratio_in_fit`` (fit / kernel_in_fit).
     """
     import supercoil as sc
 
@@ -111,6 +156,7 @@ def fit_cost(samples=9):
     limit, limited = blas_single_thread()
     with limit:  # the fit and its kernel calls on one BLAS thread
         t = interleaved_cpu(funcs, samples=samples)
+        in_fit = kernel_cpu_in_fit(funcs["fit"], samples=samples)
     # the same fit with the process's default BLAS threads (idle threads spin on CPU time)
     default = interleaved_cpu({"fit": funcs["fit"]}, samples=samples)["fit"]
     lower = sum(count * t[n] for n, (_, _, count) in groups.items())
@@ -118,7 +164,8 @@ def fit_cost(samples=9):
     return {"fit": t["fit"], "fit_default_threads": default, "blas_limited": limited,
             "kernel_calls": len(counter.calls),
             "nfev": float(getattr(result, "nfev", float("nan"))), "call_sizes": sizes,
-            "lower_bound": lower, "ratio": t["fit"] / lower}
+            "lower_bound": lower, "ratio": t["fit"] / lower,
+            "kernel_in_fit": in_fit, "ratio_in_fit": t["fit"] / in_fit}
 
 
 def blas_single_thread():

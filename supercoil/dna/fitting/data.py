@@ -13,6 +13,7 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
+from supercoil.dna.fitting.parameters import parse_unit
 from supercoil.dna.tweezers import check_tweezers_frame
 from supercoil.exceptions import FitError
 from supercoil.units import U, as_turns, magnitude, ureg
@@ -28,7 +29,7 @@ UNIT_TORQUE_WEIGHT = 1e-21
 
 def _column_si(df, column, unit, converter=None):
     unit_str = df.attrs["units"][column]
-    q = ureg.Quantity(df[column].to_numpy(dtype=float), unit_str or "dimensionless")
+    q = ureg.Quantity(df[column].to_numpy(dtype=float), parse_unit(unit_str))
     if converter is not None:
         return np.asarray(converter(q, column), dtype=float)
     return np.asarray(magnitude(q, unit, f"data column {column!r}"), dtype=float)
