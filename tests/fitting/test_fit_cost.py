@@ -121,3 +121,15 @@ def test_the_benchmark_fit_gives_the_numbers_of_the_code_before(problem, base):
         assert r.parameters[name].m == pytest.approx(v, rel=1e-12), name
         assert r.stderr[name].m == pytest.approx(e, rel=1e-10), name
     assert r.chi_square == pytest.approx(BEFORE_CHI2, rel=1e-12)
+
+
+def test_reading_the_table_leaves_the_callers_frame_alone(problem):
+    """RotationData.from_frame drops the attrs of its own checked copy, never the caller's."""
+    df = problem.copy()
+    df.attrs = {**problem.attrs, "note": {"nested": [1, 2]}}
+    before = dict(df.attrs)
+    d = fitting.RotationData.from_frame(df)
+    assert df.attrs == before and df.attrs["units"] == d.units
+    assert d.units is not df.attrs["units"]
+    ext = sc.ureg.Quantity(df["extension"].to_numpy(), df.attrs["units"]["extension"])
+    np.testing.assert_array_equal(d.extension, ext.m_as("m"))
