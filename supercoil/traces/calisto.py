@@ -39,7 +39,7 @@ import pandas as pd
 
 from ..exceptions import DataError
 from ..units import ureg
-from .trace import build_trace, check_increasing, require_h5py
+from .trace import build_trace, check_increasing, open_hdf5
 
 __all__ = ["read_calisto"]
 
@@ -115,14 +115,7 @@ def _calisto_text(path, motor_path, f_t, f_xy, f_z, f_mag, f_mt):
 
 
 def _calisto_hdf5(path, f_t, f_xy, f_z, f_mag, f_mt):
-    h5py = require_h5py(path)
-    try:
-        fh = h5py.File(path, "r")
-    except FileNotFoundError:
-        raise DataError(f"no such CALISTO recording: {path}") from None
-    except OSError as exc:
-        raise DataError(f"{path}: not an HDF5 file ({exc})") from None
-    with fh:
+    with open_hdf5(path, "CALISTO recording") as fh:
         if "timestamp" not in fh:
             raise DataError(f"{path}: no dataset '/timestamp' (the frame times); expected "
                             "/timestamp, /stage/{t_s, mag_pos_mm, mag_rot_turn}, /M<i>, /R<i>")

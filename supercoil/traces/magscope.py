@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..exceptions import DataError
-from .trace import build_trace, check_increasing, hold_previous, require_h5py
+from .trace import build_trace, check_increasing, hold_previous, open_hdf5
 
 __all__ = ["read_magscope", "read_motor_log"]
 
@@ -93,14 +93,7 @@ def read_motor_log(path, column, what="value"):
 
 
 def _read_tracking(path):
-    h5py = require_h5py(path)
-    try:
-        fh = h5py.File(path, "r")
-    except FileNotFoundError:
-        raise DataError(f"no such MagScope tracking file: {path}") from None
-    except OSError as exc:
-        raise DataError(f"{path}: not an HDF5 file ({exc})") from None
-    with fh:
+    with open_hdf5(path, "MagScope tracking file") as fh:
         if "tracking" not in fh:
             raise DataError(f"{path}: no group '/tracking'; expected a MagScope tracking file "
                             f"with /tracking/{{{', '.join(_DATASETS)}}}")

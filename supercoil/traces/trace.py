@@ -46,6 +46,17 @@ def require_h5py(path):
     return h5py
 
 
+def open_hdf5(path, kind):
+    """The open h5py File of a recording; DataError naming ``path`` if it is missing or not HDF5."""
+    h5py = require_h5py(path)
+    try:
+        return h5py.File(path, "r")
+    except FileNotFoundError:
+        raise DataError(f"no such {kind}: {path}") from None
+    except OSError as exc:
+        raise DataError(f"{path}: not an HDF5 file ({exc})") from None
+
+
 def check_increasing(t, where, what="time"):
     """DataError naming ``where`` and the first index where ``t`` does not increase."""
     t = np.asarray(t, dtype=float)
