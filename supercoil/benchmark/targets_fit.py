@@ -101,6 +101,22 @@ class _KernelTimer:
         self.module.hat_curve_points = self.original
 
 
+def clear_kernel_caches():
+    """Clear the process-wide memo tables of the DNA kernels (``functools.lru_cache``).
+
+    ``supercoil.core.dna.plectoneme.branch_table`` keeps the tabulated
+    plectoneme branch of each ``B/(kT r0)`` across fits: a fit repeated on the
+    same data finds every table it needs, a new molecule's fit (new radii)
+    builds its own. Clearing them before each fit measures the latter.
+    """
+    from supercoil.core.dna import electrostatics, plectoneme
+
+    for module in (plectoneme, electrostatics):
+        for obj in vars(module).values():
+            if callable(getattr(obj, "cache_clear", None)):
+                obj.cache_clear()
+
+
 def kernel_cpu_in_fit(fit, samples=9):
     """Median over ``samples`` calls of ``fit()`` of the CPU time spent inside the kernel.
 
@@ -134,7 +150,11 @@ def fit_cost(samples=9):
         with them, so these re-timed calls solve no plectoneme equilibrium) and
         ``ratio`` (fit / lower_bound); ``kernel_in_fit`` (CPU s inside the
         kernel during one fit, its equilibrium solves included:
-        :func:`kernel_cpu_in_fit`) and ``ratio_in_fit`` (fit / kernel_in_fit).
+        :func:`kernel_cpu_in_fit`) and ``ratio_in_fit`` (fit / kernel_in_fit);
+        ``fit_cold``, ``kernel_in_fit_cold`` and ``ratio_in_fit_cold``: the same
+        with the kernels' process-wide tables cleared before every fit
+        (:func:`clear_kernel_caches`; the cost of a new molecule's fit, the
+        repeated fit above reuses the tables of the earlier repetitions).
     """
     import supercoil as sc
 
@@ -153,10 +173,17 @@ def fit_cost(samples=9):
     funcs = {"fit": lambda: sc.fit_hat_curves(data, seed_set, vary=vary)}
     for n, (args, kwargs, _) in groups.items():
         funcs[n] = lambda args=args, kwargs=kwargs: kernel(*args, **kwargs)
+
+    def cold():  # what a new molecule costs: no kernel table of an earlier fit
+        clear_kernel_caches()
+        return funcs["fit"]()
+
     limit, limited = blas_single_thread()
     with limit:  # the fit and its kernel calls on one BLAS thread
         t = interleaved_cpu(funcs, samples=samples)
         in_fit = kernel_cpu_in_fit(funcs["fit"], samples=samples)
+        t_cold = interleaved_cpu({"cold": cold}, samples=samples)["cold"]
+        in_fit_cold = kernel_cpu_in_fit(cold, samples=samples)
     # the same fit with the process's default BLAS threads (idle threads spin on CPU time)
     default = interleaved_cpu({"fit": funcs["fit"]}, samples=samples)["fit"]
     lower = sum(count * t[n] for n, (_, _, count) in groups.items())
@@ -165,7 +192,9 @@ def fit_cost(samples=9):
             "kernel_calls": len(counter.calls),
             "nfev": float(getattr(result, "nfev", float("nan"))), "call_sizes": sizes,
             "lower_bound": lower, "ratio": t["fit"] / lower,
-            "kernel_in_fit": in_fit, "ratio_in_fit": t["fit"] / in_fit}
+            "kernel_in_fit": in_fit, "ratio_in_fit": t["fit"] / in_fit,
+            "fit_cold": t_cold, "kernel_in_fit_cold": in_fit_cold,
+            "ratio_in_fit_cold": t_cold / in_fit_cold}
 
 
 def blas_single_thread():
