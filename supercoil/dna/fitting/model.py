@@ -26,8 +26,9 @@ failures (:class:`~supercoil.exceptions.NoEquilibriumError`,
 :class:`~supercoil.exceptions.ValidityError`) at a trial point give a
 non-finite residual (scipy's TRF then shrinks the trust region).
 
-Caches (within one fit): the residual and the points at the last few parameter
-vectors (no repeated evaluation at the same parameters), and the plectoneme
+Caches (within one fit): the unpacked kernel arguments, the residual and the
+points at the last few parameter vectors (no repeated evaluation or unpacking
+at the same parameters), and the plectoneme
 equilibria keyed by the interaction, force and molecule; for the hard-core
 interaction the key leaves out the twist rigidity C, on which only ``omega =
 M/C`` and the twist energy depend (:mod:`supercoil.core.dna.plectoneme`).
