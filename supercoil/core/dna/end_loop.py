@@ -22,17 +22,25 @@ coexistence free energy is a straight line in the turns N,
   plectoneme torque by ``dM = sqrt(2 eps c / L)`` just before buckling
   (docs/theory/end-loop.md#3-jump). ``c`` is the stretched twist rigidity (N m^2).
 
+For a tail whose free energy at fixed torque is not quadratic (the free-energy
+model's Moroz-Nelson tail), :func:`looped_coexistence` finds the crossing from the
+tail's own ``g(M)`` (docs/theory/end-loop.md#7-free-energy).
+
 Everything broadcasts; nothing here imports pint.
 """
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
+from scipy.optimize import elementwise
 
 from supercoil.exceptions import ValidityError
 
 __all__ = [
     "LOOP_WRITHE",
+    "LoopedCoexistence",
     "buckling_shift",
     "coiled_state",
     "loop_bending_energy",
@@ -41,6 +49,7 @@ __all__ = [
     "loop_radius",
     "loop_tension",
     "loop_twist",
+    "looped_coexistence",
     "torque_overshoot",
 ]
 
@@ -156,3 +165,89 @@ def coiled_state(turns_in_plectoneme, length, B, K, C):
     D = ell / C + (length - ell) / K
     M = _TWO_PI * n / D
     return loop_bending_energy(R, B) + 0.5 * (_TWO_PI * n) ** 2 / D, M, R
+
+
+class LoopedCoexistence(NamedTuple):
+    """End-loop constants of a coexistence with a general tail (SI arrays per force)."""
+
+    radius: np.ndarray  # R* of the loop, m
+    length: np.ndarray  # l = 2 pi R*, m
+    linking: np.ndarray  # w + t: turns absorbed by the loop (writhe + twist)
+    excess: np.ndarray  # eps*, J
+    overshoot_torque: np.ndarray  # M_+ = M* + dM: stretched torque at the jump, N m
+    jump_turns: np.ndarray  # N* (> N_b)
+    plectoneme_length: np.ndarray  # S at N* (strand length, loop excluded), m
+    extension_jump: np.ndarray  # z just below N* minus z just above, m
+
+
+def looped_coexistence(co, length, B, C, tail, writhe=LOOP_WRITHE, upper_torque=None):
+    """End loop on a coexistence whose tail has a general ``g(M)`` [end-loop.md#7-free-energy].
+
+    Parameters
+    ----------
+    co : Coexistence-like
+        Per-force arrays ``force``, ``torque`` (M*), ``free_energy_density``
+        (``g* < 0``, J/m), ``tail_linking`` (``l_s*``, rad/m), ``linking_rate``
+        (``D = l_p - l_s``, rad/m), ``long_tail_factor`` (``zeta*``).
+    length, B, C : float
+        Contour length (m), bending and bare twist rigidity (N m^2).
+    tail : callable
+        ``(force, torque) -> (g, zeta, l)`` of the tail per length at fixed torque
+        (concave in the torque: ``l = -dg/dM`` increasing).
+    upper_torque : array, optional
+        Torque at which ``l`` diverges (the root is bracketed below it); ``None``:
+        a quadratic tail ``g = g* - (M^2 - M*^2)/(2C)`` and the closed form
+        ``dM = sqrt(2 eps C / L)``.
+
+    Raises
+    ------
+    ValidityError
+        If the loop tension ``-g* - M*^2/(2C)`` or the excess free energy is not
+        positive, or the jump does not land in a coexistence with a plectoneme and a
+        tail (the molecule is too short: a curl, not modelled, or full coiling).
+    """
+    M, L = co.torque, length
+    gl = loop_tension(-co.free_energy_density, M, C)
+    R = loop_radius(gl, B)
+    ell = _TWO_PI * R
+    link = writhe + loop_twist(M, ell, C)
+    bad = ~(np.sqrt(2.0 * B * gl) > M * writhe)
+    if np.any(bad):
+        i = np.flatnonzero(bad)[0]
+        raise ValidityError(
+            f"end loop at force {np.ravel(co.force)[i] * 1e12:.6g} pN would not delay buckling: "
+            f"its excess free energy 2 pi (sqrt(2 B gamma_l) - w M*) is not positive "
+            f"(sqrt(2 B gamma_l) = {np.sqrt(2.0 * B * gl.flat[i]) * 1e21:.4g} pN nm <= w M* = "
+            f"{writhe * M.flat[i] * 1e21:.4g} pN nm) [end-loop.md#7-free-energy]")
+    eps = loop_excess_free_energy(gl, M, B, writhe)
+    if upper_torque is None:
+        Mp = M + torque_overshoot(eps, C, L)
+    else:  # L [g(M) - g* + l(M) (M - M*)] = eps: increasing in M > M*, -eps at M*
+        def excess(m, f, m0, g0, e):
+            g, _, lk = tail(f, m)
+            return L * (g - g0 + lk * (m - m0)) - e
+
+        res = elementwise.find_root(excess, (M, upper_torque),
+                                    args=(co.force, M, co.free_energy_density, eps))
+        if not np.all(res.success):  # pragma: no cover - a bracketed monotone root
+            raise ValidityError("end loop: no torque overshoot found")
+        Mp = res.x
+    _, zeta, lk = tail(co.force, Mp)
+    Nstar = L * lk / _TWO_PI
+    S = (_TWO_PI * (Nstar - link) - (L - ell) * co.tail_linking) / co.linking_rate
+    _check_fits(S, L - ell, co.force)
+    jump = L * zeta - (L - ell - S) * co.long_tail_factor
+    return LoopedCoexistence(R, ell, link, eps, Mp, Nstar, S, jump)
+
+
+def _check_fits(S, room, force):
+    for bad, what in ((~(S >= 0.0), "into a curl (a loop without plectoneme: the looped "
+                       "coexistence at the jump would hold a plectoneme of length {:.4g} nm)"),
+                      (~(S < room), "straight to full coiling (no tail left: plectoneme "
+                       "{:.4g} nm)")):
+        if np.any(bad):
+            i = np.flatnonzero(bad)[0]
+            raise ValidityError(
+                f"end loop at force {np.ravel(force)[i] * 1e12:.6g} pN: the molecule is too "
+                "short, the stretched state would jump " + what.format(S.flat[i] * 1e9)
+                + ", which is not modelled; use a longer molecule [end-loop.md#7-free-energy]")

@@ -38,6 +38,12 @@ No finite-length term: the paper's ``B kT / (l (B T - M^2/4))`` has no
 counterpart in this free energy and is omitted (z -> 0 as the tail vanishes);
 tails shorter than ``short_tail_length`` are still flagged.
 
+Optional end loop (``end_loop=True``, docs/theory/end-loop.md#7-free-energy): the
+coexisting and fully coiled states carry one circular loop (radius
+``R = sqrt(B/(2 T))`` at the plectoneme's tension T, writhe 1, twist at the common
+torque); buckling becomes a jump at the crossing ``N* > N_b`` of the stretched
+branch with the coexistence raised by the loop's excess free energy.
+
 With ``thermal=False`` every formula reduces, operation for operation, to the
 athermal li-zhao construction of :mod:`supercoil.core.dna.hat`.
 
@@ -51,6 +57,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna.hat import (
     FULLY_COILED,
     PLECTONEME,
@@ -65,6 +72,7 @@ __all__ = [
     "coexistence",
     "free_energy",
     "hat_points",
+    "loop_constants",
     "plectoneme_torque_at_linking",
     "tail_bracket",
     "tail_free_energy",
@@ -271,8 +279,12 @@ def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
     return Coexistence(force, M, T, tau, Q, zinf, ls, D, Nb, slope, g)
 
 
-def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium):
+def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium, loop=None):
     """Fully coiled: ``(M, T_p)`` on the plectoneme branch with ``M/C + tau = linking``.
+
+    With the end loop, ``loop = (B, L)`` and the equation is
+    ``M/C + tau (1 - l(T)/L) = linking``, ``l(T) = 2 pi sqrt(B/(2T))`` (also
+    increasing in T) [end-loop.md#7-free-energy].
 
     ``l_p(T) = M_p(T)/C + tau(T)`` increases with the tension from
     ``helix_linking = l_p(T_eff)`` at full coiling, so the root in ``u = log T``
@@ -298,7 +310,11 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium):
         M, tau = _plectoneme(equilibrium, T_out[act])
         M_out[act] = M
         rb = np.zeros(x.shape)
-        rb[act] = M / C + tau - x[act]
+        if loop is None:
+            rb[act] = M / C + tau - x[act]
+        else:
+            rb[act] = M / C + tau * (1.0 - _loop.loop_length(T_out[act], loop[0]) / loop[1]) \
+                - x[act]
         lo = np.where(act & (rb < 0.0), ub, lo)
         hi = np.where(act & (rb >= 0.0), np.minimum(hi, ub), hi)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -320,8 +336,24 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium):
         f"no fully coiled plectoneme state found in {_COILED_MAXITER} steps")
 
 
+def loop_constants(co, length, B, C, kT, thermal=True):
+    """End-loop constants (:class:`~supercoil.core.dna.end_loop.LoopedCoexistence`) of ``co``.
+
+    The stretched torque at the jump solves ``L [g_s(M) - g* + l_s(M) (M - M*)] = eps*``
+    below the closing of the Moroz-Nelson bracket (thermal) or in closed form
+    ``dM = sqrt(2 eps* C / L)`` (athermal) [end-loop.md#7-free-energy].
+    """
+    def tail(f, m):
+        return tail_free_energy(f, m, B, C, kT, thermal)
+
+    upper = None
+    if thermal:
+        upper = 2.0 * kT * np.sqrt(tail_bracket(co.force, 0.0, B, kT)) * (1.0 - 2.0**-30)
+    return _loop.looped_coexistence(co, length, B, C, tail, _loop.LOOP_WRITHE, upper)
+
+
 def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
-               short_tail_length=None, trial_equilibrium=None):
+               short_tail_length=None, trial_equilibrium=None, end_loop=False):
     """Free-energy hat-curve points, one (turns, force) pair per point.
 
     Parameters
@@ -341,6 +373,9 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         fully coiled points, whose final states are then solved once more by
         ``equilibrium``: a caller recording states for validity checks sees
         the final states only, not the trials.
+    end_loop : bool
+        Add the plectoneme end loop (docs/theory/end-loop.md#7-free-energy); the
+        returned plectoneme length then includes the loop's contour.
 
     Returns
     -------
@@ -362,15 +397,32 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         uf, inv = np.unique(force, return_inverse=True)
         inv = inv.reshape(force.shape)
     co = coexistence(uf, length, B, C, kT, equilibrium, thermal)
-    n = np.abs(turns)
-    Nb = co.buckling_turns[inv]
-    Ms = co.torque[inv]
-    stretched = n <= Nb
-    S = np.maximum(n - Nb, 0.0) * (_TWO_PI / co.linking_rate[inv])
-    coiled = S >= length
-    S = np.minimum(S, length)
-    tail = length - S
-    M = Ms.copy()
+    loop = loop_constants(co, length, B, C, kT, thermal) if end_loop else None
+    return _assemble(np.abs(turns), turns, force, inv, co, loop, length, B, C, kT,
+                     equilibrium, thermal, short_tail_length, trial_equilibrium)
+
+
+def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, thermal,
+              short_tail_length, trial_equilibrium):
+    """Phases, torque, extension and G of :func:`hat_points` (``loop`` None: no end loop)."""
+    if loop is None:
+        Nb = co.buckling_turns[inv]
+        stretched = n <= Nb
+        S = np.maximum(n - Nb, 0.0) * (_TWO_PI / co.linking_rate[inv])
+        room = length
+    else:  # (link) with the loop's w + t turns and its contour l [end-loop.md#7-free-energy]
+        ell = loop.length[inv]
+        stretched = n <= loop.jump_turns[inv]
+        S = (_TWO_PI * (n - loop.linking[inv]) - (length - ell) * co.tail_linking[inv]) \
+            / co.linking_rate[inv]
+        S = np.where(stretched, 0.0, np.maximum(S, 0.0))
+        room = length - ell
+    coiled = S >= room
+    S = np.minimum(S, room)
+    tail = room - S
+    if loop is not None:  # the stretched molecule has no loop
+        tail = np.where(stretched, length, tail)
+    M = co.torque[inv].copy()
     g = co.free_energy_density[inv].copy()
     zeta = co.long_tail_factor[inv].copy()
     if np.any(stretched):
@@ -382,28 +434,47 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         g[stretched], zeta[stretched], _ = tail_free_energy(f_s, M[stretched], B, C, kT,
                                                             thermal)
     if np.any(coiled):
-        x = _TWO_PI * n[coiled] / length
-        ci = inv[coiled]
-        try:
-            Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], co.torque[ci] / C
-                                                  + co.torsion[ci], C,
-                                                  trial_equilibrium or equilibrium)
-        except NoEquilibriumError as e:
-            raise NoEquilibriumError(
-                f"no fully coiled plectoneme for |N| up to {n[coiled].max():.6g} turns "
-                f"(L = {length * 1e9:.6g} nm): {e}") from e
-        if trial_equilibrium is not None:
-            Mc = np.asarray(equilibrium(Tc).torque, float)
+        Mc, Tc = _coiled(n[coiled], inv[coiled], co, loop, length, B, C, equilibrium,
+                         trial_equilibrium)
         M[coiled] = Mc
         g[coiled] = -Tc - Mc * Mc / (2.0 * C)
         zeta[coiled] = 0.0
     extension = zeta * tail
     G = length * g + _TWO_PI * n * M
+    if loop is not None:
+        G = np.where(stretched | coiled, G, G + loop.excess[inv])
+        if np.any(coiled):  # -(L - 2 l) T - L M^2/(2C) + 2 pi (|N| - w) M, l T = pi B / R
+            lc = _loop.loop_length(Tc, B)
+            G[coiled] = -(length - 2.0 * lc) * Tc - length * Mc * Mc / (2.0 * C) \
+                + _TWO_PI * (n[coiled] - _loop.LOOP_WRITHE) * Mc
+        S = np.where(stretched, 0.0, S + ell)
     phase = np.where(stretched, STRETCHED, np.where(coiled, FULLY_COILED, PLECTONEME))
     return FreeEnergyPoints(extension, np.copysign(M, turns), S, phase.astype(np.int8),
                             tail < short_tail_length, zeta, G)
 
 
-def free_energy(turns, force, length, B, C, kT, equilibrium, thermal=True):
+def _coiled(n, ci, co, loop, length, B, C, equilibrium, trial_equilibrium):
+    """``(M, T)`` of fully coiled points (``ci``: their force index), with or without loop."""
+    if loop is None:
+        x = _TWO_PI * n / length
+        start, args = co.torque[ci] / C + co.torsion[ci], ()
+    else:
+        x = _TWO_PI * (n - _loop.LOOP_WRITHE) / length
+        start = co.torque[ci] / C + co.torsion[ci] * (1.0 - loop.length[ci] / length)
+        args = ((B, length),)
+    try:
+        Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], start, C,
+                                              trial_equilibrium or equilibrium, *args)
+    except NoEquilibriumError as e:
+        raise NoEquilibriumError(
+            f"no fully coiled plectoneme for |N| up to {n.max():.6g} turns "
+            f"(L = {length * 1e9:.6g} nm): {e}") from e
+    if trial_equilibrium is not None:
+        Mc = np.asarray(equilibrium(Tc).torque, float)
+    return Mc, Tc
+
+
+def free_energy(turns, force, length, B, C, kT, equilibrium, thermal=True, end_loop=False):
     """``G(N, F)`` (J) at each point: :func:`hat_points` ``.free_energy``."""
-    return hat_points(turns, force, length, B, C, kT, equilibrium, thermal).free_energy
+    return hat_points(turns, force, length, B, C, kT, equilibrium, thermal,
+                      end_loop=end_loop).free_energy

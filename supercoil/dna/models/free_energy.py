@@ -6,7 +6,9 @@ of a Moroz-Nelson tail and a uniform plectoneme sharing the torque M; extension
 ``dz/dN|_F = -2 pi dM/dF|_N`` exactly. Derivation, limits and the validity
 table: docs/theory/free-energy.md; kernel :mod:`supercoil.core.dna.free_energy`.
 No own parameters; the plectoneme comes from the ``interaction`` (its
-``equilibrium(T, dna)`` at the tail's effective pull).
+``equilibrium(T, dna)`` at the tail's effective pull). The optional end loop
+(``end_loop=True``, off by default) makes buckling a jump in extension and
+torque with G continuous (docs/theory/end-loop.md#7-free-energy).
 """
 
 from __future__ import annotations
@@ -45,6 +47,13 @@ class FreeEnergy(DNAModel):
     that pulls with ``T_eff = F - (kT^2/B) sqrt(Q)`` instead of F; and there is
     no finite-length term (short tails are flagged). ``thermal=False`` is the
     athermal li-zhao construction exactly.
+
+    Parameters
+    ----------
+    end_loop : bool
+        Option (not a fitted parameter): the plectoneme carries one circular end
+        loop (writhe 1, twist at the common torque), docs/theory/end-loop.md#7-free-energy
+        (default False: the model without the loop, unchanged).
     """
 
     name = "free-energy"
@@ -52,12 +61,52 @@ class FreeEnergy(DNAModel):
                "Maxwell-consistent extension and torque")
     parameters: ClassVar[dict] = {}
 
+    def __init__(self, end_loop=False, **values):
+        if not isinstance(end_loop, bool | np.bool_):
+            raise TypeError(f"end_loop must be True or False, got {end_loop!r}")
+        super().__init__(**values)
+        object.__setattr__(self, "end_loop", bool(end_loop))
+
+    def __reduce__(self):
+        return (_rebuild, (self.end_loop, dict(self.values)))
+
+    def __repr__(self):
+        return f"FreeEnergy(end_loop={self.end_loop})"
+
+    def __eq__(self, other):
+        return (type(other) is type(self) and other.end_loop == self.end_loop
+                and other.values == self.values)
+
+    def __hash__(self):
+        return hash((self.name, self.end_loop, tuple(sorted(self.values.items()))))
+
+    def options(self) -> dict:
+        """Non-fitted options of this instance (for provenance): ``{"end_loop": bool}``."""
+        return {"end_loop": self.end_loop}
+
+    def replace(self, **values):
+        """A copy with ``end_loop`` (the only setting) changed."""
+        end_loop = values.pop("end_loop", self.end_loop)
+        return type(self)(end_loop=end_loop, **{**self.values, **values})
+
+    def loop_constants(self, force, dna, thermal, interaction):
+        """End-loop constants at each force (SI): loop size, eps*, N*, jump, overshoot.
+
+        Returns ``(Coexistence, LoopedCoexistence)`` whatever ``end_loop``
+        (docs/theory/end-loop.md#7-free-energy).
+        """
+        co = _fe.coexistence(np.asarray(force, float), *_args(dna),
+                             _equilibrium(interaction, dna), thermal)
+        return co, _fe.loop_constants(co, *_args(dna), thermal)
+
     def has_free_energy(self, thermal: bool) -> bool:
         """True for both ``thermal=True`` and ``thermal=False``."""
         return True
 
     def buckling(self, force, dna, thermal, interaction):
         """Buckling turns ``N_b = L l_s(F, M*)/(2 pi)``, torque M*, slope ``-2 pi zeta_inf / D``.
+
+        With the end loop the turns are those of the jump, ``N* > N_b``.
 
         Raises
         ------
@@ -68,6 +117,9 @@ class FreeEnergy(DNAModel):
             From the interaction, where no plectoneme exists.
         """
         co = _fe.coexistence(force, *_args(dna), _equilibrium(interaction, dna), thermal)
+        if self.end_loop:
+            return Buckling(_fe.loop_constants(co, *_args(dna), thermal).jump_turns,
+                            co.torque, co.slope)
         return Buckling(co.buckling_turns, co.torque, co.slope)
 
     def points(self, turns, force, dna, thermal, interaction, short_tail_length):
@@ -80,7 +132,7 @@ class FreeEnergy(DNAModel):
         bare = getattr(interaction, "interaction", interaction)
         trial = None if bare is interaction else _equilibrium(bare, dna)
         p = _fe.hat_points(turns, force, *_args(dna), _equilibrium(interaction, dna), thermal,
-                           short_tail_length, trial_equilibrium=trial)
+                           short_tail_length, trial_equilibrium=trial, end_loop=self.end_loop)
         return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
                          p.zeta, p.free_energy)
 
@@ -126,3 +178,7 @@ def _messages(force, Q, where, at):
                 "(bracket Q < 1), so extension, torque and slope are qualitative there "
                 "(below 0.1817 pN for the seed set)"]
     return []
+
+
+def _rebuild(end_loop, values):
+    return FreeEnergy(end_loop=end_loop, **values)
