@@ -8,7 +8,9 @@
   such kernel call on the arguments the fit passed, timed interleaved with the
   fit, both with BLAS limited to one thread (``threadpoolctl``), and the fit
   again with the default BLAS threads. The lower bound of a fit is calls x
-  kernel cost.
+  kernel cost. The re-timed calls carry the fit's memoised equilibrium
+  solver, so they solve no plectoneme equilibrium: ``kernel_in_fit`` is the
+  kernel CPU the fit itself pays, its equilibrium solves included.
 * :func:`fit_many_cost`: the parent's CPU time per molecule of the public
   ``sc.fit_many``: with a real ``ProcessPoolExecutor(2)`` (the parent prepares,
   pickles, submits, collects and builds the table while the workers fit), and
@@ -76,6 +78,61 @@ class _KernelCounter:
         self.module.hat_curve_points = self.original
 
 
+class _KernelTimer:
+    """Sums the CPU time spent inside ``hat_curve_points`` (no copies, only a clock)."""
+
+    def __init__(self):
+        from supercoil.core.dna import hat
+
+        self.module, self.original, self.cpu = hat, hat.hat_curve_points, 0.0
+
+    def __enter__(self):
+        def timed(*args, **kwargs):
+            t0 = time.process_time()
+            try:
+                return self.original(*args, **kwargs)
+            finally:
+                self.cpu += time.process_time() - t0
+
+        self.module.hat_curve_points = timed
+        return self
+
+    def __exit__(self, *exc):
+        self.module.hat_curve_points = self.original
+
+
+def clear_kernel_caches():
+    """Clear the process-wide memo tables of the DNA kernels (``functools.lru_cache``).
+
+    ``supercoil.core.dna.plectoneme.branch_table`` keeps the tabulated
+    plectoneme branch of each ``B/(kT r0)`` across fits: a fit repeated on the
+    same data finds every table it needs, a new molecule's fit (new radii)
+    builds its own. Clearing them before each fit measures the latter.
+    """
+    from supercoil.core.dna import electrostatics, plectoneme
+
+    for module in (plectoneme, electrostatics):
+        for obj in vars(module).values():
+            if callable(getattr(obj, "cache_clear", None)):
+                obj.cache_clear()
+
+
+def kernel_cpu_in_fit(fit, samples=9):
+    """Median over ``samples`` calls of ``fit()`` of the CPU time spent inside the kernel.
+
+    Unlike the re-timed calls of :func:`fit_cost`'s ``lower_bound`` (whose
+    equilibrium solver is the fit's own memoised one, so every re-timed call
+    finds its plectoneme equilibrium already solved), this counts the
+    equilibria the fit really solves: the kernel cost the fit itself pays.
+    """
+    sums = []
+    for _ in range(samples):
+        with _KernelTimer() as timer:
+            fit()
+        sums.append(timer.cpu)
+    return float(np.median(sums))
+
+
 def fit_cost(samples=9):
     """CPU time per fit, kernel calls per fit and the kernel-cost lower bound.
 
@@ -89,7 +146,15 @@ def fit_cost(samples=9):
         ``nfev`` (the fit result's, or NaN if it has none), ``call_sizes``
         (text: how many calls of each size), ``lower_bound`` (the sum over the
         calls of the CPU cost of a kernel call of that size, timed on the
-        arguments the fit passed) and ``ratio`` (fit / lower_bound).
+        arguments the fit passed; the fit's memoised equilibrium solver comes
+        with them, so these re-timed calls solve no plectoneme equilibrium) and
+        ``ratio`` (fit / lower_bound); ``kernel_in_fit`` (CPU s inside the
+        kernel during one fit, its equilibrium solves included:
+        :func:`kernel_cpu_in_fit`) and ``ratio_in_fit`` (fit / kernel_in_fit);
+        ``fit_cold``, ``kernel_in_fit_cold`` and ``ratio_in_fit_cold``: the same
+        with the kernels' process-wide tables cleared before every fit
+        (:func:`clear_kernel_caches`; the cost of a new molecule's fit, the
+        repeated fit above reuses the tables of the earlier repetitions).
     """
     import supercoil as sc
 
@@ -108,9 +173,17 @@ def fit_cost(samples=9):
     funcs = {"fit": lambda: sc.fit_hat_curves(data, seed_set, vary=vary)}
     for n, (args, kwargs, _) in groups.items():
         funcs[n] = lambda args=args, kwargs=kwargs: kernel(*args, **kwargs)
+
+    def cold():  # what a new molecule costs: no kernel table of an earlier fit
+        clear_kernel_caches()
+        return funcs["fit"]()
+
     limit, limited = blas_single_thread()
     with limit:  # the fit and its kernel calls on one BLAS thread
         t = interleaved_cpu(funcs, samples=samples)
+        in_fit = kernel_cpu_in_fit(funcs["fit"], samples=samples)
+        t_cold = interleaved_cpu({"cold": cold}, samples=samples)["cold"]
+        in_fit_cold = kernel_cpu_in_fit(cold, samples=samples)
     # the same fit with the process's default BLAS threads (idle threads spin on CPU time)
     default = interleaved_cpu({"fit": funcs["fit"]}, samples=samples)["fit"]
     lower = sum(count * t[n] for n, (_, _, count) in groups.items())
@@ -118,7 +191,10 @@ def fit_cost(samples=9):
     return {"fit": t["fit"], "fit_default_threads": default, "blas_limited": limited,
             "kernel_calls": len(counter.calls),
             "nfev": float(getattr(result, "nfev", float("nan"))), "call_sizes": sizes,
-            "lower_bound": lower, "ratio": t["fit"] / lower}
+            "lower_bound": lower, "ratio": t["fit"] / lower,
+            "kernel_in_fit": in_fit, "ratio_in_fit": t["fit"] / in_fit,
+            "fit_cold": t_cold, "kernel_in_fit_cold": in_fit_cold,
+            "ratio_in_fit_cold": t_cold / in_fit_cold}
 
 
 def blas_single_thread():

@@ -17,9 +17,38 @@ from supercoil.dna import validity as _v
 from supercoil.exceptions import ValidityWarning
 from supercoil.units import U, magnitude, quantity
 
-__all__ = ["effective_twist_rigidity", "extension_factor"]
+__all__ = ["CONVERGED_BRACKET", "effective_twist_rigidity", "extension_factor",
+           "long_tail_messages"]
 
 _PN_NM2 = U.pN * U.nm**2
+
+#: Below this Moroz-Nelson bracket Q the long-tail factor 1 - Q^(-1/2)/2 < 0.5: the
+#: expansion in 1/sqrt(Q) has not converged and the thermal extension is qualitative.
+CONVERGED_BRACKET = 1.0
+
+
+def long_tail_messages(F, Q, where, at, label="", limits=("", "")):
+    """Messages where the tail's long-tail factor ``1 - Q^(-1/2)/2`` is <= 0 or < 0.5.
+
+    Shared by the models with a Moroz-Nelson tail (``li-zhao``, ``free-energy``). ``at(i)``
+    names point i (force, turns); ``label`` prefixes the message; ``limits`` are the
+    seed-set forces below which each failure happens, for the reader (text).
+    """
+    Q = np.asarray(Q)
+    bad = where & (Q <= 0.25)
+    if np.any(bad):
+        i = np.flatnonzero(bad)[0]
+        return [f"{label}Moroz-Nelson zeta is not valid at {at(i)}: its long-tail factor "
+                f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.4g} <= 0 (the extension "
+                f"would grow with turns{limits[0]})"]
+    rough = where & (Q < CONVERGED_BRACKET)
+    if np.any(rough):
+        i = np.flatnonzero(rough)[0]
+        return [f"{label}Moroz-Nelson expansion not converged at {at(i)}: the long-tail factor "
+                f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.3g} < 0.5 (bracket Q < 1), "
+                f"so the thermal extension, torque and post-buckling slope are qualitative "
+                f"there{limits[1]}"]
+    return []
 
 
 def effective_twist_rigidity(dna, force):

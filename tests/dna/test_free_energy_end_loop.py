@@ -140,11 +140,12 @@ def test_jump_is_where_the_stretched_branch_crosses_the_raised_coexistence(F, th
     assert M[0] == pytest.approx(lp.overshoot_torque[0], rel=1e-9)
 
 
-@given(force=st.floats(0.6, 12.0), frac=st.floats(0.05, 0.95), thermal=st.booleans())
+@given(force=st.floats(0.6, 10.0), frac=st.floats(0.05, 0.95), thermal=st.booleans())
 def test_jump_property(force, frac, thermal):
-    """Anywhere the loop fits (seed set, 0.6-12 pN): z drops by the documented jump and the
-    torque by the overshoot at N*, G is continuous, and the looped coexistence z is linear
-    in N with the loop-free slope."""
+    """Anywhere the loop fits (seed set, 0.6-10 pN; near 12 pN the 750 nm molecule is too
+    short for the athermal loop, a named error tested elsewhere): z drops by the documented
+    jump and the torque by the overshoot at N*, G is continuous, and the looped coexistence
+    z is linear in N with the loop-free slope."""
     F = force * 1e-12
     co, lp = _consts(F, thermal)
     Ns, Nf = lp.jump_turns[0], _coiling_turns(co, lp)

@@ -13,6 +13,7 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
+from supercoil.dna.fitting.parameters import parse_unit
 from supercoil.dna.tweezers import check_tweezers_frame
 from supercoil.exceptions import FitError
 from supercoil.units import U, as_turns, magnitude, ureg
@@ -26,9 +27,8 @@ UNIT_WEIGHT = 1e-9
 UNIT_TORQUE_WEIGHT = 1e-21
 
 
-def _column_si(df, column, unit, converter=None):
-    unit_str = df.attrs["units"][column]
-    q = ureg.Quantity(df[column].to_numpy(dtype=float), unit_str or "dimensionless")
+def _column_si(df, units, column, unit, converter=None):
+    q = ureg.Quantity(df[column].to_numpy(dtype=float), parse_unit(units[column]))
     if converter is not None:
         return np.asarray(converter(q, column), dtype=float)
     return np.asarray(magnitude(q, unit, f"data column {column!r}"), dtype=float)
@@ -87,9 +87,14 @@ class RotationData:
         if lines is not None and not data.index.equals(pd.RangeIndex(len(data))):
             lines = None
         df = check_tweezers_frame(data, lines=lines, source=source)
-        force = _column_si(df, "force", U.N)
-        turns = _column_si(df, "turns", U.turn, as_turns)
-        extension = _column_si(df, "extension", U.m)
+        units = dict(df.attrs["units"])
+        if df is data:  # never touch the caller's frame
+            df = df.copy(deep=False)
+        # without attrs: pandas deep-copies a frame's attrs into every column it hands out
+        df.attrs = {}
+        force = _column_si(df, units, "force", U.N)
+        turns = _column_si(df, units, "turns", U.turn, as_turns)
+        extension = _column_si(df, units, "extension", U.m)
         n = len(df)
         if "molecule" in df.columns:
             codes, uniques = pd.factorize(df["molecule"].astype(str), sort=False)
@@ -97,19 +102,19 @@ class RotationData:
         else:
             labels, mol_index, has_molecule = ("0",), np.zeros(n, dtype=np.intp), False
         if "sigma" in df.columns:
-            sig, weighting = _column_si(df, "sigma", U.m), "sigma column"
+            sig, weighting = _column_si(df, units, "sigma", U.m), "sigma column"
         else:
             sig, weighting = np.full(n, UNIT_WEIGHT), "unit"
         tq = tsig = None
         tweighting = ""
         if "torque" in df.columns:
-            tq = _column_si(df, "torque", U.N * U.m)
+            tq = _column_si(df, units, "torque", U.N * U.m)
             if "torque_sigma" in df.columns:
-                tsig, tweighting = _column_si(df, "torque_sigma", U.N * U.m), "sigma column"
+                tsig, tweighting = _column_si(df, units, "torque_sigma", U.N * U.m), "sigma column"
             else:
                 tsig, tweighting = np.full(n, UNIT_TORQUE_WEIGHT), "unit"
         rot = cls(force, turns, extension, sig, weighting, mol_index, labels, has_molecule,
-                  dict(df.attrs["units"]), tq, tsig, tweighting)
+                  units, tq, tsig, tweighting)
         return rot if sigma is None else rot.with_sigma(sigma)
 
     def with_sigma(self, sigma) -> RotationData:

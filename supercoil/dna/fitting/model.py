@@ -26,8 +26,9 @@ failures (:class:`~supercoil.exceptions.NoEquilibriumError`,
 :class:`~supercoil.exceptions.ValidityError`) at a trial point give a
 non-finite residual (scipy's TRF then shrinks the trust region).
 
-Caches (within one fit): the residual and the points at the last few parameter
-vectors (no repeated evaluation at the same parameters), and the plectoneme
+Caches (within one fit): the unpacked kernel arguments, the residual and the
+points at the last few parameter vectors (no repeated evaluation or unpacking
+at the same parameters), and the plectoneme
 equilibria keyed by the interaction, force and molecule; for the hard-core
 interaction the key leaves out the twist rigidity C, on which only ``omega =
 M/C`` and the twist energy depend (:mod:`supercoil.core.dna.plectoneme`).
@@ -127,6 +128,7 @@ class HatCurveModel:
         self.njev = 0
         self._points = OrderedDict()
         self._eq_store = OrderedDict()
+        self._unpacked = OrderedDict()
         self._jac = None
         # the kernel does not depend on the extension offsets: leave them out of the cache key
         self._kernel_mask = np.array([p.kind != "extension_offset" for p in self.free], bool)
@@ -157,7 +159,22 @@ class HatCurveModel:
 
         Per-force parameters count only at their own ``force`` (N); with
         ``force=None`` they keep the values of the molecule and model given.
+        Memoised on ``(u, force)`` for the last few vectors (the optimiser asks
+        for the same ``u`` in the residual, the Jacobian and its columns);
+        the offset arrays are returned as copies.
         """
+        u = np.asarray(u, dtype=float)
+        key = (u.tobytes(), force)
+        hit = self._unpacked.get(key)
+        if hit is None:
+            hit = self._unpack(u, force)
+            self._unpacked[key] = hit
+            if len(self._unpacked) > 4 * _CACHE_SIZE:
+                self._unpacked.popitem(last=False)
+        dna, model, inter, n0, z0 = hit
+        return dna, model, inter, n0.copy(), z0.copy()
+
+    def _unpack(self, u, force):
         groups = {"dna": {}, "model": {}, "interaction": {}}
         n_mol = self.data.n_molecules
         n0, z0 = np.zeros(n_mol), np.zeros(n_mol)

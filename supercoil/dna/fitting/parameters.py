@@ -26,6 +26,7 @@ parameters the ``lower``/``upper`` of their declaration.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Iterator, MutableMapping
 
@@ -62,12 +63,23 @@ PLAUSIBLE = {
 }
 
 
+@functools.lru_cache(maxsize=256)
 def display_factor(unit: str) -> float:
-    """Factor from the SI value to ``unit`` (an angle's SI unit is the radian)."""
+    """Factor from the SI value to ``unit`` (an angle's SI unit is the radian).
+
+    Memoised per unit string: pint parses each display unit once per process,
+    not once per parameter and fit.
+    """
     if unit == "":
         return 1.0
     q = ureg.Quantity(1.0, unit)
     return 1.0 / q.to_base_units().magnitude
+
+
+@functools.lru_cache(maxsize=256)
+def parse_unit(unit: str):
+    """The pint unit of a unit string (``""``: dimensionless), parsed once per process."""
+    return ureg.Unit(unit or "dimensionless")
 
 
 @dataclasses.dataclass
@@ -148,7 +160,7 @@ class FitParameter:
     def quantity(self, si_value=None):
         """``si_value`` (default :attr:`value`) as a quantity in the display unit."""
         v = self.value if si_value is None else si_value
-        return ureg.Quantity(v * self.factor, self.unit or "dimensionless")
+        return ureg.Quantity(v * self.factor, parse_unit(self.unit))
 
     def implausible(self, value=None):
         """A message if ``value`` (default :attr:`value`) is at or beyond the plausible range."""

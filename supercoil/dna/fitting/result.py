@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -133,13 +134,9 @@ class FitResult:
         self.stderr = {p.name: p.quantity(e) for p, e in zip(free, core["stderr"], strict=True)}
         self.units = {p.name: p.unit for p in free}
         factors = np.array([p.factor for p in free])
-        cov = core["covariance"] * np.outer(factors, factors)
-        self.covariance = pd.DataFrame(cov, index=self.names, columns=self.names)
-        self.covariance.attrs["units"] = dict(self.units)
+        self._cov = core["covariance"] * np.outer(factors, factors)  # display units
         undetermined = np.asarray(core["undetermined"], dtype=bool)
-        self.correlation = pd.DataFrame(_correlation(cov, undetermined), index=self.names,
-                                        columns=self.names)
-        self.correlation.attrs["units"] = {k: "" for k in self.names}
+        self._undetermined_mask = undetermined
         self.undetermined = [n for n, u in zip(self.names, undetermined, strict=True) if u]
         self.chi_square = float(core["chi_square"])
         self.reduced_chi_square = float(core["reduced_chi_square"])
@@ -170,6 +167,22 @@ class FitResult:
         si = core["dna"]
         self.dna = dna.replace(**{p: quantity(getattr(si, p) * 1e9, U.nm) for p in spec.vary
                                   if p in DNA_FIELDS})
+
+    # the two tables are built on first use: a DataFrame costs ~0.1 ms, a fit ~5 ms
+    @functools.cached_property
+    def covariance(self) -> pd.DataFrame:
+        """Covariance of the free parameters (display units, ``attrs["units"]``)."""
+        cov = pd.DataFrame(self._cov, index=self.names, columns=self.names)
+        cov.attrs["units"] = dict(self.units)
+        return cov
+
+    @functools.cached_property
+    def correlation(self) -> pd.DataFrame:
+        """Correlation matrix of the free parameters (NaN rows for undetermined ones)."""
+        corr = pd.DataFrame(_correlation(self._cov, self._undetermined_mask),
+                            index=self.names, columns=self.names)
+        corr.attrs["units"] = {k: "" for k in self.names}
+        return corr
 
     @staticmethod
     def _fixed(core, spec):

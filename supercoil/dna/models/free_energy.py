@@ -19,11 +19,11 @@ import numpy as np
 
 from supercoil.core.dna import free_energy as _fe
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
+from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
+from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
 
 __all__ = ["CONVERGED_BRACKET", "FreeEnergy"]
 
-#: below this Moroz-Nelson bracket Q the long-tail factor 1 - Q^(-1/2)/2 < 0.5
-CONVERGED_BRACKET = 1.0
 
 
 def _args(dna):
@@ -163,21 +163,9 @@ class FreeEnergy(DNAModel):
 
 
 def _messages(force, Q, where, at):
-    """zeta_inf <= 0 (Q <= 1/4), else not converged (Q < 1), at the first such point."""
-    bad = where & (Q <= 0.25)
-    if np.any(bad):
-        i = np.flatnonzero(bad)[0]
-        return [f"free-energy model: Moroz-Nelson tail not valid at {at(i)}: its long-tail "
-                f"factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.4g} <= 0 (the "
-                "extension would grow with turns; below 0.1123 pN for the seed set)"]
-    rough = where & (Q < CONVERGED_BRACKET)
-    if np.any(rough):
-        i = np.flatnonzero(rough)[0]
-        return [f"free-energy model: Moroz-Nelson expansion not converged at {at(i)}: the "
-                f"long-tail factor 1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q.flat[i]):.3g} < 0.5 "
-                "(bracket Q < 1), so extension, torque and slope are qualitative there "
-                "(below 0.1817 pN for the seed set)"]
-    return []
+    """The shared Moroz-Nelson tail check, with the free-energy model's seed-set limits."""
+    return _tail_messages(force, Q, where, at, "free-energy model: ", (
+        "; below 0.1123 pN for the seed set", " (below 0.1817 pN for the seed set)"))
 
 
 def _rebuild(end_loop, values):

@@ -22,12 +22,11 @@ import numpy as np
 from supercoil.core.dna import hat as _hc
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.dna.models.base import Buckling, DNAModel
+from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
+from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
 
 __all__ = ["CONVERGED_BRACKET", "LiZhao"]
 
-#: Below this Moroz-Nelson bracket Q the long-tail factor 1 - Q^(-1/2)/2 < 0.5: the
-#: expansion in 1/sqrt(Q) has not converged and the thermal extension is qualitative.
-CONVERGED_BRACKET = 1.0
 
 
 class LiZhao(DNAModel):
@@ -88,21 +87,9 @@ class LiZhao(DNAModel):
 
 
 def long_tail_messages(F, Q, where, N=None):
-    """Messages where zeta's long-tail factor ``1 - Q^(-1/2)/2`` is <= 0 or < 0.5."""
+    """li-zhao's messages where zeta's long-tail factor fails (the shared check)."""
     def at(i):
         return f"force {F[i] * 1e12:.6g} pN" + (f", turns {N[i]:.6g}" if N is not None else "")
 
-    bad = where & (Q <= 0.25)
-    if np.any(bad):
-        i = np.flatnonzero(bad)[0]
-        return [f"Moroz-Nelson zeta is not valid at {at(i)}: its long-tail factor "
-                f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q[i]):.4g} <= 0 (the extension would "
-                "grow with turns)"]
-    rough = where & (Q < CONVERGED_BRACKET)
-    if np.any(rough):
-        i = np.flatnonzero(rough)[0]
-        return [f"Moroz-Nelson expansion not converged at {at(i)}: the long-tail factor "
-                f"1 - Q^(-1/2)/2 = {1 - 0.5 / np.sqrt(Q[i]):.3g} < 0.5 (bracket Q < 1), so "
-                "the thermal extension and post-buckling slope are qualitative there "
-                "(below 0.201 pN in the plectoneme phase for the seed set)"]
-    return []
+    return _tail_messages(F, Q, where, at, limits=(
+        "", " (below 0.201 pN in the plectoneme phase for the seed set)"))
