@@ -117,10 +117,12 @@ BEFORE_CHI2 = 9004.395366271532
 
 def test_the_benchmark_fit_gives_the_numbers_of_the_code_before(problem, base):
     r = sc.fit_hat_curves(problem, base, vary=VARY)
+    # 1e-9: the fit's own changes leave the numbers bit-identical, but a rewrite of the
+    # kernel's arithmetic (same formula, other rounding) moves the optimum by ~3e-11
     for name, (v, e) in BEFORE.items():
-        assert r.parameters[name].m == pytest.approx(v, rel=1e-12), name
-        assert r.stderr[name].m == pytest.approx(e, rel=1e-10), name
-    assert r.chi_square == pytest.approx(BEFORE_CHI2, rel=1e-12)
+        assert r.parameters[name].m == pytest.approx(v, rel=1e-9), name
+        assert r.stderr[name].m == pytest.approx(e, rel=1e-7), name
+    assert r.chi_square == pytest.approx(BEFORE_CHI2, rel=1e-9)
 
 
 def test_reading_the_table_leaves_the_callers_frame_alone(problem):
