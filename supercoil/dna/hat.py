@@ -301,6 +301,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
             scene="hat curve (docs/theory/models.md)",
             model=m.name,
             model_parameters={k: f"{q:.12g~}" for k, q in m.quantities().items()},
+            model_options=m.options(),
             interaction=inter.name if m.uses_interaction else None,
             thermal=bool(thermal),
             short_tail_length=f"{short * 1e9:.6g} nm",

@@ -87,8 +87,14 @@ class Parametrised:
 
     name: ClassVar[str] = ""
     parameters: ClassVar[dict[str, ModelParameter]] = {}
+    #: boolean options (not fitted parameters) and their defaults, e.g. {"end_loop": False}
+    OPTIONS: ClassVar[dict[str, bool]] = {}
 
     def __init__(self, **values):
+        from supercoil._checks import check_flag
+
+        for key, default in self.OPTIONS.items():
+            object.__setattr__(self, key, check_flag(values.pop(key, default), key))
         unknown = set(values) - set(self.parameters)
         if unknown:
             raise TypeError(f"{type(self).__name__} has no parameter(s) {sorted(unknown)}; "
@@ -101,9 +107,16 @@ class Parametrised:
     def __setattr__(self, key, value):
         raise AttributeError(f"{type(self).__name__} is immutable; use replace()")
 
+    def options(self) -> dict:
+        """The boolean options of this instance (for provenance), e.g. ``{"end_loop": False}``."""
+        return {k: getattr(self, k) for k in self.OPTIONS}
+
     def replace(self, **values):
-        """A copy with some parameters changed (quantities or SI floats)."""
-        merged = dict(self.values)
+        """A copy with some parameters (quantities or SI floats) or options changed."""
+        merged = {**dict(self.values), **self.options()}
+        for key in self.OPTIONS:
+            if key in values:
+                merged[key] = values.pop(key)
         for key, v in values.items():
             if key not in self.parameters:
                 raise TypeError(f"{type(self).__name__} has no parameter {key!r}; "
@@ -116,13 +129,15 @@ class Parametrised:
         return {k: self.parameters[k].quantity(v) for k, v in self.values.items()}
 
     def __reduce__(self):
-        return (_rebuild, (type(self), dict(self.values)))
+        return (_rebuild, (type(self), {**self.values, **self.options()}))
 
     def __eq__(self, other):
-        return type(other) is type(self) and other.values == self.values
+        return (type(other) is type(self) and other.values == self.values
+                and other.options() == self.options())
 
     def __hash__(self):
-        return hash((type(self), tuple(sorted(self.values.items()))))
+        return hash((type(self), tuple(sorted(self.values.items())),
+                     tuple(sorted(self.options().items()))))
 
     def __repr__(self):
         body = ", ".join(f"{k}={q:.6g~P}" for k, q in self.quantities().items())

@@ -60,34 +60,10 @@ class FreeEnergy(DNAModel):
     summary = ("Moroz-Nelson tail and plectoneme from one free energy: "
                "Maxwell-consistent extension and torque")
     parameters: ClassVar[dict] = {}
-
-    def __init__(self, end_loop=False, **values):
-        if not isinstance(end_loop, bool | np.bool_):
-            raise TypeError(f"end_loop must be True or False, got {end_loop!r}")
-        super().__init__(**values)
-        object.__setattr__(self, "end_loop", bool(end_loop))
-
-    def __reduce__(self):
-        return (_rebuild, (self.end_loop, dict(self.values)))
+    OPTIONS: ClassVar[dict] = {"end_loop": False}
 
     def __repr__(self):
         return f"FreeEnergy(end_loop={self.end_loop})"
-
-    def __eq__(self, other):
-        return (type(other) is type(self) and other.end_loop == self.end_loop
-                and other.values == self.values)
-
-    def __hash__(self):
-        return hash((self.name, self.end_loop, tuple(sorted(self.values.items()))))
-
-    def options(self) -> dict:
-        """Non-fitted options of this instance (for provenance): ``{"end_loop": bool}``."""
-        return {"end_loop": self.end_loop}
-
-    def replace(self, **values):
-        """A copy with ``end_loop`` (the only setting) changed."""
-        end_loop = values.pop("end_loop", self.end_loop)
-        return type(self)(end_loop=end_loop, **{**self.values, **values})
 
     def loop_constants(self, force, dna, thermal, interaction):
         """End-loop constants at each force (SI): loop size, eps*, N*, jump, overshoot.
@@ -167,6 +143,3 @@ def _messages(force, Q, where, at):
     return _tail_messages(force, Q, where, at, "free-energy model: ", (
         "; below 0.1123 pN for the seed set", " (below 0.1817 pN for the seed set)"))
 
-
-def _rebuild(end_loop, values):
-    return FreeEnergy(end_loop=end_loop, **values)

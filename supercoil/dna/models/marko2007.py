@@ -66,36 +66,13 @@ class Marko2007(DNAModel):
             "one closed loop, docs/theory/end-loop.md#2-loop (the package's estimate)"),
     }
 
-    def __init__(self, end_loop=False, **values):
-        if not isinstance(end_loop, bool | np.bool_):
-            raise TypeError(f"end_loop must be True or False, got {end_loop!r}")
-        super().__init__(**values)
-        object.__setattr__(self, "end_loop", bool(end_loop))
-
-    def __reduce__(self):
-        return (_rebuild, (self.end_loop, dict(self.values)))
+    OPTIONS: ClassVar[dict] = {"end_loop": False}
 
     def __repr__(self):
         P = self.values["plectoneme_twist_persistence"] * 1e9
         w = self.values["end_loop_writhe"]
         return (f"Marko2007(plectoneme_twist_persistence={P:.6g} nm, end_loop_writhe={w:g}, "
                 f"end_loop={self.end_loop})")
-
-    def __eq__(self, other):
-        return (type(other) is type(self) and other.end_loop == self.end_loop
-                and other.values == self.values)
-
-    def __hash__(self):
-        return hash((self.name, self.end_loop, tuple(sorted(self.values.items()))))
-
-    def options(self) -> dict:
-        """Non-fitted options of this instance (for provenance): ``{"end_loop": bool}``."""
-        return {"end_loop": self.end_loop}
-
-    def replace(self, **values):
-        """A copy with some parameters (or ``end_loop``) changed."""
-        end_loop = values.pop("end_loop", self.end_loop)
-        return type(self)(end_loop=end_loop, **{**self.values, **values})
 
     def has_free_energy(self, thermal: bool) -> bool:
         """True for both settings: G(N, F) is closed form (athermal limit included)."""
@@ -143,6 +120,3 @@ class Marko2007(DNAModel):
                     "expansions g(F) and c_s(F) err by more than 2 % (z/L) and 5 % (c_s)"]
         return []
 
-
-def _rebuild(end_loop, values):
-    return Marko2007(end_loop=end_loop, **values)
