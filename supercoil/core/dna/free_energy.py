@@ -58,6 +58,7 @@ from typing import NamedTuple
 import numpy as np
 
 from supercoil.core.dna import end_loop as _loop
+from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.hat import (
     FULLY_COILED,
     PLECTONEME,
@@ -118,10 +119,9 @@ class FreeEnergyPoints(NamedTuple):
     free_energy: np.ndarray  # G(N, F), J
 
 
-def tail_bracket(force, torque, B, kT):
-    """Moroz-Nelson bracket ``Q = B F/kT^2 - M^2/(4 kT^2) - 1/32`` (dimensionless)."""
-    m = np.asarray(torque, float) / kT
-    return B * np.asarray(force, float) / (kT * kT) - 0.25 * m * m - 1.0 / 32.0
+#: the Moroz-Nelson bracket ``Q = B F/kT^2 - M^2/(4 kT^2) - 1/32`` (dimensionless), shared
+#: with li-zhao's zeta (:func:`supercoil.core.dna.moroz_nelson.zeta_bracket`)
+tail_bracket = _mn.zeta_bracket
 
 
 def tail_free_energy(force, torque, B, C, kT, thermal=True):
@@ -144,15 +144,7 @@ def tail_free_energy(force, torque, B, C, kT, thermal=True):
 
 
 def _check_bracket(Q, force, torque):
-    Q, force, torque = np.broadcast_arrays(Q, force, torque)
-    bad = ~(Q > 0.0)
-    if np.any(bad):
-        i = np.flatnonzero(bad)[0]
-        raise ValidityError(
-            "Moroz-Nelson tail free energy undefined at force "
-            f"{force.flat[i] * 1e12:.6g} pN, torque {torque.flat[i] * 1e21:.6g} pN nm: "
-            f"its bracket B F/kT^2 - M^2/(4 kT^2) - 1/32 = {Q.flat[i]:.4g} is not positive"
-        )
+    _mn.check_bracket(Q, force, torque, what="Moroz-Nelson tail free energy")
 
 
 def tail_torque(linking, force, B, C, kT):

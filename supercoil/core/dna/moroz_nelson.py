@@ -56,14 +56,14 @@ def zeta_bracket(force, torque, B, kT):
     return B * np.asarray(force, float) / (kT * kT) - 0.25 * m * m - 1.0 / 32.0
 
 
-def check_bracket(Q, force, torque):
-    """Raise :class:`ValidityError` naming force and torque where ``Q <= 0``."""
+def check_bracket(Q, force, torque, what="Moroz-Nelson extension factor"):
+    """Raise :class:`ValidityError` naming ``what``, force and torque where ``Q <= 0``."""
     Q, force, torque = np.broadcast_arrays(Q, force, torque)
     bad = ~(Q > 0.0)
     if np.any(bad):
         i = np.flatnonzero(bad)[0]
         raise ValidityError(
-            "Moroz-Nelson extension factor undefined at force "
+            f"{what} undefined at force "
             f"{force.flat[i] * 1e12:.6g} pN, torque {torque.flat[i] * 1e21:.6g} pN nm: "
             f"its bracket B T/kT^2 - M^2/(4 kT^2) - 1/32 = {Q.flat[i]:.4g} is not positive"
         )
