@@ -35,3 +35,39 @@ def rubber_rod():
     import supercoil
 
     return supercoil.load_parameters("silicone_rubber_rod")
+
+
+@pytest.fixture(scope="session")
+def installed_wheel(tmp_path_factory):
+    """The package built as a wheel and unpacked away from the checkout, once per session.
+
+    Returns ``(names in the wheel, site folder, run)``; ``run(code)`` runs Python code with
+    only the unpacked wheel on the path and returns its stdout.
+    """
+    import subprocess
+    import sys
+    import zipfile
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parent.parent
+    tmp = tmp_path_factory.mktemp("wheel")
+    proc = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
+         "-w", str(tmp / "dist"), str(root)],
+        capture_output=True, text=True, timeout=180,
+    )
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
+    (wheel,) = (tmp / "dist").glob("supercoil-*.whl")
+    site = tmp / "site"
+    with zipfile.ZipFile(wheel) as zf:
+        names = zf.namelist()
+        zf.extractall(site)
+
+    def run(code):
+        env = dict(os.environ, PYTHONPATH=str(site))
+        out = subprocess.run([sys.executable, "-c", code], cwd=tmp, env=env,
+                             capture_output=True, text=True, timeout=60)
+        assert out.returncode == 0, out.stderr
+        return out.stdout
+
+    return names, site, run

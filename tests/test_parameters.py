@@ -1,9 +1,5 @@
 """Parameter sets: loading, errors, and loading from an installed wheel."""
 
-import os
-import subprocess
-import sys
-import zipfile
 from pathlib import Path
 
 import pytest
@@ -97,33 +93,17 @@ def test_unknown_name_and_unknown_key(tmp_path):
         sc.load_parameters(p)
 
 
-def test_parameter_sets_load_from_a_built_wheel(tmp_path):
+def test_parameter_sets_load_from_a_built_wheel(installed_wheel):
     """Build the wheel, unpack it away from the checkout and load both sets from it."""
-    proc = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
-         "-w", str(tmp_path / "dist"), str(ROOT)],
-        capture_output=True, text=True, timeout=180,
-    )
-    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
-    (wheel,) = (tmp_path / "dist").glob("supercoil-*.whl")
-    site = tmp_path / "site"
-    with zipfile.ZipFile(wheel) as zf:
-        names = zf.namelist()
-        assert "supercoil/parameters/dna.toml" in names
-        assert "supercoil/parameters/silicone_rubber_rod.toml" in names
-        zf.extractall(site)
-    code = (
-        "import supercoil, pathlib; "
-        "p = pathlib.Path(supercoil.__file__).parent; "
-        f"assert str(p).startswith({str(site)!r}), p; "
-        "print(supercoil.load_parameters('dna').si.length, "
-        "supercoil.load_parameters('silicone_rubber_rod').si.radius)"
-    )
-    env = dict(os.environ, PYTHONPATH=str(site))
-    proc = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
-                          capture_output=True, text=True, timeout=60)
-    assert proc.returncode == 0, proc.stderr
-    assert proc.stdout.split() == ["7.5e-07", "0.001"]
+    names, site, run = installed_wheel
+    assert "supercoil/parameters/dna.toml" in names
+    assert "supercoil/parameters/silicone_rubber_rod.toml" in names
+    out = run("import supercoil, pathlib; "
+              "p = pathlib.Path(supercoil.__file__).parent; "
+              f"assert str(p).startswith({str(site)!r}), p; "
+              "print(supercoil.load_parameters('dna').si.length, "
+              "supercoil.load_parameters('silicone_rubber_rod').si.radius)")
+    assert out.split() == ["7.5e-07", "0.001"]
 
 
 def test_params_cli_prints_units_and_sources(capsys):
