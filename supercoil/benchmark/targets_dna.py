@@ -6,10 +6,12 @@ its docstring exactly what it times:
 * :func:`hat_throughput`: the public ``sc.hat_curve`` (a DataFrame of 9
   columns) and the kernel it calls,
   ``supercoil.core.dna.hat.hat_curve_points`` (float arrays), against one numpy
-  pass over the same turns array (``np.multiply(turns, 2.0)``, a new array),
-  CPU time, median of interleaved samples; beside them the write of the
-  table's 9 columns alone (``columns_write``) and, with numba installed, the
-  compiled kernel (``kernel_fast``, ``hat_curve_points(..., fast=True)``);
+  pass over the same turns array: ``np.sqrt(turns)`` (the issue's reference,
+  a new array) and the cheaper ``np.multiply(turns, 2.0)``; CPU time, median
+  of interleaved samples; beside them the write of the table's 9 columns
+  alone (``columns_write``) and, with numba installed, the compiled kernel
+  (``kernel_fast``, ``hat_curve_points(..., fast=True)``) and the public call
+  on it (``public_fast``, ``SUPERCOIL_FAST=1``);
 * :func:`hat_memory`: peak traced memory of one public ``sc.hat_curve`` call
   against the memory its result holds;
 * :func:`equilibrium_cost`: the public ``sc.plectoneme_equilibrium`` and the
@@ -50,11 +52,11 @@ def hat_throughput(n, samples=9):
     Returns
     -------
     dict
-        ``public``, ``kernel`` (the numpy path), ``numpy_pass``,
-        ``columns_write`` (:func:`_columns_write`) and, with numba installed,
-        ``kernel_fast`` (s per call); the ratios ``public_ratio``,
-        ``kernel_ratio``, ``columns_write_ratio``, ``kernel_fast_ratio`` (to the
-        numpy pass).
+        ``public``, ``kernel`` (the numpy path), ``sqrt_pass``, ``numpy_pass``
+        (the multiply), ``columns_write`` (:func:`_columns_write`) and, with
+        numba installed, ``kernel_fast`` and ``public_fast`` (s per call); the
+        ratios ``<name>_ratio`` to the sqrt pass and ``<name>_mul_ratio`` to the
+        multiply pass.
     """
     import supercoil as sc
     from supercoil.core.dna import hat as hat_kernel
@@ -69,17 +71,37 @@ def hat_throughput(n, samples=9):
     funcs = {
         "public": lambda: sc.hat_curve(dna, force_q, turns),
         "kernel": lambda: hat_kernel.hat_curve_points(turns, forces, *args, fast=False),
+        "sqrt_pass": lambda: np.sqrt(turns),
         "numpy_pass": lambda: np.multiply(turns, 2.0),
         "columns_write": lambda: _columns_write(turns),
     }
     if hat_fast.available():  # the compiled kernel (supercoil[fast]): compiled in warm-up
         funcs["kernel_fast"] = lambda: hat_kernel.hat_curve_points(turns, forces, *args,
                                                                    fast=True)
+        funcs["public_fast"] = lambda: _with_fast(lambda: sc.hat_curve(dna, force_q, turns))
     t = interleaved_cpu(funcs, samples=samples)
-    for k in ("public", "kernel", "columns_write", "kernel_fast"):
+    for k in ("public", "kernel", "columns_write", "kernel_fast", "public_fast"):
         if k in t:
-            t[f"{k}_ratio"] = t[k] / t["numpy_pass"]
+            t[f"{k}_ratio"] = t[k] / t["sqrt_pass"]
+            t[f"{k}_mul_ratio"] = t[k] / t["numpy_pass"]
     return t
+
+
+def _with_fast(call):
+    """``call()`` with ``SUPERCOIL_FAST=1`` (the public calls on the compiled kernel)."""
+    import os
+
+    from supercoil.core.dna import hat_fast
+
+    old = os.environ.get(hat_fast.ENV)
+    os.environ[hat_fast.ENV] = "1"
+    try:
+        return call()
+    finally:
+        if old is None:
+            del os.environ[hat_fast.ENV]
+        else:
+            os.environ[hat_fast.ENV] = old
 
 
 def _columns_write(turns):

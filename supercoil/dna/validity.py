@@ -34,6 +34,7 @@ __all__ = [
     "extension_messages",
     "force_messages",
     "plectoneme_messages",
+    "summary_of",
     "tail_torque_messages",
     "warn",
 ]
@@ -192,7 +193,8 @@ def tail_torque_messages(force, turns, points, dna):
     force = np.asarray(force)
     if force.size == 0:
         return []
-    big = max(-points.torque.min(), points.torque.max())
+    lo, hi = _range(points, "torque")
+    big = max(-lo, hi)
     if big <= 2.0 * np.sqrt(dna.bending_rigidity * force.min()):
         return []  # no torque reaches the smallest force's Euler limit: skip the full mask
     limit = 2.0 * np.sqrt(dna.bending_rigidity * force)
@@ -208,8 +210,11 @@ def tail_torque_messages(force, turns, points, dna):
 def extension_messages(force, turns, points, dna):
     """An extension longer than the contour length, or negative (never silent)."""
     z = points.extension
-    if z.size == 0 or (z.min() >= 0 and z.max() <= dna.length * (1 + 1e-12)):
-        return []  # two reductions instead of the masks below
+    if z.size == 0:
+        return []
+    lo, hi = _range(points, "extension")
+    if lo >= 0 and hi <= dna.length * (1 + 1e-12):
+        return []  # two reductions (or the kernel's) instead of the masks below
     bad = (z > dna.length * (1 + 1e-12)) | (z < 0)
     if not np.any(bad):
         return []
@@ -217,6 +222,25 @@ def extension_messages(force, turns, points, dna):
     return [f"extension {z[i] * 1e9:.6g} nm at force {force[i] * 1e12:.6g} pN, turns "
             f"{turns[i]:.6g} lies outside [0, L = {dna.length * 1e9:.6g} nm]: the thermal "
             "formula is not valid there (tail of a few persistence lengths or less)"]
+
+
+def summary_of(points):
+    """The kernel's :class:`~supercoil.core.dna.hat.PointSummary` if it holds, else None.
+
+    Only a summary whose ranges are finite is used (else the checks pass over
+    the arrays and name the point).
+    """
+    s = getattr(points, "summary", None)
+    return s if s is not None and s.finite else None
+
+
+def _range(points, name):
+    """``(min, max)`` of ``points.<name>``: the kernel's summary, or two reductions."""
+    s = summary_of(points)
+    if s is not None:
+        return getattr(s, f"{name}_min"), getattr(s, f"{name}_max")
+    x = getattr(points, name)
+    return x.min(), x.max()
 
 
 class StateRecorder:

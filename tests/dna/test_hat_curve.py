@@ -343,8 +343,36 @@ def test_blocked_points_equal_one_block_with_interleaved_forces(monkeypatch):
     for a, b in zip(whole, shuffled, strict=True):
         if a is None:
             assert b is None
+        elif isinstance(a, hc.PointSummary):  # reductions over the same points
+            np.testing.assert_equal(tuple(b), tuple(a))
         else:
             np.testing.assert_array_equal(a[order], b)
+
+
+@pytest.mark.parametrize("fast", [False, True])
+@pytest.mark.parametrize("thermal", [True, False])
+def test_summary_is_the_reductions_of_the_points(thermal, fast):
+    """The kernel's block-by-block summary equals the reductions over the whole arrays."""
+    F = np.repeat(np.array([0.15, 0.4, 1.2, 3.0]) * 1e-12, 401)
+    N = np.tile(np.linspace(-60, 60, 401), 4)
+    for block, short in ((7, None), (hc.BLOCK, None), (7, 0.0)):
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(hc, "BLOCK", block)
+            p = hc.hat_curve_points(N, F, *ARGS, thermal=thermal, fast=fast,
+                                    short_tail_length=short)
+        s = p.summary
+        assert s.finite
+        assert (s.extension_min, s.extension_max) == (p.extension.min(), p.extension.max())
+        assert (s.torque_min, s.torque_max) == (p.torque.min(), p.torque.max())
+        assert s.torque_min < 0 < s.torque_max
+        over = bool(np.any((p.zeta > 1) & ~p.short_tail))
+        assert s.zeta_over_long_tail == over
+        if thermal:
+            assert s.bracket_min == p.bracket.min()
+            # no tail counts as short: zeta > 1 near full coiling (finite-length term)
+            assert over == (short == 0.0)
+        else:
+            assert np.isnan(s.bracket_min) and not over
 
 
 def test_plectoneme_phase_extension_is_moroz_nelson_at_the_tail(dna, ureg):
@@ -452,3 +480,43 @@ def test_shared_checks_find_what_their_reductions_skip():
         v.checked_turns([-np.inf, 1.0], si)
     with pytest.raises(sc.ValidityError, match="-300"):
         v.checked_turns([1.0, -300.0], si)  # Lk0 = 750 nm / 3.57 nm = 210
+
+
+def _validity_by_masks(turns, force, p, dna):
+    """li-zhao's validity messages by the full masks (the reference of the shortcuts)."""
+    from supercoil.dna.models.li_zhao import long_tail_messages
+
+    zeta_bad = ~p.short_tail & ~((p.zeta > 0) & (p.zeta <= 1)) & (p.phase != hc.FULLY_COILED)
+    if np.any(zeta_bad):
+        i = np.flatnonzero(zeta_bad)[0]
+        return [f"Moroz-Nelson zeta = {p.zeta[i]:.4g} lies outside (0, 1] at force "
+                f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
+                "valid there"]
+    return long_tail_messages(force, p.bracket, p.phase != hc.FULLY_COILED, turns)
+
+
+@pytest.mark.parametrize("short", [None, 0.0, 400e-9])
+@pytest.mark.parametrize("f_pN", [0.1, 0.13, 0.15, 0.19, 0.3, 1.2, 10.0])
+def test_validity_shortcuts_give_the_messages_of_the_full_masks(dna, f_pN, short):
+    """The kernel-summary and min-based shortcuts of li-zhao's validity change no message.
+
+    The forces cross the seed set's limits (long-tail factor <= 0 below 0.1218 pN,
+    zeta > 1 at a 3 A tail below 0.1354 pN, Q < 1 below 0.201 pN); a short-tail length
+    of 0 makes zeta > 1 near full coiling count.
+    """
+    from supercoil.dna.models import get_model
+
+    model = get_model("li-zhao")
+    si = dna.si
+    n = np.linspace(-40.0, 40.0, 801)
+    f = np.full(n.shape, f_pN * 1e-12)
+    with np.errstate(all="ignore"):
+        p = hc.hat_curve_points(n, f, si.length, si.bending_rigidity, si.torsional_rigidity,
+                                si.kT, si.radius, short_tail_length=short)
+    expected = _validity_by_masks(n, f, p, si)
+    assert model.validity(n, f, p, si, True) == expected
+    assert model.validity(n, f, p._replace(summary=None), si, True) == expected
+    if f_pN >= 1.2 and short is None:
+        assert expected == []
+    if f_pN <= 0.15 or (short == 0.0 and f_pN <= 1.2):
+        assert expected != []  # the failure regions are reached

@@ -36,6 +36,9 @@ def _agree(a, b):
         if x is None:
             assert y is None, name
             continue
+        if name == "summary":  # reductions of equal arrays: equal (NaN athermal)
+            np.testing.assert_equal(tuple(y), tuple(x))
+            continue
         assert x.dtype == y.dtype, name
         if x.dtype.kind == "f":
             np.testing.assert_allclose(y, x, rtol=4e-16, atol=1e-300, err_msg=name)

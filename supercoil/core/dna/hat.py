@@ -56,6 +56,7 @@ __all__ = [
     "STRETCHED",
     "HatParameters",
     "HatPoints",
+    "PointSummary",
     "buckling_turns",
     "hat_curve_points",
     "hat_parameters",
@@ -84,6 +85,46 @@ class HatPoints(NamedTuple):
     zeta: np.ndarray  # Moroz-Nelson extension factor (1 athermal, 0 fully coiled)
     free_energy: np.ndarray | None = None  # G(N, F) in J, for models that have one
     bracket: np.ndarray | None = None  # li-zhao thermal: Moroz-Nelson bracket Q per point
+    summary: PointSummary | None = None  # reductions the kernel computed block by block
+
+
+class PointSummary(NamedTuple):
+    """Reductions over all points of :func:`hat_curve_points`, taken block by block.
+
+    Computed while each block is in the CPU cache, so that the public layer's
+    checks (docs/theory/limits.md) reuse them instead of passing over the
+    arrays again (about a dozen passes, 4 ms at 1e6 points). The ranges hold
+    only if ``finite``.
+    """
+
+    finite: bool  # extension and torque finite everywhere
+    extension_min: float  # m
+    extension_max: float  # m
+    torque_min: float  # N m, signed
+    torque_max: float  # N m, signed
+    bracket_min: float  # thermal: min of Q over all points (NaN athermal)
+    zeta_over_long_tail: bool  # zeta > 1 at a point not flagged short_tail
+
+
+def _block_summary(extension, torque, zeta, bracket, short_tail, over=None):
+    """``PointSummary`` fields of one block (cache-resident reductions).
+
+    ``over`` (zeta > 1 at a long tail), if the caller already knows it.
+    """
+    e_lo, e_hi, m_lo, m_hi = extension.min(), extension.max(), torque.min(), torque.max()
+    finite = bool(np.isfinite(e_lo) and np.isfinite(e_hi) and np.isfinite(m_lo)
+                  and np.isfinite(m_hi))
+    q_lo = bracket.min() if bracket is not None else np.nan
+    if over is None:
+        over = bool(zeta.max() > 1.0) and bool(np.any((zeta > 1.0) & ~short_tail))
+    return finite, e_lo, e_hi, m_lo, m_hi, q_lo, bool(over)
+
+
+def _combined(blocks):
+    """One :class:`PointSummary` from the blocks' summaries."""
+    f, e_lo, e_hi, m_lo, m_hi, q_lo, over = zip(*blocks, strict=True)
+    return PointSummary(all(f), float(min(e_lo)), float(max(e_hi)), float(min(m_lo)),
+                        float(max(m_hi)), float(np.min(q_lo)), any(over))
 
 
 class HatParameters(NamedTuple):
@@ -235,6 +276,7 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
     if _fast.wanted(fast):
         _fast.compiled()  # ImportError naming the extra if numba is missing
         fill = _fill_fast
+    blocks = []
     for (start, stop), (lo, hi) in zip(_blocks(n), ranges, strict=True):
         sl = slice(start, stop)
         if lo == hi:  # one force in the block (the force-major tables): scalar constants
@@ -243,9 +285,11 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         else:
             i = np.searchsorted(uf, force[sl])
             c = tuple(a[i] for a in const)
-        fill(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length, out, sl)
+        blocks.append(fill(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length,
+                           out, sl))
+    out = out._replace(summary=_combined(blocks))
     if shape != turns.shape:
-        out = HatPoints(*(None if a is None else a.reshape(shape) for a in out))
+        out = HatPoints(*(a.reshape(shape) if isinstance(a, np.ndarray) else a for a in out))
     return out
 
 
@@ -277,36 +321,51 @@ def _forces(force):
 
 
 def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
-    """The compiled fused loop on one block; the numpy path names any failure."""
-    if _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl) != _fast.OK:
-        _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl)
+    """The compiled fused loop on one block; the numpy path names any failure.
+
+    Returns the block's summary (:func:`_block_summary`).
+    """
+    code, over = _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl)
+    if code != _fast.OK:
+        return _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out,
+                           sl)
+    return _block_summary(out.extension[sl], out.torque[sl], None,
+                          out.bracket[sl] if thermal else None, None, over)
 
 
 def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
     """Hat-curve points of one block, written into the slices ``sl`` of ``out``.
 
+    Returns the block's summary (:func:`_block_summary`).
+
     ``const``: per-force constants (scalars, or arrays of the block) ``N_b``,
     ``M_p``, ``2 pi / D``, ``C_eff 2 pi / L`` and ``B T / kT^2 - 1/32``. Each
     quantity is computed once, in place where possible (about 25 passes over the
-    block, all cache-resident).
+    block, all cache-resident). Measured per point on a block of 32768 (AMD EPYC,
+    numpy 2.4): ``np.maximum``/``np.minimum`` against a scalar take 0.46 ns,
+    against an array 0.12 ns, hence the constant arrays; ``np.copysign`` 0.47 ns,
+    skipped where the block has no negative turns.
     """
     Nb, Mp, k, c, s = const
-    n = np.abs(turns)
-    if not np.isfinite(n.max()):  # NaN propagates into the max
+    size = turns.shape[0]
+    lo, hi = turns.min(), turns.max()  # NaN propagates into both, inf shows in one
+    if not (np.isfinite(lo) and np.isfinite(hi)):
         raise ValueError("turns must be finite")
+    n = turns if lo >= 0.0 else np.abs(turns)  # read only below
     S = out.plectoneme_length[sl]
     np.subtract(n, Nb, out=S)
-    np.maximum(S, 0.0, out=S)
+    np.maximum(S, np.zeros(size), out=S)
     np.multiply(S, k, out=S)  # S = 2 pi (|N| - N_b) / D in the plectoneme phase
     coiled = S >= length
-    np.minimum(S, length, out=S)
+    any_coiled = coiled.any()
+    np.minimum(S, np.full(size, length), out=S)
     tail = np.subtract(length, S)
     phase = out.phase[sl]
     np.greater(n, Nb, out=phase.view(bool))  # 1 past buckling, 0 stretched
     phase += coiled.view(np.int8)  # fully coiled (S >= L) only past buckling: 2
     M = out.torque[sl]
     np.multiply(n, c, out=M)  # stretched tail C_eff 2 pi |N| / L, equal to M_p at N_b
-    np.minimum(M, Mp, out=M)
+    np.minimum(M, np.full(size, Mp) if np.ndim(Mp) == 0 else Mp, out=M)
     zeta, extension = out.zeta[sl], out.extension[sl]
     if thermal:
         Q = out.bracket[sl]  # Q = B T/kT^2 - 1/32 - (M / 2 kT)^2
@@ -324,11 +383,16 @@ def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, 
             np.divide(-0.5, zeta, out=zeta)
             zeta += 1.0
             zeta += extension
-        np.copyto(zeta, 0.0, where=coiled)
+        if any_coiled:
+            np.copyto(zeta, 0.0, where=coiled)
         np.multiply(zeta, tail, out=extension)
     else:
         zeta.fill(1.0)
-        np.copyto(zeta, 0.0, where=coiled)
+        if any_coiled:
+            np.copyto(zeta, 0.0, where=coiled)
         extension[:] = tail
-    np.copysign(M, turns, out=M)
-    np.less(tail, short_tail_length, out=out.short_tail[sl])
+    if lo < 0.0 or np.signbit(lo):
+        np.copysign(M, turns, out=M)
+    short = out.short_tail[sl]
+    np.less(tail, short_tail_length, out=short)
+    return _block_summary(extension, M, zeta, Q if thermal else None, short)

@@ -64,55 +64,68 @@ def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl):
 
     Returns
     -------
-    int
+    code : int
         :data:`OK`, or :data:`BAD_TURNS` / :data:`BAD_BRACKET` (the caller
         raises the numpy path's named error for the block).
+    zeta_over_long_tail : bool
+        zeta > 1 at a point not flagged ``short_tail`` (the other reductions
+        of the block's summary are numpy's, on the cache-resident block: a
+        min/max in the loop would stop its vectorisation, 2.6 -> 5.6 ms at 1e6).
     """
     Nb, Mp, k, c, s = (np.atleast_1d(np.asarray(a, dtype=float)) for a in const)
     Q = out.bracket[sl] if thermal else np.empty(0)
-    return compiled()(turns, Nb, Mp, k, c, s, float(length), 0.5 / kT, B / kT, bool(thermal),
-                     float(short_tail_length), out.extension[sl], out.torque[sl],
-                     out.plectoneme_length[sl], out.phase[sl], out.short_tail[sl],
-                     out.zeta[sl], Q)
+    bad_turns, bad_bracket, over = compiled()(
+        turns, Nb, Mp, k, c, s, float(length), 0.5 / kT, B / kT, bool(thermal),
+        float(short_tail_length), out.extension[sl], out.torque[sl], out.plectoneme_length[sl],
+        out.phase[sl], out.short_tail[sl], out.zeta[sl], Q)
+    return BAD_TURNS if bad_turns else BAD_BRACKET if bad_bracket else OK, over
 
 
 def _loop(turns, Nb_, Mp_, k_, c_, s_, length, half_over_kT, BkT, thermal, short, ext,
           torque, S_, phase, short_tail, zeta_, Q_):
-    """The fused loop: the operations of ``hat._fill_block``, point by point."""
-    one = Nb_.shape[0] == 1  # per-force constants: one for the block, or one per point
+    """The fused loop: the operations of ``hat._fill_block``, point by point.
+
+    No early exit and no branch on a point's phase (selects instead), so that
+    LLVM vectorises it: 1.5 ms per 1e6 points into preallocated outputs, against
+    3.9 ms for the same loop with early returns (this machine, AMD EPYC, one
+    numpy ``sqrt`` pass over the turns 0.85 ms). Returns the flags
+    ``(bad_turns, bad_bracket, over)``: a non-finite turns value, a bracket <= 0
+    at a point that is not fully coiled, zeta > 1 at a long tail.
+    """
+    step = 0 if Nb_.shape[0] == 1 else 1  # constants for the block, or one per point
+    bad_turns = False
+    bad_bracket = False
+    over = False
     for i in range(turns.shape[0]):
-        j = 0 if one else i
+        j = i * step
         Nb = Nb_[j]
         t = turns[i]
         n = abs(t)
-        if not np.isfinite(n):
-            return BAD_TURNS
+        bad_turns |= not np.isfinite(n)
         S = max(n - Nb, 0.0) * k_[j]
         coiled = S >= length
         S = min(S, length)
         tail = length - S
         M = min(n * c_[j], Mp_[j])
-        if coiled:
-            zeta = 0.0
-            if thermal:
-                q = M * half_over_kT
-                Q_[i] = s_[j] - q * q
-        elif thermal:
+        is_short = tail < short
+        if thermal:
             q = M * half_over_kT
             Q = s_[j] - q * q
-            if not Q > 0.0:
-                return BAD_BRACKET
             Q_[i] = Q
+            bad_bracket |= (not Q > 0.0) and not coiled
             e = BkT / ((Q + 1.0 / 32.0) * tail)
             zeta = -0.5 / np.sqrt(Q)
             zeta += 1.0
             zeta += e
+            zeta = 0.0 if coiled else zeta
+            ext[i] = zeta * tail
+            over |= zeta > 1.0 and not is_short
         else:
-            zeta = 1.0
+            zeta = 0.0 if coiled else 1.0
+            ext[i] = tail
         zeta_[i] = zeta
-        ext[i] = zeta * tail if thermal else tail
         S_[i] = S
-        phase[i] = (1 if n > Nb else 0) + (1 if coiled else 0)
+        phase[i] = (n > Nb) + coiled
         torque[i] = np.copysign(M, t)
-        short_tail[i] = tail < short
-    return OK
+        short_tail[i] = is_short
+    return bad_turns, bad_bracket, over

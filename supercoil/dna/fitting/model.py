@@ -215,8 +215,8 @@ class HatCurveModel:
         for f in np.unique(force):
             sel = force == f
             pts = self.kernel(turns[sel], force[sel], *self.unpack(u, f)[:3])
-            if out is None:
-                out = [None if a is None else np.empty(len(turns), np.asarray(a).dtype)
+            if out is None:  # arrays only (a kernel's summary covers its own call)
+                out = [np.empty(len(turns), a.dtype) if isinstance(a, np.ndarray) else None
                        for a in pts]
             for arr, a in zip(out, pts, strict=True):
                 if arr is not None:

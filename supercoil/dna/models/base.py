@@ -20,7 +20,8 @@ Contract (float level, SI; modelled on scipy's ``OdeSolver`` rules)
    force (1-D array of distinct forces, N).
 4. ``points(turns, force, dna, thermal, interaction, short_tail_length)`` ->
    :class:`~supercoil.core.dna.hat.HatPoints`; ``turns`` and ``force`` are 1-D
-   arrays of the same shape (force repeated per point).
+   arrays of the same shape (force repeated per point; read-only: for one
+   force it is a broadcast view).
 5. ``has_free_energy(thermal)`` and ``free_energy(turns, force, ...)`` (J): the
    total free energy G(N, F) at fixed force, whose derivatives give
    ``z = -dG/dF`` and ``M = (1/2 pi) dG/dN``; the default raises

@@ -21,6 +21,7 @@ import numpy as np
 
 from supercoil.core.dna import hat as _hc
 from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.dna import validity as _v
 from supercoil.dna.models.base import Buckling, DNAModel
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
 from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
@@ -73,16 +74,29 @@ class LiZhao(DNAModel):
     def validity(self, turns, force, points, dna, thermal):
         if not thermal:
             return []
-        zeta_bad = ~points.short_tail & ~((points.zeta > 0) & (points.zeta <= 1))
-        zeta_bad &= points.phase != _hc.FULLY_COILED
+        Q = points.bracket
+        if Q is None:
+            Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
+        summary = _v.summary_of(points)
+        q_min = Q.min() if summary is None else summary.bracket_min  # NaN: the masks below
+        if q_min > 0.25:
+            # 1 - Q^(-1/2)/2 > 0 and the finite-length term is positive: zeta > 0 at
+            # every point with a tail (fully coiled points hold 0), so only zeta > 1
+            # at a long tail can fail (the kernel's summary says whether one does)
+            if summary is not None and not summary.zeta_over_long_tail:
+                zeta_bad = False
+            else:
+                zeta_bad = (points.zeta > 1.0) & ~points.short_tail
+        else:
+            zeta_bad = ~points.short_tail & ~((points.zeta > 0) & (points.zeta <= 1))
+            zeta_bad &= points.phase != _hc.FULLY_COILED
         if np.any(zeta_bad):
             i = np.flatnonzero(zeta_bad)[0]
             return [f"Moroz-Nelson zeta = {points.zeta[i]:.4g} lies outside (0, 1] at force "
                     f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
                     "valid there"]
-        Q = points.bracket
-        if Q is None:
-            Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
+        if q_min >= CONVERGED_BRACKET:
+            return []  # no long-tail message can fire
         return long_tail_messages(force, Q, points.phase != _hc.FULLY_COILED, turns)
 
 
