@@ -165,7 +165,7 @@ def force_messages(force):
 def denaturation_messages(force, turns):
     """Negative turns above 0.8 pN, where real DNA denatures."""
     force, turns = np.asarray(force), np.asarray(turns)
-    if force.size == 0 or force.max() <= DENATURATION_FORCE or turns.min() >= 0:
+    if force.size == 0 or _extreme(force, np.max) <= DENATURATION_FORCE or turns.min() >= 0:
         return []  # cheap reductions first: the mask below costs three passes
     den = (turns < 0) & (force > DENATURATION_FORCE)
     if not np.any(den):
@@ -195,7 +195,7 @@ def tail_torque_messages(force, turns, points, dna):
         return []
     lo, hi = _range(points, "torque")
     big = max(-lo, hi)
-    if big <= 2.0 * np.sqrt(dna.bending_rigidity * force.min()):
+    if big <= 2.0 * np.sqrt(dna.bending_rigidity * _extreme(force, np.min)):
         return []  # no torque reaches the smallest force's Euler limit: skip the full mask
     limit = 2.0 * np.sqrt(dna.bending_rigidity * force)
     over = (points.phase != 2) & (np.abs(points.torque) > limit)
@@ -232,6 +232,16 @@ def summary_of(points):
     """
     s = getattr(points, "summary", None)
     return s if s is not None and s.finite else None
+
+
+def _extreme(x, reduce):
+    """``reduce(x)``; for one force broadcast over the points (stride 0) its value.
+
+    (numpy reduces a stride-0 view element by element: 0.25 ms at 1e6 points.)
+    """
+    if x.ndim == 1 and x.size and x.strides[0] == 0:
+        return x[0]
+    return reduce(x)
 
 
 def _range(points, name):

@@ -513,9 +513,16 @@ def test_validity_shortcuts_give_the_messages_of_the_full_masks(dna, f_pN, short
     with np.errstate(all="ignore"):
         p = hc.hat_curve_points(n, f, si.length, si.bending_rigidity, si.torsional_rigidity,
                                 si.kT, si.radius, short_tail_length=short)
+        lean = hc.hat_curve_points(n, f, si.length, si.bending_rigidity,
+                                   si.torsional_rigidity, si.kT, si.radius,
+                                   short_tail_length=short, diagnostics=False)
+    assert lean.zeta is None and lean.bracket is None
+    for a, b in zip(p[:5], lean[:5], strict=True):  # the same points without the two arrays
+        np.testing.assert_array_equal(b, a)
+    np.testing.assert_equal(tuple(lean.summary), tuple(p.summary))
     expected = _validity_by_masks(n, f, p, si)
-    assert model.validity(n, f, p, si, True) == expected
-    assert model.validity(n, f, p._replace(summary=None), si, True) == expected
+    for q in (p, p._replace(summary=None), lean, lean._replace(summary=None)):
+        assert model.validity(n, f, q, si, True) == expected
     if f_pN >= 1.2 and short is None:
         assert expected == []
     if f_pN <= 0.15 or (short == 0.0 and f_pN <= 1.2):

@@ -199,7 +199,8 @@ def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
 
 
 def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUILIBRIUM_RTOL,
-                     short_tail_length=None, equilibrium_solver=None, fast=None):
+                     short_tail_length=None, equilibrium_solver=None, fast=None,
+                     diagnostics=True):
     """Hat-curve points: one (turns, force) pair per point, equilibrium once per force.
 
     Parameters
@@ -232,6 +233,12 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         ``supercoil[fast]`` extra); it agrees with the numpy path to rounding.
         Default ``None``: only if the environment variable ``SUPERCOIL_FAST``
         is ``1``. The numpy path is the default.
+    diagnostics : bool
+        Keep the per-point ``zeta`` and ``bracket`` arrays (default). ``False``:
+        they are computed block by block in reused buffers and returned as
+        None (two arrays, 16 bytes per point, fewer to allocate and fill;
+        :attr:`HatPoints.summary` still says whether zeta leaves (0, 1] at a
+        long tail and holds the bracket's minimum).
 
     Returns
     -------
@@ -270,8 +277,11 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
     const = (par.buckling_turns, par.torque, _TWO_PI / par.linking_rate,
              par.effective_twist_rigidity * (_TWO_PI / length), uf * (B / (kT * kT)) - 1.0 / 32)
     n = turns.size
+    m = n if diagnostics else min(n, BLOCK)  # the zeta and bracket arrays, or block buffers
+    zeta_w, bracket_w = np.empty(m), np.empty(m) if thermal else None
     out = HatPoints(np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8),
-                    np.empty(n, bool), np.empty(n), None, np.empty(n) if thermal else None)
+                    np.empty(n, bool), zeta_w if diagnostics else None, None,
+                    bracket_w if diagnostics else None)
     fill = _fill_block
     if _fast.wanted(fast):
         _fast.compiled()  # ImportError naming the extra if numba is missing
@@ -285,8 +295,9 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         else:
             i = np.searchsorted(uf, force[sl])
             c = tuple(a[i] for a in const)
+        w = sl if diagnostics else slice(0, stop - start)
         blocks.append(fill(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length,
-                           out, sl))
+                           out, sl, zeta_w[w], None if bracket_w is None else bracket_w[w]))
     out = out._replace(summary=_combined(blocks))
     if shape != turns.shape:
         out = HatPoints(*(a.reshape(shape) if isinstance(a, np.ndarray) else a for a in out))
@@ -320,21 +331,26 @@ def _forces(force):
     return np.unique(np.concatenate(values)), ranges
 
 
-def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
+def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl, zeta,
+               bracket):
     """The compiled fused loop on one block; the numpy path names any failure.
 
     Returns the block's summary (:func:`_block_summary`).
     """
-    code, over = _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl)
+    code, over = _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl,
+                            zeta, bracket)
     if code != _fast.OK:
         return _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out,
-                           sl)
-    return _block_summary(out.extension[sl], out.torque[sl], None,
-                          out.bracket[sl] if thermal else None, None, over)
+                           sl, zeta, bracket)
+    return _block_summary(out.extension[sl], out.torque[sl], None, bracket, None, over)
 
 
-def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl):
+def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl, zeta,
+                bracket):
     """Hat-curve points of one block, written into the slices ``sl`` of ``out``.
+
+    ``zeta`` and ``bracket`` (thermal; else None) are the block's arrays to fill:
+    slices of the result, or reused buffers.
 
     Returns the block's summary (:func:`_block_summary`).
 
@@ -366,9 +382,9 @@ def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, 
     M = out.torque[sl]
     np.multiply(n, c, out=M)  # stretched tail C_eff 2 pi |N| / L, equal to M_p at N_b
     np.minimum(M, np.full(size, Mp) if np.ndim(Mp) == 0 else Mp, out=M)
-    zeta, extension = out.zeta[sl], out.extension[sl]
+    extension = out.extension[sl]
     if thermal:
-        Q = out.bracket[sl]  # Q = B T/kT^2 - 1/32 - (M / 2 kT)^2
+        Q = bracket  # Q = B T/kT^2 - 1/32 - (M / 2 kT)^2
         np.multiply(M, 0.5 / kT, out=Q)
         np.square(Q, out=Q)
         np.subtract(s, Q, out=Q)

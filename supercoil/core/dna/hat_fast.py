@@ -59,8 +59,8 @@ def compiled():
     return _KERNEL
 
 
-def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl):
-    """Points of one block into ``out[sl]``; ``const`` as in ``hat._fill_block``.
+def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl, zeta, bracket):
+    """Points of one block into ``out[sl]``, ``zeta`` and ``bracket``, as ``hat._fill_block``.
 
     Returns
     -------
@@ -73,11 +73,11 @@ def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl):
         min/max in the loop would stop its vectorisation, 2.6 -> 5.6 ms at 1e6).
     """
     Nb, Mp, k, c, s = (np.atleast_1d(np.asarray(a, dtype=float)) for a in const)
-    Q = out.bracket[sl] if thermal else np.empty(0)
+    Q = bracket if thermal else np.empty(0)
     bad_turns, bad_bracket, over = compiled()(
         turns, Nb, Mp, k, c, s, float(length), 0.5 / kT, B / kT, bool(thermal),
         float(short_tail_length), out.extension[sl], out.torque[sl], out.plectoneme_length[sl],
-        out.phase[sl], out.short_tail[sl], out.zeta[sl], Q)
+        out.phase[sl], out.short_tail[sl], zeta, Q)
     return BAD_TURNS if bad_turns else BAD_BRACKET if bad_bracket else OK, over
 
 

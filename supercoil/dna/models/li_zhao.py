@@ -48,9 +48,14 @@ class LiZhao(DNAModel):
         return Buckling(par.buckling_turns, par.torque, par.slope)
 
     def points(self, turns, force, dna, thermal, interaction, short_tail_length=None):
+        """Hat-curve points; ``zeta`` and ``bracket`` are not kept (None).
+
+        :meth:`validity` reads the kernel's summary, and only in a failure region
+        recomputes them (zeta as extension / tail, the bracket from the torque).
+        """
         return _hc.hat_curve_points(
             turns, force, *self._args(dna), thermal=thermal, short_tail_length=short_tail_length,
-            equilibrium_solver=lambda f: interaction.equilibrium(f, dna))
+            equilibrium_solver=lambda f: interaction.equilibrium(f, dna), diagnostics=False)
 
     def free_energy(self, turns, force, dna, thermal, interaction):
         """Not available: raises :class:`~supercoil.exceptions.ModelError` (see the class docs)."""
@@ -86,18 +91,28 @@ class LiZhao(DNAModel):
             if summary is not None and not summary.zeta_over_long_tail:
                 zeta_bad = False
             else:
-                zeta_bad = (points.zeta > 1.0) & ~points.short_tail
+                zeta = _zeta(points, dna)
+                zeta_bad = (zeta > 1.0) & ~points.short_tail
         else:
-            zeta_bad = ~points.short_tail & ~((points.zeta > 0) & (points.zeta <= 1))
+            zeta = _zeta(points, dna)
+            zeta_bad = ~points.short_tail & ~((zeta > 0) & (zeta <= 1))
             zeta_bad &= points.phase != _hc.FULLY_COILED
         if np.any(zeta_bad):
             i = np.flatnonzero(zeta_bad)[0]
-            return [f"Moroz-Nelson zeta = {points.zeta[i]:.4g} lies outside (0, 1] at force "
+            return [f"Moroz-Nelson zeta = {zeta[i]:.4g} lies outside (0, 1] at force "
                     f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
                     "valid there"]
         if q_min >= CONVERGED_BRACKET:
             return []  # no long-tail message can fire
         return long_tail_messages(force, Q, points.phase != _hc.FULLY_COILED, turns)
+
+
+def _zeta(points, dna):
+    """The points' zeta: kept by the kernel, or extension / tail (0 where fully coiled)."""
+    if points.zeta is not None:
+        return points.zeta
+    tail = dna.length - points.plectoneme_length
+    return np.divide(points.extension, tail, out=np.zeros_like(tail), where=tail > 0)
 
 
 def long_tail_messages(F, Q, where, N=None):
