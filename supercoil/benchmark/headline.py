@@ -81,6 +81,15 @@ def target_row(measurement, value, unit, target, met, note=""):
 _row = target_row
 
 
+def _faults(h):
+    """Page faults per call of the public call, the 9 columns and the pass (if counted)."""
+    if h.get("public_faults") is None:
+        return ""
+    return (f"; minor page faults per call: public {h['public_faults']:.0f}, the 9 columns "
+            f"{h['columns_write_faults']:.0f}, the sqrt pass {h['sqrt_pass_faults']:.0f} "
+            "(fresh memory the kernel zeroes)")
+
+
 def _dna_rows(r):
     h, n = r["hat"], r["hat"]["n"]
     per_point = r["hat_mem"].get(n, {}).get("result", float("nan")) / n
@@ -92,7 +101,7 @@ def _dna_rows(r):
              f"{h['public'] * 1e3:.3g} ms; returns a 9-column DataFrame of {per_point:.3g} B per "
              f"point; writing the table's 9 fresh columns alone costs "
              f"{h['columns_write_ratio']:.3g}x; / np.multiply(turns, 2.0) "
-             f"({h['numpy_pass'] * 1e3:.3g} ms): {h['public_mul_ratio']:.3g}x"),
+             f"({h['numpy_pass'] * 1e3:.3g} ms): {h['public_mul_ratio']:.3g}x" + _faults(h)),
         _row(f"kernel supercoil.core.dna.hat.hat_curve_points, {n:.0e} points (numpy path): "
              "CPU per call / the same sqrt pass", h["kernel_ratio"], "x", "<= 5x",
              h["kernel_ratio"] <= 5,

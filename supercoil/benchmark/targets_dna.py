@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from supercoil.benchmark.cpu import interleaved_cpu, peak_memory
+from supercoil.benchmark.cpu import interleaved_cpu, page_faults, peak_memory
 from supercoil.benchmark.memory import write_rotation_csv
 
 #: force of the hat-curve measurements (N) and their turns range (turns): N >= 0
@@ -56,7 +56,9 @@ def hat_throughput(n, samples=9):
         (the multiply), ``columns_write`` (:func:`_columns_write`) and, with
         numba installed, ``kernel_fast`` and ``public_fast`` (s per call); the
         ratios ``<name>_ratio`` to the sqrt pass and ``<name>_mul_ratio`` to the
-        multiply pass.
+        multiply pass; ``public_faults``, ``sqrt_pass_faults`` and
+        ``columns_write_faults``: minor page faults per call (None without
+        :mod:`resource`).
     """
     import supercoil as sc
     from supercoil.core.dna import hat as hat_kernel
@@ -84,6 +86,8 @@ def hat_throughput(n, samples=9):
         if k in t:
             t[f"{k}_ratio"] = t[k] / t["sqrt_pass"]
             t[f"{k}_mul_ratio"] = t[k] / t["numpy_pass"]
+    for k in ("public", "sqrt_pass", "columns_write"):
+        t[f"{k}_faults"] = page_faults(funcs[k])
     return t
 
 

@@ -79,10 +79,10 @@ class LiZhao(DNAModel):
     def validity(self, turns, force, points, dna, thermal):
         if not thermal:
             return []
-        Q = points.bracket
-        if Q is None:
-            Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
         summary = _v.summary_of(points)
+        Q = points.bracket
+        if Q is None and (summary is None or not summary.bracket_min >= CONVERGED_BRACKET):
+            Q = _mn.zeta_bracket(force, points.torque, dna.bending_rigidity, dna.kT)
         q_min = Q.min() if summary is None else summary.bracket_min  # NaN: the masks below
         if q_min > 0.25:
             # 1 - Q^(-1/2)/2 > 0 and the finite-length term is positive: zeta > 0 at
