@@ -276,6 +276,16 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
     # per-force constants of the per-point formulas (docs/theory/li-zhao.md#hat-curve)
     const = (par.buckling_turns, par.torque, _TWO_PI / par.linking_rate,
              par.effective_twist_rigidity * (_TWO_PI / length), uf * (B / (kT * kT)) - 1.0 / 32)
+    out = _fill_points(turns, force, uf, ranges, const, length, B, kT, thermal,
+                       short_tail_length, fast, diagnostics)
+    if shape != turns.shape:
+        out = HatPoints(*(a.reshape(shape) if isinstance(a, np.ndarray) else a for a in out))
+    return out
+
+
+def _fill_points(turns, force, uf, ranges, const, length, B, kT, thermal, short_tail_length,
+                 fast, diagnostics):
+    """Allocate the points and fill them block by block; the summary combined."""
     n = turns.size
     m = n if diagnostics else min(n, BLOCK)  # the zeta and bracket arrays, or block buffers
     zeta_w, bracket_w = np.empty(m), np.empty(m) if thermal else None
@@ -298,10 +308,7 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         w = sl if diagnostics else slice(0, stop - start)
         blocks.append(fill(turns[sl], force[sl], c, length, B, kT, thermal, short_tail_length,
                            out, sl, zeta_w[w], None if bracket_w is None else bracket_w[w]))
-    out = out._replace(summary=_combined(blocks))
-    if shape != turns.shape:
-        out = HatPoints(*(a.reshape(shape) if isinstance(a, np.ndarray) else a for a in out))
-    return out
+    return out._replace(summary=_combined(blocks))
 
 
 #: points per block of :func:`hat_curve_points`: temporaries stay bounded (a few
