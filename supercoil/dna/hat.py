@@ -288,7 +288,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     # column in place (no second copy: peak memory ~1.3x the table, issue 14).
     own = _Owned(N)
     columns = {
-        "force": own.scaled(F, 1e12),
+        "force": np.full(F.size, F[0] * 1e12) if F.strides == (0,) else own.scaled(F, 1e12),
         "turns": N,
         "extension": own.scaled(hp.extension, 1e9),
         "phase": pd.Categorical.from_codes(hp.phase, dtype=_PHASE_DTYPE),
