@@ -113,7 +113,7 @@ def clear_kernel_caches():
 
     for module in (plectoneme, electrostatics):
         for obj in vars(module).values():
-            if callable(getattr(obj, "cache_clear", None)):
+            if not isinstance(obj, type) and callable(getattr(obj, "cache_clear", None)):
                 obj.cache_clear()
 
 

@@ -15,6 +15,7 @@ import supercoil as sc
 from supercoil.core import geometry as g
 from supercoil.core.dna import marko_siggia as ms
 from supercoil.core.dna import plectoneme as pl
+from supercoil.core.dna import plectoneme_reduced as pr
 from supercoil.units import BOLTZMANN
 
 KT = BOLTZMANN * 300.0
@@ -202,7 +203,7 @@ def test_bad_inputs(dna, ureg):
 @given(st.floats(0.2, 0.78), st.floats(0.6, 5.0), st.floats(10.0, 60.0))
 def test_scalar_fast_path_equals_vector_formulas(a, rho, b_):
     beta = b_ ** (-1 / 3)
-    out = pl._scalar_ge2_tension(a, rho, b_, beta)
+    out = pr.scalar_ge2_tension(a, rho, b_, beta)
     vec = pl.reduced_ge2(a, rho, b_, True) + pl.reduced_tension(a, rho, b_, True)
     for x, y in zip(out, vec, strict=True):
         assert x == pytest.approx(float(y), rel=1e-12, abs=1e-12 * (abs(out[0]) + abs(out[3])))
@@ -215,6 +216,47 @@ def test_scalar_and_vector_solvers_agree():
         a_s, r_s = pl._solve_scalar(float(t), b)
         assert a_s[0] == pytest.approx(a_v[i], rel=1e-12)
         assert r_s[0] == pytest.approx(r_v[i], rel=1e-12)
+
+
+@pytest.mark.parametrize("ratio", [1.0, 1.0 + 1e-7, 0.97, 1.049, 0.951])
+def test_scalar_solve_started_from_a_nearby_table_is_the_root(ratio):
+    """A scalar solve starts from the table of b rounded to 10 % in log b, bracketed by the
+    whole branch: the root of the vectorised solve on b's own table, over the whole held
+    range of tensions (down to 1e-4 and up to just below the largest one, R -> r0/2)."""
+    b2 = b * ratio
+    T_max = pl.branch_table(b2)[2][0]
+    T = np.concatenate([np.geomspace(1e-4, 50, 25), [0.5 * T_max, 0.999 * T_max]])
+    a_v, r_v = pl.solve_reduced(T, b2)
+    for i, t in enumerate(T):
+        a, r = pl._solve_scalar(float(t), b2)
+        assert a[0] == pytest.approx(a_v[i], rel=1e-13)
+        assert r[0] == pytest.approx(r_v[i], rel=1e-13)
+
+
+def test_scalar_solve_does_not_depend_on_earlier_calls():
+    """The start table is a function of b alone: the same bits whatever was solved before
+    (a fit on a process pool gives the serial fit's numbers)."""
+    b2 = 1.03 * b
+    first = pl._solve_scalar(2.0, b2)
+    pl.branch_table.cache_clear()
+    for other in (0.96 * b, 1.07 * b, b2):
+        pl.branch_table(other)
+    again = pl._solve_scalar(2.0, b2)
+    assert first[0][0] == again[0][0] and first[1][0] == again[1][0]
+    assert pl._start_table(b2) is pl._start_table(1.01 * b)  # one table serves 10 % of b
+
+
+def test_largest_tension_without_a_table_is_the_tables_first_entry():
+    b2 = 1.1 * b
+    T_scalar = pl._largest_tension(b2)  # one scalar tilt solve, no table
+    T_table = pl.branch_table(b2)[2][0]
+    assert T_scalar == pytest.approx(T_table, rel=1e-13)
+    # above it: the named error; just below: held
+    r2 = B / (KT * b2)
+    f_max = T_table * KT / r2
+    with pytest.raises(sc.NoEquilibriumError, match="below r0/2"):
+        pl.equilibrium(1.001 * f_max, B, 1e-28, KT, r2)
+    pl.equilibrium(0.999 * f_max, B, 1e-28, KT, r2)
 
 
 def test_overstretching_and_hard_core_warnings(dna, ureg):

@@ -56,7 +56,11 @@ tabulates T'(rho) on ``[RHO_MIN, rho_0]`` once per b, brackets each force in
 that table, and solves ``T'(alpha(rho), rho) = T'`` for ``log rho`` by a
 safeguarded Newton iteration (Newton steps that leave the bracket are
 replaced by bisection), each step solving (GE2) for alpha by a safeguarded
-Newton iteration in the bracket (0, pi/4). No starting guess is needed.
+Newton iteration in the bracket (0, pi/4). No starting guess is needed. A few
+forces (up to 12) are solved one by one on Python floats, started from the
+table of b rounded to 10 % in log b and bracketed by the whole branch, so that
+a fit moving r0 builds one table per 10 % of b instead of one per step. The
+reduced equations themselves are in :mod:`supercoil.core.dna.plectoneme_reduced`.
 
 Limits: the force must be positive (no plectoneme is held at T <= 0), and the
 table stops at ``rho = RHO_MIN = 0.5`` (strands overlapping to half the
@@ -75,6 +79,13 @@ import numpy as np
 from supercoil.core import geometry as _g
 from supercoil.core.blocks import in_blocks
 from supercoil.core.dna import marko_siggia as _ms
+from supercoil.core.dna import plectoneme_reduced as _r
+from supercoil.core.dna.plectoneme_reduced import (
+    reduced_ge2,
+    reduced_tension,
+    reduced_torque,
+    solve_tilt,
+)
 from supercoil.core.numerics import safe_newton as _safe_newton
 from supercoil.exceptions import NoEquilibriumError
 
@@ -103,9 +114,6 @@ _SCALAR_LOOP_MAX = 12
 #: Forces solved together: larger inputs are processed in blocks of this size (8192: as
 #: fast as one block of 1e6 and ~2 MB of temporaries; issue 9, item 12)
 BLOCK = 8192
-_ALPHA_LO = 1e-12
-_ALPHA_HI = 0.25 * np.pi
-_TWO_THIRDS = 2.0 / 3.0
 
 
 class PlectonemeState(NamedTuple):
@@ -124,105 +132,10 @@ class PlectonemeState(NamedTuple):
     interaction_energy: np.ndarray  # J/m: w
 
 
-# ---------------------------------------------------------------------------
-# reduced equations
-# ---------------------------------------------------------------------------
-
-
-def _trig(alpha):
-    s = np.sin(alpha)
-    c = np.cos(alpha)
-    tan = s / c
-    t = tan / np.pi
-    t_a = (1.0 + tan * tan) / np.pi
-    return s, c, t, t_a
-
-
-def reduced_ge2(alpha, rho, b, derivatives=False):
-    """``h = -rho^4 (GE2)`` in reduced units; with ``derivatives`` also ``(h_alpha, h_rho)``."""
-    beta = b ** (-1.0 / 3.0)
-    s, c, t, t_a = _trig(alpha)
-    s2 = s * s
-    c2 = c * c - s2
-    t13 = np.cbrt(t)
-    t23 = t13 * t13
-    t12 = t**12
-    g1 = 2.0 * s2 * t23 - c2
-    g2 = 2.0 * s2 * t12 - c2
-    r43 = np.cbrt(rho) * rho
-    rm10 = rho**-10
-    k1 = _TWO_THIRDS * beta
-    h = b * s2 * s2 + 12.0 * rm10 * g2 + k1 * r43 * g1
-    if not derivatives:
-        return h
-    sin2a = 2.0 * s * c
-    g1_a = 2.0 * sin2a * t23 + 2.0 * s2 * _TWO_THIRDS * t_a / t13 + 2.0 * sin2a
-    g2_a = 2.0 * sin2a * t12 + 24.0 * s2 * t12 / t * t_a + 2.0 * sin2a
-    h_a = 4.0 * b * s2 * s * c + 12.0 * rm10 * g2_a + k1 * r43 * g1_a
-    h_r = -120.0 * rm10 / rho * g2 + (4.0 / 3.0) * k1 * r43 / rho * g1
-    return h, h_a, h_r
-
-
-def reduced_tension(alpha, rho, b, derivatives=False):
-    """Reduced tension ``T' = T r0 / kT`` on the (GE1)-eliminated tension equation.
-
-    With ``derivatives`` also returns ``(T'_alpha, T'_rho)``.
-    """
-    beta = b ** (-1.0 / 3.0)
-    s, c, t, t_a = _trig(alpha)
-    s2 = s * s
-    s4 = s2 * s2
-    c2 = c * c - s2
-    t13 = np.cbrt(t)
-    t23 = t13 * t13
-    t12 = t**12
-    q2 = 12.0 * t12 / c2 - 1.0 - t12
-    q1 = _TWO_THIRDS * t23 / c2 - 1.0 - t23
-    rm2 = 1.0 / (rho * rho)
-    rm12 = rm2**6
-    rm23 = 1.0 / np.cbrt(rho * rho)
-    bend = b * s4 * (2.0 + c2) / (2.0 * c2) * rm2
-    T = bend + rm12 * q2 + beta * rm23 * q1
-    if not derivatives:
-        return T
-    sin2a = 2.0 * s * c
-    c2sq = c2 * c2
-    d_bend = 4.0 * s2 * s * c * (1.0 + 2.0 / c2) + 4.0 * s4 * sin2a / c2sq
-    q2_a = 144.0 * t12 / t * t_a / c2 + 24.0 * t12 * sin2a / c2sq - 12.0 * t12 / t * t_a
-    q1_a = ((4.0 / 9.0) * t_a / t13 / c2 + (4.0 / 3.0) * t23 * sin2a / c2sq
-            - _TWO_THIRDS * t_a / t13)
-    T_a = 0.5 * b * rm2 * d_bend + rm12 * q2_a + beta * rm23 * q1_a
-    T_r = (-2.0 * bend - 12.0 * rm12 * q2 - _TWO_THIRDS * beta * rm23 * q1) / rho
-    return T, T_a, T_r
-
-
-def reduced_torque(alpha, rho, b):
-    """Reduced torque ``M_3 / kT = (B kappa kappa_alpha + w_alpha) / (kT tau_alpha)`` (GE1)."""
-    beta = b ** (-1.0 / 3.0)
-    s, c, _, _ = _trig(alpha)
-    c2 = c * c - s * s
-    w_a, _ = _ms.reduced_interaction_partials(alpha, rho, beta)
-    return (b * s * s * 2.0 * s * c / rho + rho * w_a) / c2
-
-
-# ---------------------------------------------------------------------------
-# (GE2) tilt by safeguarded Newton (supercoil.core.numerics.safe_newton)
-# ---------------------------------------------------------------------------
-
-
-def solve_tilt(rho, b, alpha0=None, xtol=1e-15):
-    """The unique root alpha in (0, pi/4) of (GE2) at reduced radius ``rho``."""
-    rho = np.asarray(rho, dtype=float)
-    if alpha0 is None:
-        alpha0 = np.full(rho.shape, 0.5)
-
-    def fun(a):
-        h, h_a, _ = reduced_ge2(a, rho, b, derivatives=True)
-        return h, h_a
-
-    lo = np.full(rho.shape, _ALPHA_LO)
-    hi = np.full(rho.shape, _ALPHA_HI)
-    return _safe_newton(fun, alpha0, lo, hi, xtol)
+#: step in log b of the tables that start scalar solves (see :func:`_solve_scalar`)
+_START_TABLE_STEP = 0.1
+#: upper end of the tabulated radii (R/r0): the tension is negative there for every b
+_RHO_TABLE_MAX = 1e4
 
 
 @lru_cache(maxsize=64)
@@ -232,7 +145,7 @@ def branch_table(b):
     ``rho`` runs from :data:`RHO_MIN` out to the first grid point with
     ``T' <= 0``; ``T'`` is strictly decreasing on it (checked).
     """
-    rho = np.geomspace(RHO_MIN, 1e4, 600)
+    rho = np.geomspace(RHO_MIN, _RHO_TABLE_MAX, 600)
     alpha = solve_tilt(rho, b)
     T = reduced_tension(alpha, rho, b)
     nonpos = np.nonzero(T <= 0.0)[0]
@@ -251,81 +164,50 @@ def branch_table(b):
     return rho, alpha, T
 
 
+@lru_cache(maxsize=256)
+def _largest_tension(b):
+    """``T'`` at :data:`RHO_MIN`, the largest reduced tension held (a table's first entry).
+
+    One scalar tilt solve, no table; NoEquilibriumError as :func:`branch_table`
+    if no positive tension is held.
+    """
+    beta = b ** (-1.0 / 3.0)
+    a = _r.scalar_tilt(0.5, RHO_MIN, b, beta)
+    T = _r.scalar_ge2_tension(a, RHO_MIN, b, beta)[3]
+    if not T > 0.0:
+        raise NoEquilibriumError(
+            f"no plectoneme branch with positive tension for B/(kT r0) = {b:.6g}"
+        )
+    return T
+
+
+def _start_table(b):
+    """The table that starts a scalar solve at ``b``: the branch of ``b`` rounded to a
+    grid of step :data:`_START_TABLE_STEP` in log b (within 5 %).
+
+    A fit moves r0, hence b, a little at every step and every Jacobian column; a
+    table costs ~0.5 ms (600 tilt solves) against ~20 us for a scalar solve, and a
+    new molecule's fit built 12 of them (5.6 ms of its 13 ms, issue 14). One table
+    per 10 % of b serves them all; the start (hence the result, to the last bit)
+    depends on b alone, not on which tables earlier calls built.
+    """
+    return branch_table(math.exp(_START_TABLE_STEP * round(math.log(b) / _START_TABLE_STEP)))
+
+
 def _format_force(force):
     return f"{force * 1e12:.6g} pN"
 
 
-def _scalar_ge2_tension(a, rho, b, beta):
-    """Pure-float ``(h, h_a, h_r, T, T_a, T_r)``: the formulas of :func:`reduced_ge2`
-    and :func:`reduced_tension` for one point (the scalar fast path; tested equal)."""
-    s = math.sin(a)
-    c = math.cos(a)
-    tan = s / c
-    t = tan / math.pi
-    t_a = (1.0 + tan * tan) / math.pi
-    s2 = s * s
-    s4 = s2 * s2
-    c2 = c * c - s2
-    sin2a = 2.0 * s * c
-    t13 = math.cbrt(t)
-    t23 = t13 * t13
-    t11 = t**11
-    t12 = t11 * t
-    # (GE2)
-    g1 = 2.0 * s2 * t23 - c2
-    g2 = 2.0 * s2 * t12 - c2
-    r13 = math.cbrt(rho)
-    r43 = r13 * rho
-    rm10 = rho**-10
-    k1 = _TWO_THIRDS * beta
-    h = b * s4 + 12.0 * rm10 * g2 + k1 * r43 * g1
-    g1_a = 2.0 * sin2a * t23 + 2.0 * s2 * _TWO_THIRDS * t_a / t13 + 2.0 * sin2a
-    g2_a = 2.0 * sin2a * t12 + 24.0 * s2 * t11 * t_a + 2.0 * sin2a
-    h_a = 4.0 * b * s2 * s * c + 12.0 * rm10 * g2_a + k1 * r43 * g1_a
-    h_r = -120.0 * rm10 / rho * g2 + (4.0 / 3.0) * k1 * r13 * g1
-    # tension
-    q2 = 12.0 * t12 / c2 - 1.0 - t12
-    q1 = _TWO_THIRDS * t23 / c2 - 1.0 - t23
-    rm2 = 1.0 / (rho * rho)
-    rm12 = rm2**6
-    rm23 = 1.0 / (r13 * r13)
-    bend = b * s4 * (2.0 + c2) / (2.0 * c2) * rm2
-    T = bend + rm12 * q2 + beta * rm23 * q1
-    c2sq = c2 * c2
-    d_bend = 4.0 * s2 * s * c * (1.0 + 2.0 / c2) + 4.0 * s4 * sin2a / c2sq
-    q2_a = 144.0 * t11 * t_a / c2 + 24.0 * t12 * sin2a / c2sq - 12.0 * t11 * t_a
-    q1_a = ((4.0 / 9.0) * t_a / t13 / c2 + (4.0 / 3.0) * t23 * sin2a / c2sq
-            - _TWO_THIRDS * t_a / t13)
-    T_a = 0.5 * b * rm2 * d_bend + rm12 * q2_a + beta * rm23 * q1_a
-    T_r = (-2.0 * bend - 12.0 * rm12 * q2 - _TWO_THIRDS * beta * rm23 * q1) / rho
-    return h, h_a, h_r, T, T_a, T_r
-
-
-def _scalar_tilt(a, rho, b, beta):
-    """(GE2) for alpha at reduced radius ``rho``: safeguarded Newton in (0, pi/4), floats."""
-    a_lo, a_hi = _ALPHA_LO, _ALPHA_HI
-    for _ in range(200):
-        h, h_a = _scalar_ge2_tension(a, rho, b, beta)[:2]
-        if h == 0.0:
-            break
-        if h < 0.0:
-            a_lo = a
-        else:
-            a_hi = a
-        an = a - h / h_a
-        if not a_lo <= an <= a_hi:
-            an = 0.5 * (a_lo + a_hi)
-        da = abs(an - a)
-        a = an
-        if da <= 1e-15 * (1.0 + a):
-            break
-    return a
-
-
 def _solve_scalar(T_target, b, rtol=EQUILIBRIUM_RTOL):
     """One reduced tension: the same safeguarded nested Newton as :func:`solve_reduced`,
-    on Python floats (about ten times faster for a single force)."""
-    rho_t, alpha_t, T_t = branch_table(b)
+    on Python floats (about ten times faster for a single force).
+
+    Started from the table of a b within 5 % (:func:`_start_table`) and
+    bracketed by the whole branch ``[RHO_MIN, 1e4]``, where ``T' - T_target``
+    changes sign once (T' falls from above every held tension to negative
+    values and stays negative).
+    """
+    rho_t, alpha_t, T_t = _start_table(b)
     beta = b ** (-1.0 / 3.0)
     k = int(np.searchsorted(-T_t, -T_target, side="left")) - 1
     k = min(max(k, 0), rho_t.size - 2)
@@ -333,10 +215,12 @@ def _solve_scalar(T_target, b, rtol=EQUILIBRIUM_RTOL):
     frac = min(max((T_t[k] - T_target) / (T_t[k] - T_t[k + 1]), 0.0), 1.0)
     u = u_lo + frac * (u_hi - u_lo)
     a = float(alpha_t[k] + frac * (alpha_t[k + 1] - alpha_t[k]))
+    # a nearby b's table gives the start; the bracket is the whole branch
+    u_lo, u_hi = math.log(RHO_MIN), math.log(_RHO_TABLE_MAX)
     for _ in range(200):
         rho = math.exp(u)
-        a = _scalar_tilt(a, rho, b, beta)
-        _, h_a, h_r, T, T_a, T_r = _scalar_ge2_tension(a, rho, b, beta)
+        a = _r.scalar_tilt(a, rho, b, beta)
+        _, h_a, h_r, T, T_a, T_r = _r.scalar_ge2_tension(a, rho, b, beta)
         G = T_target - T
         if G < 0.0:
             u_lo = u
@@ -353,7 +237,7 @@ def _solve_scalar(T_target, b, rtol=EQUILIBRIUM_RTOL):
         if du <= rtol * (1.0 + abs(u)):
             break
     rho = math.exp(u)
-    a = _scalar_tilt(a, rho, b, beta)  # (GE2) at the final rho
+    a = _r.scalar_tilt(a, rho, b, beta)  # (GE2) at the final rho
     return np.array([a]), np.array([rho])
 
 
@@ -427,10 +311,10 @@ def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
             f"no plectoneme equilibrium at force {_format_force(f)}: "
             "the tension must be positive"
         )
-    _, _, T_t = branch_table(b)
-    f_max = T_t[0] * kT / r0
-    if np.any(force * (r0 / kT) > T_t[0]):
-        f = force[force * (r0 / kT) > T_t[0]].flat[0]
+    T_max = _largest_tension(b)
+    f_max = T_max * kT / r0
+    if np.any(force * (r0 / kT) > T_max):
+        f = force[force * (r0 / kT) > T_max].flat[0]
         raise NoEquilibriumError(
             f"no plectoneme equilibrium at force {_format_force(f)}: above "
             f"{_format_force(f_max)} the superhelix radius would fall below "
