@@ -53,14 +53,15 @@ class MoleculeTask:
 
 _CONTROLLER = []
 
-#: Jacobians (points x free parameters) from this size on are fitted with BLAS limited to
-#: one thread in a worker process. Below it no BLAS call of a fit runs threaded: in forked
-#: workers (OpenBLAS 0.3.30/0.3.31, 2 cores) the first BLAS thread appeared at 3,600-4,200
-#: points with 3 free parameters, 2,640-2,730 with 4 and 1,800-2,100 with 5 (9,000-11,000
-#: entries; OpenBLAS runs gemv threaded from 2304 x 4 = 9,216). Limiting is not free in a
-#: fresh worker: its first ``openblas_set_num_threads`` starts the BLAS threads, which then
-#: spin for ~0.1 s of CPU (measured: 100 ms per worker in 0.5 s idle, 3 threads instead of
-#: 1), competing with the fits (issue 14: 1.75x on 2 workers instead of >= 1.8x).
+#: Jacobians (residuals x free parameters; a torque channel doubles the residuals) from
+#: this size on are fitted with BLAS limited to one thread in a worker process. Below it
+#: no BLAS call of a fit runs threaded: in forked workers (OpenBLAS 0.3.30/0.3.31, 2 cores)
+#: the first BLAS thread appeared at 3,600-4,200 points with 3 free parameters,
+#: 2,640-2,730 with 4 and 1,800-2,100 with 5 (9,000-11,000 entries; OpenBLAS runs gemv
+#: threaded from 2304 x 4 = 9,216). Limiting is not free in a fresh worker: its first
+#: ``openblas_set_num_threads`` starts the BLAS threads, which then spin for ~0.1 s of CPU
+#: (measured: 100 ms per worker in 0.5 s idle, 3 threads instead of 1), competing with the
+#: fits (issue 14: 1.7x on 2 workers instead of >= 1.8x).
 BLAS_LIMIT_FROM = 8192
 
 
@@ -92,7 +93,8 @@ def _fit_worker(task, parent_pid=None, settings=None):
             raise FitError(f"{spec.data.n} data points cannot determine {n_free} free "
                            "parameters")
         worker = parent_pid not in (None, os.getpid())
-        big = spec.data.n * n_free >= BLAS_LIMIT_FROM
+        rows = spec.data.n * (2 if spec.data.has_torque else 1)  # residuals: z (and torque)
+        big = rows * n_free >= BLAS_LIMIT_FROM
         controller = _controller() if worker and big else None
         if controller is not None:
             with controller.limit(limits=1):
