@@ -196,7 +196,8 @@ def _fit_rows(r):
              f"every fit succeeded: {m['all_ok']}"),
         _row(f"public sc.fit_many, {m['pooled']} molecules: wall time serial / "
              "ProcessPoolExecutor(2)", m["speedup"], "x", ">= 1.8x", m["speedup"] >= 1.8,
-             f"wall: serial {m['serial_wall']:.3g} s, pool {m['pool_wall']:.3g} s; serial CPU "
+             f"wall: serial {m['serial_wall']:.3g} s, pool {m['pool_wall']:.3g} s (medians of "
+             f"{len(m['speedups'])} interleaved runs, the pool's start-up included); serial CPU "
              f"{m['serial_cpu'] * 1e3:.3g} ms per molecule; the workers got "
              f"{m['pool_workers_cpu'] / m['pool_wall']:.2g} cores (their CPU / pool wall); "
              f"load average {r['load_start']:.1f} on {os.cpu_count()} cores"),

@@ -17,7 +17,9 @@
   with a replaying executor whose ``submit()`` returns an already finished
   future holding one recorded worker result (the parent's own cost with no
   worker at all, affordable at 2,000 molecules); and the wall-time speed-up of
-  ``ProcessPoolExecutor(2)`` over the serial call.
+  ``ProcessPoolExecutor(2)`` over the serial call (medians of interleaved
+  repeats; the pool's start-up and shutdown timed; every run with cold kernel
+  tables).
 """
 
 from __future__ import annotations
@@ -237,13 +239,26 @@ def _children_cpu():
     return ru.ru_utime + ru.ru_stime
 
 
-def _warm_pool(pool, workers):
-    """Start every worker before timing (``submit`` spawns them on demand)."""
-    for fut in [pool.submit(time.sleep, 0.05) for _ in range(workers)]:
-        fut.result()
+def _pool_run(fit, workers):
+    """``(table, parent CPU, wall, workers' CPU)`` of ``fit(executor)`` on a new pool.
+
+    The pool is created, forked (at the first submit), used and shut down
+    inside the timed region: its start-up is paid as a user pays it.
+    """
+    children = _children_cpu()
+
+    def run():
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            return fit(pool)
+
+    table, cpu, wall = cpu_once(run)
+    # the workers' CPU time (they are reaped at shutdown): with the pool wall time it says
+    # how many cores the workers actually got on a machine shared with other processes
+    return table, cpu, wall, _children_cpu() - children
 
 
-def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2, read_back=200):
+def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2, read_back=200,
+                  repeats=3):
     """Parent CPU per molecule of ``sc.fit_many``, and the pool's speed-up.
 
     Parameters
@@ -257,13 +272,24 @@ def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2, read
         Molecules of one more replaying run on the data written with
         ``sc.write_csv`` and read back with ``sc.read_tweezers_csv`` (the
         table then carries the file line of every row in its attrs); 0: none.
+    repeats : int
+        Timed runs of each of pool and serial, interleaved (pool, serial,
+        pool, ...); the medians are reported.
+
+    The pool runs are timed from the creation of a new
+    ``ProcessPoolExecutor(workers)`` to its shutdown (workers forked at the
+    first submit, as a user pays it). Every real run, pool or serial, starts
+    with the kernels' process-wide tables cleared (:func:`clear_kernel_caches`):
+    forked workers would otherwise inherit the tables an earlier serial run built
+    in this process, and a serial run those of the replayed fit.
 
     Returns
     -------
     dict
         ``pool_parent_cpu`` (s per molecule), ``pool_wall``,
         ``pool_workers_cpu`` (s, all workers together), ``serial_wall``,
-        ``serial_cpu`` (s per molecule), ``speedup`` (serial wall / pool wall),
+        ``serial_cpu`` (s per molecule), ``speedup`` (median serial wall /
+        median pool wall), ``speedups`` (of each interleaved pair),
         ``all_ok`` (every real fit succeeded), and ``replay_parent_cpu_<n>`` (s
         per molecule) for each ``n`` in ``replayed``, ``replay_read_back_cpu`` (s
         per molecule, if ``read_back``).
@@ -294,18 +320,24 @@ def fit_many_cost(pooled=200, replayed=(200, 2000), serial=True, workers=2, read
                                                  executor=replay))
         out["replay_read_back_cpu"] = cpu / read_back
     sub = first(pooled)
-    children = _children_cpu()
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        _warm_pool(pool, workers)
-        table, cpu, wall = cpu_once(lambda: sc.fit_many(sub, seed_set, vary=list(VARY),
-                                                        executor=pool))
-    # the workers' CPU time (they are reaped at shutdown): with the pool wall time it says
-    # how many cores the workers actually got on a machine shared with other processes
-    out.update(pool_parent_cpu=cpu / pooled, pool_wall=wall,
-               pool_workers_cpu=_children_cpu() - children,
-               all_ok=bool(table["success"].all()))
+
+    def fit(executor=None):
+        clear_kernel_caches()  # each run starts cold: no kernel table of an earlier run
+        return sc.fit_many(sub, seed_set, vary=list(VARY), executor=executor)
+
+    runs = {"pool": [], "serial": []}
+    for _ in range(max(1, repeats)):  # interleaved: pool, serial, pool, serial, ...
+        table, cpu, wall, workers_cpu = _pool_run(fit, workers)
+        runs["pool"].append((wall, cpu, workers_cpu, bool(table["success"].all())))
+        if serial:
+            table, cpu, wall = cpu_once(fit)
+            runs["serial"].append((wall, cpu, 0.0, bool(table["success"].all())))
+    pool = np.median(np.array(runs["pool"])[:, :3], axis=0)
+    out.update(pool_parent_cpu=pool[1] / pooled, pool_wall=pool[0], pool_workers_cpu=pool[2],
+               all_ok=all(r[3] for r in runs["pool"] + runs["serial"]))
     if serial:
-        table, cpu, wall = cpu_once(lambda: sc.fit_many(sub, seed_set, vary=list(VARY)))
-        out.update(serial_wall=wall, serial_cpu=cpu / pooled, speedup=wall / out["pool_wall"],
-                   all_ok=out["all_ok"] and bool(table["success"].all()))
+        ser = np.median(np.array(runs["serial"])[:, :2], axis=0)
+        out.update(serial_wall=ser[0], serial_cpu=ser[1] / pooled, speedup=ser[0] / pool[0],
+                   speedups=[s[0] / p[0] for s, p in zip(runs["serial"], runs["pool"],
+                                                           strict=True)])
     return out

@@ -127,34 +127,6 @@ def test_fit_many_with_a_client_like_executor(many, base):
     _compare(serial, other)
 
 
-def test_worker_limits_blas_threads_only_in_a_worker_process(many, base, monkeypatch):
-    import os
-
-    from threadpoolctl import threadpool_info, threadpool_limits
-
-    from supercoil.dna.fitting import batch
-    from supercoil.dna.fitting.fit import prepare
-
-    one = many[many["molecule"] == "m1"].drop(columns="molecule").reset_index(drop=True)
-    one.attrs = dict(many.attrs)
-    spec = prepare(one, base)
-    task = batch.MoleculeTask("m1", spec.data, spec, batch._layout(spec))
-    seen = []
-    real = batch.run_fit
-
-    def spy(s):
-        seen.append(max(i["num_threads"] for i in threadpool_info()))
-        return real(s)
-
-    monkeypatch.setattr(batch, "run_fit", spy)
-    with threadpool_limits(limits=2):
-        assert batch._fit_worker(task, parent_pid=-1)[0]["success"]  # "another process"
-        # a thread of the parent
-        assert batch._fit_worker(task, parent_pid=os.getpid())[0]["success"]
-        after = max(i["num_threads"] for i in threadpool_info())
-    assert seen == [1, 2] and after == 2
-
-
 def test_fit_many_splits_a_per_point_sigma_by_molecule(many, base):
     sigma = np.where(many["molecule"] == "m2", 5.5, 5.0) * sc.ureg.nm
     ok = many[many["molecule"].isin(["m1", "m2"])].reset_index(drop=True)

@@ -4,17 +4,19 @@ The table is checked and converted to SI once and the arguments are validated
 once (a template :class:`~supercoil.dna.fitting.fit.FitSpec`); the rows are
 split by molecule once (one stable sort, :meth:`RotationData.groups`). Each
 task (:class:`MoleculeTask`) holds only its molecule's slice and the shared
-settings and is submitted as soon as it is ready; the worker fits and builds
-the molecule's table row, so the client only stacks rows (its cost per
-molecule: :mod:`supercoil.benchmark.fit_many`). A worker process limits BLAS
-to one thread (:mod:`threadpoolctl`) for the duration of its fit only.
+settings; a process pool or a dask client gets them in chunks (one round trip
+for several molecules), each submitted as soon as it is ready; the worker fits
+and builds the molecule's table row, so the client only stacks rows (its cost
+per molecule: :mod:`supercoil.benchmark.fit_many`). A worker process limits BLAS
+to one thread (:mod:`threadpoolctl`) for the duration of its fit only, and only
+for a molecule large enough that BLAS would run threaded (:data:`BLAS_LIMIT_FROM`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import os
-from concurrent.futures import Future, as_completed
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 
 import numpy as np
 
@@ -51,6 +53,17 @@ class MoleculeTask:
 
 _CONTROLLER = []
 
+#: Jacobians (residuals x free parameters; a torque channel doubles the residuals) from
+#: this size on are fitted with BLAS limited to one thread in a worker process. Below it
+#: no BLAS call of a fit runs threaded: in forked workers (OpenBLAS 0.3.30/0.3.31, 2 cores)
+#: the first BLAS thread appeared at 3,600-4,200 points with 3 free parameters,
+#: 2,640-2,730 with 4 and 1,800-2,100 with 5 (9,000-11,000 entries; OpenBLAS runs gemv
+#: threaded from 2304 x 4 = 9,216). Limiting is not free in a fresh worker: its first
+#: ``openblas_set_num_threads`` starts the BLAS threads, which then spin for ~0.1 s of CPU
+#: (measured: 100 ms per worker in 0.5 s idle, 3 threads instead of 1), competing with the
+#: fits (issue 14: 1.7x on 2 workers instead of >= 1.8x).
+BLAS_LIMIT_FROM = 8192
+
 
 def _controller():
     """This process's threadpoolctl controller, made once: the library scan of a fresh
@@ -79,11 +92,14 @@ def _fit_worker(task, parent_pid=None, settings=None):
         if spec.data.n - n_free <= 0:
             raise FitError(f"{spec.data.n} data points cannot determine {n_free} free "
                            "parameters")
-        controller = _controller() if parent_pid not in (None, os.getpid()) else None
+        worker = parent_pid not in (None, os.getpid())
+        rows = spec.data.n * (2 if spec.data.has_torque else 1)  # residuals: z (and torque)
+        big = rows * n_free >= BLAS_LIMIT_FROM
+        controller = _controller() if worker and big else None
         if controller is not None:
             with controller.limit(limits=1):
                 core = run_fit(spec)
-        else:  # serial or a thread: do not change the process-wide BLAS threads
+        else:  # serial, a thread, or too small to use BLAS threads: leave them alone
             core = run_fit(spec)
     except Exception as exc:  # reported per molecule, not raised for the batch
         return _row(task, None, f"{type(exc).__name__}: {exc}"), []
@@ -151,13 +167,41 @@ def _completed(pending, executor):
 
 
 def _fit_chunk(tasks, parent_pid=None, settings=None):
-    """Several molecules in one task (a dask client: its cost per task is ~2 ms)."""
+    """Several molecules in one task (a process pool or a dask client): one round trip."""
     return [_fit_worker(t, parent_pid, settings) for t in tasks]
 
 
 def _chunk_size(n_molecules):
     """Molecules per dask task: 1 up to 64 molecules, then up to 16 (>= 4 tasks per 64)."""
     return max(1, min(16, n_molecules // 64))
+
+
+#: most molecules in one submit to a process pool, and the share of the molecules not yet
+#: submitted that one submit may take (1/16: the last submits carry single molecules).
+#: Measured (200 molecules of 330 points, ProcessPoolExecutor(2), medians of 3): the
+#: parent's CPU per molecule 0.53 ms with one molecule per submit, 0.40 / 0.36 / 0.32 ms
+#: with chunks of up to 2 / 4 / 8; the wall time the same within the noise (1.18-1.20 s).
+POOL_CHUNK, POOL_TAIL = 4, 16
+
+
+def _chunk_sizes(n_molecules, executor):
+    """Molecules per submit, in submission order.
+
+    A :class:`~concurrent.futures.ProcessPoolExecutor`: up to :data:`POOL_CHUNK`
+    molecules, but at most 1/:data:`POOL_TAIL` of those not yet submitted, so
+    the tail is single molecules and the workers finish together. A dask
+    client: :func:`_chunk_size`. Any other executor: one molecule per submit.
+    """
+    if _is_dask_client(executor):
+        k = _chunk_size(n_molecules)
+        return [min(k, n_molecules - i) for i in range(0, n_molecules, k)]
+    if not isinstance(executor, ProcessPoolExecutor):
+        return [1] * n_molecules
+    sizes, left = [], n_molecules
+    while left > 0:
+        sizes.append(max(1, min(POOL_CHUNK, left // POOL_TAIL)))
+        left -= sizes[-1]
+    return sizes
 
 
 def _collect(pending, executor, finished):
@@ -195,11 +239,15 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
         Runs the fits in parallel (``ProcessPoolExecutor``, ``ThreadPoolExecutor``,
         ``client.get_executor()`` or a ``dask.distributed.Client`` itself): each
-        molecule is one ``submit`` of a module-level function with that
-        molecule's points only and the fit settings (SI floats and numpy
-        arrays, no pint or pandas objects); the worker fits and builds the
-        molecule's table row. A dask client gets the settings once per worker
-        (``scatter``) and the tasks with ``pure=False``. None: serial.
+        ``submit`` of a module-level function carries some molecules' points
+        only and the fit settings (SI floats and numpy arrays, no pint or
+        pandas objects); the worker fits and builds each molecule's table row.
+        A ``ProcessPoolExecutor`` gets chunks of up to :data:`POOL_CHUNK`
+        molecules, single molecules at the end, a dask
+        client chunks of up to 16, the settings once per worker (``scatter``)
+        and the tasks with ``pure=False``; any other executor one molecule per
+        ``submit``. Each chunk is submitted as soon as it is built; results
+        and progress are per molecule. None: serial.
     progress : None, bool or callable
         None (default): a :mod:`tqdm` bar on stderr when stderr is a terminal,
         else one line per finished molecule (``molecule m3 done (3/20)``);
@@ -251,21 +299,19 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
     if _is_dask_client(executor):  # one copy of the settings per worker, not one per task
         args, extra = (executor.scatter(settings, broadcast=True, hash=False),), {"pure": False}
         settings = None
-    submit = executor.submit if executor is not None else None
     pending, pid = {}, os.getpid()
-    tasks = [MoleculeTask(lab, whole.take(index, lab), settings, layout)
-             for lab, index in zip(labels, whole.groups(), strict=True)]
+    tasks = (MoleculeTask(lab, whole.take(index, lab), settings, layout)
+             for lab, index in zip(labels, whole.groups(), strict=True))
     try:
-        if args:  # dask: chunks of molecules, the client's cost per task is ~2 ms
-            k = _chunk_size(len(tasks))
-            for i in range(0, len(tasks), k):
-                chunk = tasks[i:i + k]
-                pending[executor.submit(_fit_chunk, chunk, pid, *args, **extra)] = chunk
-        for task in tasks if not args else ():
-            if submit is None:
+        if executor is None:
+            for task in tasks:
                 finished(task.label, *_fit_worker(task))
+        for k in _chunk_sizes(len(labels), executor) if executor is not None else ():
+            chunk = [next(tasks) for _ in range(k)]  # submitted as soon as it is built
+            if k == 1 and not args:
+                pending[executor.submit(_fit_worker, chunk[0], pid)] = chunk[0]
             else:
-                pending[submit(_fit_worker, task, pid)] = task
+                pending[executor.submit(_fit_chunk, chunk, pid, *args, **extra)] = chunk
         _collect(pending, executor, finished)
     finally:
         bar.close()
