@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["in_blocks"]
+__all__ = ["in_blocks", "points_in_blocks"]
 
 
 def in_blocks(solve, x, block, keep=None):
@@ -42,3 +42,26 @@ def in_blocks(solve, x, block, keep=None):
     if keep is not None:
         fields[keep] = x
     return type(first)(**fields)
+
+
+def points_in_blocks(solve, turns, force, block):
+    """``solve(turns, force)`` on blocks of ``block`` points; the same NamedTuple.
+
+    For the hat-curve points of a model: ``turns`` and ``force`` are 1-D arrays
+    of one shape; each field keeps its dtype (int8 phases, bool flags) and None
+    fields stay None. The temporaries of ``solve`` are bounded by the block.
+    """
+    n = turns.size
+    if n <= block:
+        return solve(turns, force)
+    first = solve(turns[:block], force[:block])
+    out = {k: None if v is None else np.empty(n, np.asarray(v).dtype)
+           for k, v in zip(first._fields, first, strict=True)}
+    for start in range(0, n, block):
+        stop = start + block
+        part = first if start == 0 else solve(turns[start:stop], force[start:stop])
+        for k, v in out.items():
+            if v is not None:
+                v[start:stop] = getattr(part, k)
+        del part
+    return type(first)(**out)
