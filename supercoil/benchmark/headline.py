@@ -45,6 +45,8 @@ def measure(quick=False, log=print):
     r["hat"] = targets_dna.hat_throughput(s["hat_n"], samples=s["samples"])
     r["hat"]["n"] = s["hat_n"]
     r["hat_mem"] = {n: targets_dna.hat_memory(n) for n in s["hat_mem"]}
+    r["hat_mem_models"] = {m: targets_dna.hat_memory(s["hat_mem"][0], model=m)
+                           for m in ("free-energy", "marko2007")}
     r["eq"] = targets_dna.equilibrium_cost(s["eq_n"], samples=s["samples"])
     r["eq"]["n"] = s["eq_n"]
     log("headline: peak memory (tracemalloc) ...")
@@ -124,6 +126,13 @@ def _dna_rows(r):
         rows.append(_row(f"public sc.hat_curve, {m:.0e} turns values: peak traced memory / "
                          "memory of its result", mem["peak_to_result"], "x",
                          "<= 1.5x (at 1e7)", mem["peak_to_result"] <= 1.5,
+                         f"peak {mem['peak_per_element']:.3g} B per element, result "
+                         f"{mem['result'] / m:.3g} B per element (tracemalloc)"))
+    m = r["hat_mem"] and next(iter(r["hat_mem"]))
+    for model, mem in r.get("hat_mem_models", {}).items():
+        rows.append(_row(f"public sc.hat_curve(model={model!r}), {m:.0e} turns values: peak "
+                         "traced memory / memory of its result", mem["peak_to_result"], "x",
+                         "<= 1.5x (at 1e7, for the default model)", mem["peak_to_result"] <= 1.5,
                          f"peak {mem['peak_per_element']:.3g} B per element, result "
                          f"{mem['result'] / m:.3g} B per element (tracemalloc)"))
     eq, em = r["eq"], r["eq_mem"]

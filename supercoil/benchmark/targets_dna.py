@@ -119,8 +119,8 @@ def _columns_write(turns):
     return cols
 
 
-def hat_memory(n):
-    """Peak traced bytes of one public ``sc.hat_curve`` call at ``n`` turns values.
+def hat_memory(n, model="li-zhao"):
+    """Peak traced bytes of one public ``sc.hat_curve(..., model=model)`` at ``n`` turns values.
 
     Returns
     -------
@@ -133,8 +133,8 @@ def hat_memory(n):
     dna = _dna()
     turns = np.linspace(*HAT_TURNS, n)
     force_q = HAT_FORCE * sc.ureg.N
-    sc.hat_curve(dna, force_q, turns[:100])  # warm caches outside the traced call
-    m = peak_memory(lambda: sc.hat_curve(dna, force_q, turns))
+    sc.hat_curve(dna, force_q, turns[:100], model=model)  # warm caches outside the trace
+    m = peak_memory(lambda: sc.hat_curve(dna, force_q, turns, model=model))
     del m["result"]
     return {"peak": m["peak"], "result": m["retained"], "peak_per_element": m["peak"] / n,
             "peak_to_result": m["peak"] / m["retained"]}
