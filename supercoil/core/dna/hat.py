@@ -106,15 +106,17 @@ class PointSummary(NamedTuple):
     zeta_over_long_tail: bool  # zeta > 1 at a point not flagged short_tail
 
 
-def _block_summary(extension, torque, zeta, bracket, short_tail, over=None):
+def _block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=None):
     """``PointSummary`` fields of one block (cache-resident reductions).
 
-    ``over`` (zeta > 1 at a long tail), if the caller already knows it.
+    ``over`` (zeta > 1 at a long tail) and ``q_lo`` (the bracket's minimum), if
+    the caller already knows them.
     """
     e_lo, e_hi, m_lo, m_hi = extension.min(), extension.max(), torque.min(), torque.max()
     finite = bool(np.isfinite(e_lo) and np.isfinite(e_hi) and np.isfinite(m_lo)
                   and np.isfinite(m_hi))
-    q_lo = bracket.min() if bracket is not None else np.nan
+    if q_lo is None:
+        q_lo = bracket.min() if bracket is not None else np.nan
     if over is None:
         over = bool(zeta.max() > 1.0) and bool(np.any((zeta > 1.0) & ~short_tail))
     return finite, e_lo, e_hi, m_lo, m_hi, q_lo, bool(over)
@@ -395,7 +397,8 @@ def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, 
         np.multiply(M, 0.5 / kT, out=Q)
         np.square(Q, out=Q)
         np.subtract(s, Q, out=Q)
-        if not Q.min() > 0.0 and not np.all((Q > 0.0) | coiled):
+        q_lo = Q.min()
+        if not q_lo > 0.0 and not np.all((Q > 0.0) | coiled):
             _mn.check_bracket(np.where(coiled, 1.0, Q), force, np.sign(turns) * M)
         with np.errstate(divide="ignore", invalid="ignore"):
             # zeta = 1 - Q^(-1/2)/2 + B kT / ((B T - M^2/4) l), B T - M^2/4 = kT^2 (Q + 1/32)
@@ -418,4 +421,5 @@ def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, 
         np.copysign(M, turns, out=M)
     short = out.short_tail[sl]
     np.less(tail, short_tail_length, out=short)
-    return _block_summary(extension, M, zeta, Q if thermal else None, short)
+    return _block_summary(extension, M, zeta, Q if thermal else None, short,
+                          q_lo=q_lo if thermal else None)
