@@ -179,6 +179,8 @@ def torque_at_linking(linking, extremes, C, equilibrium, loop=None):
         last = step
     else:
         return None
+    if np.any(np.abs(t) > 1.0 + 1e-9):  # a root of the polynomial outside the domain
+        return None
     T = np.exp(u_lo + half * (t + 1.0))
     return _ch.chebval(t, cM), T
 
