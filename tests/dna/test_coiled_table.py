@@ -7,7 +7,9 @@ References, independent of the table:
   stops within 1e-13 of the root in u.
 
 The table must agree with brentq to 1e-13 relative in M and T (measured: <= 6e-14,
-typically 5e-15) and with the old secant to 2e-13 (the secant's own tolerance).
+typically 5e-15) and with the old secant to 2e-13 (the secant's own tolerance). Where
+the table cannot resolve the branch (few points, a kink, a capped degree) the result
+is the old secant's, bit for bit.
 """
 
 import numpy as np
@@ -173,3 +175,37 @@ def test_out_of_range_still_names_the_turns(si):
     N = np.concatenate([np.linspace(30.0, 60.0, 20), [20000.0]])
     with pytest.raises(NoEquilibriumError, match=r"fully coiled plectoneme for \|N\| up to 20000"):
         fe.hat_points(N, np.full(N.size, 1e-12), L, B, C, kT, _eq(si))
+
+
+def test_kinked_branch_falls_back_to_the_secant():
+    """A branch with a kink in l_p (as where the screened interaction's strands reach hard
+    contact, R = a): the coefficients decay as a power, the table gives up by degree 32
+    and the secant solves, bit-identical to the old one."""
+    from types import SimpleNamespace
+
+    C, Tk = 4e-28, 2e-11
+
+    def equilibrium(T):
+        T = np.asarray(T, float)
+        M = 1e-20 * np.sqrt(T / 1e-12)
+        tau = 1e8 * (T / 1e-12) ** 0.3 * np.where(T > Tk, 0.5 + 0.5 * (T / Tk) ** 0.5, 1.0)
+        return SimpleNamespace(torque=M, torsion=tau)
+
+    T0 = 1e-12
+    l0 = 1e-20 / C + 1e8
+    x = np.linspace(1.001, 4.0, 40) * l0
+    p, s = np.full(x.size, T0), np.full(x.size, l0)
+    _, T_hi = ct.secant(x[-1:], p[-1:], s[-1:], C, equilibrium, None)
+    assert T_hi[0] > Tk  # the kink lies inside the domain
+    calls = []
+
+    def counted(T):
+        calls.append(np.size(T))
+        return equilibrium(T)
+
+    assert ct.torque_at_linking(x, (T0, T_hi[0] * 1.01), C, counted, None) is None
+    assert calls == [9, 8, 16]  # gave up at degree 32, not 128
+    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, equilibrium)
+    M0, T0_ = _old_secant(x, p, s, C, equilibrium)
+    np.testing.assert_array_equal(M, M0)
+    np.testing.assert_array_equal(T, T0_)

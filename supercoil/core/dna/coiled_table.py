@@ -64,6 +64,8 @@ DOMAIN_OVERSHOOT = 0.15
 #: fewer fully coiled points than this: the secant on all of them is cheaper (measured)
 MIN_POINTS = 8
 _COILED_MAXITER = 60
+#: a doubling must shrink the trailing coefficients at least this much (from degree 32)
+_SLOW_DECAY = 0.05
 _NEWTON_MAXITER = 12
 _NEWTON_TOL = 1e-14
 _ROUNDING = 16.0 * np.finfo(float).eps
@@ -91,33 +93,42 @@ def _coefficients(values):
     return c[:n + 1]
 
 
-def _table(u_lo, u_hi, C, equilibrium, loop):
-    """``(c_l, c_M)``: converged Chebyshev series of ``l_p``, ``M_p`` on [u_lo, u_hi], or None."""
-    half = 0.5 * (u_hi - u_lo)
-    degree = START_DEGREE
-    t = _lobatto(degree)
+def _nodes(t, u_lo, half, C, equilibrium, loop):
+    """``(M_p, l_p)`` at the Chebyshev variable's values t (one equilibrium call)."""
     T = np.exp(u_lo + half * (t + 1.0))
     st = equilibrium(T)
     M = np.asarray(st.torque, float)
-    lp = branch_linking(M, np.asarray(st.torsion, float), T, C, loop)
+    return M, branch_linking(M, np.asarray(st.torsion, float), T, C, loop)
+
+
+def _table(u_lo, u_hi, C, equilibrium, loop):
+    """``(c_l, c_M)``: converged Chebyshev series of ``l_p``, ``M_p`` on [u_lo, u_hi], or None.
+
+    None also where the node values of ``l_p`` are not increasing, or from degree 32 on
+    where a doubling shrinks the trailing coefficients (relative to their tolerance) by
+    less than :data:`_SLOW_DECAY` (a kink, e.g. a switch between two branches: the
+    coefficients fall as a power, not geometrically; the secant then solves).
+    """
+    half = 0.5 * (u_hi - u_lo)
+    degree = START_DEGREE
+    M, lp = _nodes(_lobatto(degree), u_lo, half, C, equilibrium, loop)
+    err_prev = np.inf
     while True:
-        cl, cM = _coefficients(lp), _coefficients(M)
-        slope = np.min(np.abs(_ch.chebval(t, _ch.chebder(cl)))) / half if half > 0 else 1.0
-        scale_l = max(TAIL_RTOL * slope, NOISE * np.max(np.abs(lp)))
-        if (max(abs(cl[-1]), abs(cl[-2])) <= scale_l
-                and max(abs(cM[-1]), abs(cM[-2])) <= TAIL_RTOL * np.max(np.abs(M))):
-            return cl, cM
-        if degree >= MAX_DEGREE:
+        if not np.all(np.diff(lp) < 0.0):  # nodes descend in t: l_p must rise with u
             return None
+        cl, cM = _coefficients(lp), _coefficients(M)
+        slope = np.min(np.abs(_ch.chebval(_lobatto(degree), _ch.chebder(cl)))) / half
+        scale_l = max(TAIL_RTOL * slope, NOISE * np.max(np.abs(lp)))
+        err = max(max(abs(cl[-1]), abs(cl[-2])) / scale_l,
+                  max(abs(cM[-1]), abs(cM[-2])) / (TAIL_RTOL * np.max(np.abs(M))))
+        if err <= 1.0:
+            return cl, cM
+        if degree >= MAX_DEGREE or (degree >= 32 and err > _SLOW_DECAY * err_prev):
+            return None
+        err_prev = err
         degree *= 2  # the nested new nodes are the odd ones of the doubled degree
-        t_new = _lobatto(degree)[1::2]
-        T_new = np.exp(u_lo + half * (t_new + 1.0))
-        st = equilibrium(T_new)
-        M_new = np.asarray(st.torque, float)
-        lp_new = branch_linking(M_new, np.asarray(st.torsion, float), T_new, C, loop)
-        t = _lobatto(degree)
-        M = _interleave(M, M_new)
-        lp = _interleave(lp, lp_new)
+        M_new, lp_new = _nodes(_lobatto(degree)[1::2], u_lo, half, C, equilibrium, loop)
+        M, lp = _interleave(M, M_new), _interleave(lp, lp_new)
 
 
 def _interleave(old, new):
