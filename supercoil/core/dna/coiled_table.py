@@ -30,10 +30,11 @@ typically 5e-15, against 9e-14 for the secant it replaces (tests/dna/
 test_coiled_table.py asserts 1e-13). Degree 16 (17 equilibrium nodes in two calls)
 for ``|N| <= 25`` at 1.2 pN, 32 for three times full coiling, 64 for 800 turns.
 
-Cost (1.2 pN, seed set, N in linspace(-25, 25, n), CPU, interleaved medians):
-n = 1000, 74 fully coiled points: 4.45 ms by the secant, 0.98 ms by the table
-(bracket 0.17 ms, table 0.52 ms, Newton 0.15 ms); n = 1e5, 7,400 points: ~39 ms,
-~1.2 ms. Fewer than :data:`MIN_POINTS` points: the secant on all of them is cheaper
+Cost (1.2 pN, seed set, N in linspace(-25, 25, n), CPU, medians of 7, load ~1):
+n = 1000, 74 fully coiled points: 4.5 ms by the secant, 0.93-1.0 ms by the table
+(bracket 0.17 ms, table 0.59 ms, the rest 0.28 ms); n = 1e5, 7,362 points: 36 ms,
+1.5 ms. With the screened interaction (150 mM, ~15 ms per call) 300 points
+1.2-1.9 s -> 63-114 ms. Fewer than :data:`MIN_POINTS` points: the secant on all of them is cheaper
 (measured crossover 6-12 points, 0.6 ms for 2 points against 1.0 ms by the table).
 Where the table does not converge by :data:`MAX_DEGREE` or Newton does not settle,
 :func:`torque_at_linking` returns None and the caller falls back to its secant.
@@ -102,7 +103,7 @@ def _nodes(t, u_lo, half, C, equilibrium, loop):
 
 
 def _table(u_lo, u_hi, C, equilibrium, loop):
-    """``(c_l, c_M)``: converged Chebyshev series of ``l_p``, ``M_p`` on [u_lo, u_hi], or None.
+    """``(c_l, c_M, l_p at the nodes)``: converged Chebyshev series on [u_lo, u_hi], or None.
 
     None also where the node values of ``l_p`` are not increasing, or from degree 32 on
     where a doubling shrinks the trailing coefficients (relative to their tolerance) by
@@ -117,12 +118,12 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
         if not np.all(np.diff(lp) < 0.0):  # nodes descend in t: l_p must rise with u
             return None
         cl, cM = _coefficients(lp), _coefficients(M)
-        slope = np.min(np.abs(_ch.chebval(_lobatto(degree), _ch.chebder(cl)))) / half
+        slope = np.min(-np.diff(lp) / np.diff(_lobatto(degree))) / half  # min dl_p/du, node pairs
         scale_l = max(TAIL_RTOL * slope, NOISE * np.max(np.abs(lp)))
         err = max(max(abs(cl[-1]), abs(cl[-2])) / scale_l,
                   max(abs(cM[-1]), abs(cM[-2])) / (TAIL_RTOL * np.max(np.abs(M))))
         if err <= 1.0:
-            return cl, cM
+            return cl, cM, lp
         if degree >= MAX_DEGREE or (degree >= 32 and err > _SLOW_DECAY * err_prev):
             return None
         err_prev = err
@@ -169,10 +170,9 @@ def torque_at_linking(linking, extremes, C, equilibrium, loop=None):
     table = _table(u_lo, u_hi, C, equilibrium, loop)
     if table is None:
         return None
-    cl, cM = table
+    cl, cM, lp_nodes = table
     dcl = _ch.chebder(cl)
-    nodes = _lobatto(cl.size - 1)[::-1]
-    t = np.interp(x, _ch.chebval(nodes, cl), nodes)
+    t = np.interp(x, lp_nodes[::-1], _lobatto(cl.size - 1)[::-1])
     half = 0.5 * (u_hi - u_lo)
     last = None
     for _ in range(_NEWTON_MAXITER):

@@ -282,9 +282,9 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium, l
     only brackets the largest target (1-5 calls on one tension) and one Chebyshev
     table of the branch from the smallest ``T_eff`` to that bracket solves every point
     (:func:`supercoil.core.dna.coiled_table.torque_at_linking`; within 6e-14 of
-    scipy brentq in M and T): 1.2 pN, seed set, 74 points 4.45 -> 0.98 ms CPU,
-    7,400 points ~39 -> ~1.2 ms. Fewer points, or a table that does not converge:
-    the secant below on all of them.
+    scipy brentq in M and T): 1.2 pN, seed set, 74 points 4.5 -> 0.95 ms CPU,
+    7,362 points 36 -> 1.5 ms. Fewer points, or a table that does not converge (a
+    kink in l_p, e.g. at hard contact): the secant below on all of them.
 
     Secant: ``l_p(T) = M_p(T)/C + tau(T)`` increases with the tension from
     ``helix_linking = l_p(T_eff)`` at full coiling, so the root in ``u = log T``
