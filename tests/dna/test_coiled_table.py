@@ -21,7 +21,7 @@ from supercoil.core.dna import coiled_table as ct
 from supercoil.core.dna import end_loop as el
 from supercoil.core.dna import free_energy as fe
 from supercoil.core.dna import plectoneme as pl
-from supercoil.exceptions import NoEquilibriumError
+from supercoil.exceptions import NoEquilibriumError, ValidityError
 
 
 @pytest.fixture(scope="module")
@@ -209,3 +209,58 @@ def test_kinked_branch_falls_back_to_the_secant():
     M0, T0_ = _old_secant(x, p, s, C, equilibrium)
     np.testing.assert_array_equal(M, M0)
     np.testing.assert_array_equal(T, T0_)
+
+
+def _jumping_branch(Tj=2e-11, C=4e-28):
+    """A branch whose torsion jumps up by half at Tj (strands snapping into contact)."""
+    from types import SimpleNamespace
+
+    def equilibrium(T):
+        T = np.asarray(T, float)
+        M = 1e-20 * np.sqrt(T / 1e-12)
+        tau = 1e8 * (T / 1e-12) ** 0.3 * np.where(T > Tj, 1.5, 1.0)
+        return SimpleNamespace(torque=M, torsion=tau)
+
+    def linking(T):
+        return 1e-20 * np.sqrt(T / 1e-12) / C + 1e8 * (T / 1e-12) ** 0.3 * np.where(
+            T > Tj, 1.5, 1.0)
+
+    return equilibrium, linking, C
+
+
+def test_a_jump_of_the_branch_is_named_and_roots_beside_it_are_found():
+    """Targets inside a jump of l_p have no root: a named ValidityError (was: the secant
+    crept towards the jump until its 60 steps ran out), found by bisection within a few
+    dozen steps; targets below and above the jump still solve to 1e-13."""
+    equilibrium, linking, C = _jumping_branch()
+    T0, Tj = 1e-12, 2e-11
+    l0 = linking(T0)
+    below, above = linking(Tj), linking(Tj * (1 + 1e-9))
+    inside = 0.5 * (below + above)
+    for x, root in ((0.999 * below, True), (1.001 * above, True), (inside, False)):
+        xs = np.array([x])
+        p, s = np.array([T0]), np.array([l0])
+        calls = []
+
+        def counted(T, calls=calls):
+            calls.append(1)
+            return equilibrium(T)
+
+        if root:
+            _, T = ct.secant(xs, p, s, C, counted, None)
+            assert linking(T)[0] == pytest.approx(x, rel=1e-12)
+        else:
+            with pytest.raises(ValidityError, match="linking per length jumps at tension 20 pN"):
+                ct.secant(xs, p, s, C, counted, None)
+        assert len(calls) < 60
+
+
+def test_the_screened_jump_to_contact_is_named_for_fully_coiled_turns():
+    """10 mM NaCl (screened, strands snap into contact at ~5 pN): 300 turns at 1.2 pN
+    fully coil past the jump of the branch; 200 turns fully coil below it."""
+    dna = sc.load_parameters("dna_10mM_nacl")
+    f = 1.2 * sc.ureg.pN
+    df = sc.hat_curve(dna, f, [200.0], model="free-energy", interaction="screened")
+    assert df.phase[0] == "fully coiled"
+    with pytest.raises(ValidityError, match=r"\|N\| up to 300 turns.*jumps at tension 5\.0"):
+        sc.hat_curve(dna, f, [300.0], model="free-energy", interaction="screened")

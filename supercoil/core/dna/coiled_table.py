@@ -216,7 +216,9 @@ def secant(x, pull, helix_linking, C, equilibrium, loop, upper=None):
     ub = ua + np.maximum(2.0 * np.log(x / helix_linking), 1e-6)
     lo, hi = ua.copy(), np.full(x.shape, np.inf)
     act = np.ones(x.shape, bool)
-    M_out, T_out = np.empty(x.shape), np.empty(x.shape)
+    slow, ref = np.zeros(x.shape, int), np.full(x.shape, np.inf)
+    r_lo, r_hi = np.zeros(x.shape), np.zeros(x.shape)
+    M_out, T_out, res = np.empty(x.shape), np.empty(x.shape), np.zeros(x.shape)
     for _ in range(_COILED_MAXITER):
         T_out[act] = np.exp(ub[act])
         st = equilibrium(T_out[act])
@@ -224,11 +226,23 @@ def secant(x, pull, helix_linking, C, equilibrium, loop, upper=None):
         M_out[act] = M
         rb = np.zeros(x.shape)
         rb[act] = branch_linking(M, tau, T_out[act], C, loop) - x[act]
+        res = np.where(act, rb, res)
+        r_lo = np.where(act & (rb < 0.0), rb, r_lo)
+        r_hi = np.where(act & (rb >= 0.0) & (ub <= hi), rb, r_hi)
         lo = np.where(act & (rb < 0.0), ub, lo)
         hi = np.where(act & (rb >= 0.0), np.minimum(hi, ub), hi)
+        _check_no_jump(act & (hi - lo < 1e-6), r_hi - r_lo, x, np.exp(hi))
         with np.errstate(divide="ignore", invalid="ignore"):
             un = ub - rb * (ub - ua) / (rb - ra)
         bad = ~np.isfinite(un) | (un < lo) | (un > hi)
+        # bracketed, but the bracket has not halved in 3 steps (a jump of l_p where the
+        # strands snap into contact; a smooth root is found in fewer): bisect
+        width = hi - lo
+        halved = ~np.isfinite(ref) | (width <= 0.5 * ref)
+        ref = np.where(halved, width, ref)
+        slow = np.where(np.isfinite(hi) & ~halved, slow + 1, 0)
+        bad |= slow >= 3
+        slow = np.where(slow >= 3, 0, slow)
         un = np.where(bad & np.isfinite(hi), 0.5 * (lo + hi), un)
         un = np.where(bad & ~np.isfinite(hi), ub + 1.0, un)
         # until the root is bracketed, at most a factor e^2 in T per step: a secant
@@ -242,6 +256,24 @@ def secant(x, pull, helix_linking, C, equilibrium, loop, upper=None):
         act &= np.abs(un - ub) > 1e-13
         ub = un
         if not np.any(act):
+            _check_no_jump(np.abs(res) > 1e-6 * x, np.abs(res), x, T_out)
             return M_out, T_out
-    raise ValidityError(  # pragma: no cover - secant on a smooth increasing function
+    raise ValidityError(  # pragma: no cover - bisection halves every third step at worst
         f"no fully coiled plectoneme state found in {_COILED_MAXITER} steps")
+
+
+def _check_no_jump(closed, jump, x, T):
+    """ValidityError where the secant closed on a jump of ``l_p`` instead of a root.
+
+    ``closed``: points whose bracket is resolved (to 1e-6 in log T, or converged);
+    ``jump``: the change of ``l_p - x`` across it. At a root it is ~1e-6 x or
+    less (``dl_p/dlog T`` is of order x); across a discontinuity (the strands
+    snapping into contact) a finite fraction of x remains.
+    """
+    bad = closed & (jump > 1e-3 * x)
+    if np.any(bad):
+        i = int(np.flatnonzero(bad)[0])
+        raise ValidityError(
+            f"the plectoneme's linking per length jumps at tension {T[i] * 1e12:.6g} pN (the "
+            f"strands snap into contact there): no uniform fully coiled plectoneme holds "
+            f"{x[i] / (2.0 * np.pi) * 1e-6:.6g} turns per um, which lies inside the jump")

@@ -445,6 +445,9 @@ def _coiled(n, ci, co, loop, length, B, C, equilibrium, trial_equilibrium):
         raise NoEquilibriumError(
             f"no fully coiled plectoneme for |N| up to {n.max():.6g} turns "
             f"(L = {length * 1e9:.6g} nm): {e}") from e
+    except ValidityError as e:
+        raise ValidityError(f"fully coiled points with |N| up to {n.max():.6g} turns "
+                            f"(L = {length * 1e9:.6g} nm): {e}") from e
     if trial_equilibrium is not None:
         Mc = np.asarray(equilibrium(Tc).torque, float)
     return Mc, Tc
