@@ -197,14 +197,18 @@ def tail_torque_messages(force, turns, points, dna):
     big = max(-lo, hi)
     if big <= 2.0 * np.sqrt(dna.bending_rigidity * _extreme(force, np.min)):
         return []  # no torque reaches the smallest force's Euler limit: skip the full mask
-    limit = 2.0 * np.sqrt(dna.bending_rigidity * force)
-    over = (points.phase != 2) & (np.abs(points.torque) > limit)
-    if not np.any(over):
-        return []
-    i = np.flatnonzero(over)[0]
-    return [f"at force {force[i] * 1e12:.6g} pN, turns {turns[i]:.6g} the stretched tail "
-            f"carries a torque {abs(points.torque[i]) * 1e21:.4g} pN nm above the Euler limit "
-            f"2 sqrt(B F) = {limit[i] * 1e21:.4g} pN nm: a straight tail is unstable there"]
+    for start in range(0, force.size, _BLOCK):  # masks of bounded size
+        sl = slice(start, start + _BLOCK)
+        limit = 2.0 * np.sqrt(dna.bending_rigidity * force[sl])
+        over = (points.phase[sl] != 2) & (np.abs(points.torque[sl]) > limit)
+        if np.any(over):
+            j = np.flatnonzero(over)[0]
+            i = start + j
+            return [f"at force {force[i] * 1e12:.6g} pN, turns {turns[i]:.6g} the stretched "
+                    f"tail carries a torque {abs(points.torque[i]) * 1e21:.4g} pN nm above the "
+                    f"Euler limit 2 sqrt(B F) = {limit[j] * 1e21:.4g} pN nm: a straight tail "
+                    "is unstable there"]
+    return []
 
 
 def extension_messages(force, turns, points, dna):
@@ -222,6 +226,10 @@ def extension_messages(force, turns, points, dna):
     return [f"extension {z[i] * 1e9:.6g} nm at force {force[i] * 1e12:.6g} pN, turns "
             f"{turns[i]:.6g} lies outside [0, L = {dna.length * 1e9:.6g} nm]: the thermal "
             "formula is not valid there (tail of a few persistence lengths or less)"]
+
+
+#: points per block of the checks that build masks (their temporaries stay bounded)
+_BLOCK = 1 << 15
 
 
 def summary_of(points):

@@ -301,3 +301,25 @@ def test_end_loop_through_the_public_functions():
     G = sc.free_energy(dna, 2 * u.pN, [Ns - 1e-6, Ns + 1e-6], model=LOOP,
                        interaction="screened")
     assert abs(np.diff(G.to("pN nm").magnitude)[0]) < 1e-3  # eps* is ~37 pN nm
+
+
+@pytest.mark.parametrize("end_loop", [False, True])
+@pytest.mark.parametrize("thermal", [True, False])
+def test_blocked_points_equal_one_block(monkeypatch, thermal, end_loop):
+    """Points in blocks (bounded temporaries) equal one unblocked pass: bit for bit in the
+    stretched and plectoneme phases, to 1e-12 where fully coiled (each block's coiled
+    points are solved together: another table domain, the same roots within 1e-13)."""
+    model = FreeEnergy(end_loop=end_loop)
+    N = np.tile(np.linspace(-45, 45, 401), 3)
+    F = np.repeat(np.array([1.0, 2.0, 3.0]) * 1e-12, 401)
+    whole = model.points(N, F, SEED, thermal, HC, None)
+    assert set(whole.phase.tolist()) == {STRETCHED, PLECTONEME, FULLY_COILED}
+    monkeypatch.setattr(fe, "BLOCK", 50)
+    blocked = model.points(N, F, SEED, thermal, HC, None)
+    coiled = whole.phase == FULLY_COILED
+    for name, a, b in zip(whole._fields, whole, blocked, strict=True):
+        if a is None:
+            assert b is None
+            continue
+        np.testing.assert_array_equal(b[~coiled], a[~coiled], err_msg=name)
+        np.testing.assert_allclose(b[coiled], a[coiled], rtol=1e-12, atol=0, err_msg=name)

@@ -217,6 +217,8 @@ def points(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,
     out = points_in_blocks(
         lambda N, F: _points(N, F, length, A, Ct, P, kT, thermal, end_loop, loop_writhe),
         turns.reshape(-1), force.reshape(-1), BLOCK)
+    if len(shape) == 1:  # the arrays themselves (owned: the public layer scales them in place)
+        return out
     return MarkoPoints(*(a.reshape(shape) for a in out))
 
 

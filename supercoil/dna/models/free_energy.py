@@ -128,14 +128,33 @@ class FreeEnergy(DNAModel):
             return []
         force = np.asarray(force, float)
         turns = np.asarray(turns, float)
-        where = np.asarray(points.phase) != _fe.FULLY_COILED
-        Q = _fe.tail_bracket(force, np.asarray(points.torque, float), dna.bending_rigidity,
-                             dna.kT)
+        torque, phase = np.asarray(points.torque, float), np.asarray(points.phase)
+        if _converged_everywhere(force, torque, phase, dna):
+            return []
+        where = phase != _fe.FULLY_COILED
+        Q = _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT)
 
         def at(i):
             return f"force {force.flat[i] * 1e12:.6g} pN, turns {turns.flat[i]:.6g}"
 
         return _messages(force, Q, where, at)
+
+
+def _converged_everywhere(force, torque, phase, dna, block=1 << 15):
+    """The tail's bracket Q >= 1 at every point that is not fully coiled (then no message).
+
+    Block by block, a reduction each (no array of the points' size: the
+    messages below need Q's masks only where this fails; NaN fails it).
+    """
+    for start in range(0, force.size, block):
+        sl = slice(start, start + block)
+        where = phase[sl] != _fe.FULLY_COILED
+        if not where.any():
+            continue
+        Q = _fe.tail_bracket(force[sl][where], torque[sl][where], dna.bending_rigidity, dna.kT)
+        if not Q.min() >= CONVERGED_BRACKET:
+            return False
+    return True
 
 
 def _messages(force, Q, where, at):
