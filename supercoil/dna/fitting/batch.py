@@ -177,11 +177,14 @@ def _chunk_size(n_molecules):
 
 
 #: most molecules in one submit to a process pool, and the share of the molecules not yet
-#: submitted that one submit may take (1/16: the last submits carry single molecules).
+#: submitted that one submit may take (1/8: the last submits carry single molecules).
 #: Measured (200 molecules of 330 points, ProcessPoolExecutor(2), medians of 3): the
 #: parent's CPU per molecule 0.53 ms with one molecule per submit, 0.40 / 0.36 / 0.32 ms
-#: with chunks of up to 2 / 4 / 8; the wall time the same within the noise (1.18-1.20 s).
-POOL_CHUNK, POOL_TAIL = 4, 16
+#: with chunks of up to 2 / 4 / 8 (1/16 of the rest). With fits of ~6.6 ms (the
+#: plectoneme start tables of issue 14) the parent's share shows in the wall time: speed-up
+#: over serial 1.76-1.77x with (4, 1/16) against 1.81-1.83x with (16, 1/8), parent CPU
+#: 0.31-0.35 against 0.25-0.26 ms per molecule (alternating runs, load 0.5-0.9).
+POOL_CHUNK, POOL_TAIL = 16, 8
 
 
 def _chunk_sizes(n_molecules, executor):
