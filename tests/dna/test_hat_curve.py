@@ -527,3 +527,28 @@ def test_validity_shortcuts_give_the_messages_of_the_full_masks(dna, f_pN, short
         assert expected == []
     if f_pN <= 0.15 or (short == 0.0 and f_pN <= 1.2):
         assert expected != []  # the failure regions are reached
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+def test_one_phase_blocks_equal_the_general_path(monkeypatch, thermal):
+    """Blocks all stretched, all plectoneme or all fully coiled (one force, decided on their
+    extreme turns) take the hoisted fillers; their points equal the general per-point
+    formulas bit for bit, for both signs of N, across the phase boundaries (blocks of 7:
+    most uniform, some mixed), at three forces."""
+    from supercoil.core.dna import hat_block as hb
+
+    F = np.repeat(np.array([0.4, 1.2, 3.0]) * 1e-12, 1201)
+    N = np.tile(np.linspace(-60.0, 60.0, 1201), 3)
+    monkeypatch.setattr(hc, "BLOCK", 7)
+    kinds = []
+    one_phase = hb.one_phase
+    monkeypatch.setattr(hb, "one_phase", lambda *a: kinds.append(one_phase(*a)) or kinds[-1])
+    fast = hc.hat_curve_points(N, F, *ARGS, thermal=thermal, fast=False)
+    assert {hc.STRETCHED, hc.PLECTONEME, hc.FULLY_COILED, None} <= set(kinds)
+    monkeypatch.setattr(hb, "one_phase", lambda *a: None)
+    general = hc.hat_curve_points(N, F, *ARGS, thermal=thermal, fast=False)
+    for name, a, b in zip(general._fields, general, fast, strict=True):
+        if isinstance(a, np.ndarray):
+            assert a.dtype == b.dtype, name
+            np.testing.assert_array_equal(b, a, err_msg=name)
+    np.testing.assert_equal(tuple(fast.summary), tuple(general.summary))

@@ -1,6 +1,6 @@
 """The optional compiled hat-curve kernel (supercoil.core.dna.hat_fast, numba) against numpy.
 
-The numpy path (:func:`supercoil.core.dna.hat._fill_block`) is the reference:
+The numpy path (:func:`supercoil.core.dna.hat_block.fill_block`) is the reference:
 the fused loop performs the same floating-point operations in the same order,
 so every output must agree to rounding (in practice bit for bit), on every
 phase, at block seams, with one force per block and with mixed forces, and it

@@ -41,8 +41,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.dna import hat_block as _blk
 from supercoil.core.dna import hat_fast as _fast
 from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.core.dna.hat_block import FULLY_COILED, PLECTONEME, STRETCHED
 from supercoil.core.dna.plectoneme import EQUILIBRIUM_RTOL, equilibrium
 from supercoil.exceptions import ValidityError
 
@@ -63,7 +65,6 @@ __all__ = [
     "post_buckling_slope",
 ]
 
-STRETCHED, PLECTONEME, FULLY_COILED = 0, 1, 2
 #: default short-tail threshold in bending persistence lengths A = B/kT
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: above this force (N) negative supercoiling denatures real DNA [Salerno 2012]
@@ -104,22 +105,6 @@ class PointSummary(NamedTuple):
     torque_max: float  # N m, signed
     bracket_min: float  # thermal: min of Q over all points (NaN athermal)
     zeta_over_long_tail: bool  # zeta > 1 at a point not flagged short_tail
-
-
-def _block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=None):
-    """``PointSummary`` fields of one block (cache-resident reductions).
-
-    ``over`` (zeta > 1 at a long tail) and ``q_lo`` (the bracket's minimum), if
-    the caller already knows them.
-    """
-    e_lo, e_hi, m_lo, m_hi = extension.min(), extension.max(), torque.min(), torque.max()
-    finite = bool(np.isfinite(e_lo) and np.isfinite(e_hi) and np.isfinite(m_lo)
-                  and np.isfinite(m_hi))
-    if q_lo is None:
-        q_lo = bracket.min() if bracket is not None else np.nan
-    if over is None:
-        over = bool(zeta.max() > 1.0) and bool(np.any((zeta > 1.0) & ~short_tail))
-    return finite, e_lo, e_hi, m_lo, m_hi, q_lo, bool(over)
 
 
 def _combined(blocks):
@@ -294,7 +279,7 @@ def _fill_points(turns, force, uf, ranges, const, length, B, kT, thermal, short_
     out = HatPoints(np.empty(n), np.empty(n), np.empty(n), np.empty(n, np.int8),
                     np.empty(n, bool), zeta_w if diagnostics else None, None,
                     bracket_w if diagnostics else None)
-    fill = _fill_block
+    fill = _blk.fill_block
     if _fast.wanted(fast):
         _fast.compiled()  # ImportError naming the extra if numba is missing
         fill = _fill_fast
@@ -344,82 +329,13 @@ def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, o
                bracket):
     """The compiled fused loop on one block; the numpy path names any failure.
 
-    Returns the block's summary (:func:`_block_summary`).
+    Returns the block's summary (:func:`~supercoil.core.dna.hat_block.block_summary`).
     """
     code, over = _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl,
                             zeta, bracket)
     if code != _fast.OK:
-        return _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out,
+        return _blk.fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out,
                            sl, zeta, bracket)
-    return _block_summary(out.extension[sl], out.torque[sl], None, bracket, None, over)
+    return _blk.block_summary(out.extension[sl], out.torque[sl], None, bracket, None, over)
 
 
-def _fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl, zeta,
-                bracket):
-    """Hat-curve points of one block, written into the slices ``sl`` of ``out``.
-
-    ``zeta`` and ``bracket`` (thermal; else None) are the block's arrays to fill:
-    slices of the result, or reused buffers.
-
-    Returns the block's summary (:func:`_block_summary`).
-
-    ``const``: per-force constants (scalars, or arrays of the block) ``N_b``,
-    ``M_p``, ``2 pi / D``, ``C_eff 2 pi / L`` and ``B T / kT^2 - 1/32``. Each
-    quantity is computed once, in place where possible (about 25 passes over the
-    block, all cache-resident). Measured per point on a block of 32768 (AMD EPYC,
-    numpy 2.4): ``np.maximum``/``np.minimum`` against a scalar take 0.46 ns,
-    against an array 0.12 ns, hence the constant arrays; ``np.copysign`` 0.47 ns,
-    skipped where the block has no negative turns.
-    """
-    Nb, Mp, k, c, s = const
-    size = turns.shape[0]
-    lo, hi = turns.min(), turns.max()  # NaN propagates into both, inf shows in one
-    if not (np.isfinite(lo) and np.isfinite(hi)):
-        raise ValueError("turns must be finite")
-    n = turns if lo >= 0.0 else np.abs(turns)  # read only below
-    S = out.plectoneme_length[sl]
-    np.subtract(n, Nb, out=S)
-    np.maximum(S, np.zeros(size), out=S)
-    np.multiply(S, k, out=S)  # S = 2 pi (|N| - N_b) / D in the plectoneme phase
-    coiled = S >= length
-    any_coiled = coiled.any()
-    np.minimum(S, np.full(size, length), out=S)
-    tail = np.subtract(length, S)
-    phase = out.phase[sl]
-    np.greater(n, Nb, out=phase.view(bool))  # 1 past buckling, 0 stretched
-    phase += coiled.view(np.int8)  # fully coiled (S >= L) only past buckling: 2
-    M = out.torque[sl]
-    np.multiply(n, c, out=M)  # stretched tail C_eff 2 pi |N| / L, equal to M_p at N_b
-    np.minimum(M, np.full(size, Mp) if np.ndim(Mp) == 0 else Mp, out=M)
-    extension = out.extension[sl]
-    if thermal:
-        Q = bracket  # Q = B T/kT^2 - 1/32 - (M / 2 kT)^2
-        np.multiply(M, 0.5 / kT, out=Q)
-        np.square(Q, out=Q)
-        np.subtract(s, Q, out=Q)
-        q_lo = Q.min()
-        if not q_lo > 0.0 and not np.all((Q > 0.0) | coiled):
-            _mn.check_bracket(np.where(coiled, 1.0, Q), force, np.sign(turns) * M)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            # zeta = 1 - Q^(-1/2)/2 + B kT / ((B T - M^2/4) l), B T - M^2/4 = kT^2 (Q + 1/32)
-            np.add(Q, 1.0 / 32.0, out=extension)
-            extension *= tail
-            np.divide(B / kT, extension, out=extension)
-            np.sqrt(Q, out=zeta)
-            np.divide(-0.5, zeta, out=zeta)
-            zeta += 1.0
-            zeta += extension
-        if any_coiled:
-            np.copyto(zeta, 0.0, where=coiled)
-        np.multiply(zeta, tail, out=extension)
-    else:
-        zeta.fill(1.0)
-        if any_coiled:
-            np.copyto(zeta, 0.0, where=coiled)
-        extension[:] = tail
-    if lo < 0.0 or np.signbit(lo):
-        np.copysign(M, turns, out=M)
-    short = out.short_tail[sl]
-    np.less(tail, short_tail_length, out=short)
-    return _block_summary(extension, M, zeta, Q if thermal else None, short,
-                          q_lo=q_lo if thermal else None)
