@@ -22,13 +22,15 @@ __all__ = ["FULLY_COILED", "PLECTONEME", "STRETCHED", "UNIFORM", "block_summary"
 STRETCHED, PLECTONEME, FULLY_COILED = 0, 1, 2
 
 
-def block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=None):
+def block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=None,
+                  torque_range=None):
     """``PointSummary`` fields of one block (cache-resident reductions).
 
-    ``over`` (zeta > 1 at a long tail) and ``q_lo`` (the bracket's minimum), if
-    the caller already knows them.
+    ``over`` (zeta > 1 at a long tail), ``q_lo`` (the bracket's minimum) and
+    ``torque_range`` (min, max), if the caller already knows them.
     """
-    e_lo, e_hi, m_lo, m_hi = extension.min(), extension.max(), torque.min(), torque.max()
+    e_lo, e_hi = extension.min(), extension.max()
+    m_lo, m_hi = torque_range if torque_range is not None else (torque.min(), torque.max())
     finite = bool(np.isfinite(e_lo) and np.isfinite(e_hi) and np.isfinite(m_lo)
                   and np.isfinite(m_hi))
     if q_lo is None:
@@ -63,7 +65,7 @@ def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, o
     n = turns if lo >= 0.0 else np.abs(turns)  # read only below
     kind = one_phase(lo, hi, const, length) if np.ndim(Nb) == 0 else None
     if kind is not None:
-        done = UNIFORM[kind](n, turns, lo, const, length, B, kT, thermal, short_tail_length,
+        done = UNIFORM[kind](n, turns, lo, hi, const, length, B, kT, thermal, short_tail_length,
                               out, sl, zeta, bracket)
         if done is not None:
             return done
@@ -135,14 +137,14 @@ def one_phase(lo, hi, const, length):
     return None
 
 
-def fill_plectoneme(n, turns, lo, const, length, B, kT, thermal, short_tail_length, out, sl,
+def fill_plectoneme(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_length, out, sl,
                      zeta, bracket):
     """:func:`fill_block` for a block entirely in the plectoneme phase (one force).
 
     The torque is M_p at every point, so the bracket Q and the long-tail factor
     ``1 - Q^(-1/2)/2`` are one number each and only the tail length varies: 11
     passes instead of about 30, no square root per point (at 1e6 points of a hat
-    curve to 25 turns at 1.2 pN, 68 % of them plectoneme, the kernel 7.1 -> 4.5 ms with
+    curve to 25 turns at 1.2 pN, 68 % of them plectoneme, the kernel 7.1 -> 4.3 ms with
     the stretched and fully coiled fillers). The
     operations are those of the general path, so the points are bit-identical
     (tested). None if the bracket is not positive (the general path names it).
@@ -177,11 +179,12 @@ def fill_plectoneme(n, turns, lo, const, length, B, kT, thermal, short_tail_leng
         np.copysign(M, turns, out=M)
     short = out.short_tail[sl]
     np.less(tail, short_tail_length, out=short)
+    # M = sign(N) M_p: its extremes are those of the extreme turns (no reductions)
     return block_summary(extension, M, zeta, bracket if thermal else None, short,
-                          q_lo=q_lo)
+                          q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
 
 
-def fill_stretched(n, turns, lo, const, length, B, kT, thermal, short_tail_length, out, sl,
+def fill_stretched(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_length, out, sl,
                     zeta, bracket):
     """:func:`fill_block` for a block entirely in the stretched phase (one force).
 
@@ -220,11 +223,13 @@ def fill_stretched(n, turns, lo, const, length, B, kT, thermal, short_tail_lengt
         np.copysign(M, turns, out=M)
     short = out.short_tail[sl]
     short.fill(length < short_tail_length)
+    # M = sign(N) C_eff 2 pi |N| / L is monotone in N: its extremes at the extreme turns
+    m_range = (np.copysign(abs(lo) * c, lo), np.copysign(abs(hi) * c, hi))
     return block_summary(extension, M, zeta, bracket if thermal else None, short,
-                          q_lo=q_lo)
+                          q_lo=q_lo, torque_range=m_range)
 
 
-def fill_coiled(n, turns, lo, const, length, B, kT, thermal, short_tail_length, out, sl,
+def fill_coiled(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_length, out, sl,
                  zeta, bracket):
     """:func:`fill_block` for a block entirely fully coiled (one force): constants only.
 
@@ -247,7 +252,7 @@ def fill_coiled(n, turns, lo, const, length, B, kT, thermal, short_tail_length, 
     short = out.short_tail[sl]
     short.fill(0.0 < short_tail_length)
     return block_summary(out.extension[sl], M, zeta, bracket if thermal else None, short,
-                          q_lo=q_lo)
+                          q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
 
 
 #: the one-phase block fillers of :func:`fill_block`
