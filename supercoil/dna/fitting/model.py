@@ -323,8 +323,10 @@ class HatCurveModel:
             pts = self.kernel_at(np.concatenate([n_eff - h, n_eff + h]),
                                  np.concatenate([force, force]), u)
             m = len(n_eff)
-            lo_pts = type(pts)(*(None if a is None else np.asarray(a)[:m] for a in pts))
-            hi_pts = type(pts)(*(None if a is None else np.asarray(a)[m:] for a in pts))
+            # the arrays (a kernel's summary, a tuple, covers both halves: dropped)
+            arrays = [None if a is None or isinstance(a, tuple) else np.asarray(a) for a in pts]
+            lo_pts = type(pts)(*(None if a is None else a[:m] for a in arrays))
+            hi_pts = type(pts)(*(None if a is None else a[m:] for a in arrays))
             return (self.channels(hi_pts) - self.channels(lo_pts)) / (2 * h)
         except _KERNEL_ERRORS:
             pass
