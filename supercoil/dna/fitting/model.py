@@ -215,9 +215,9 @@ class HatCurveModel:
         for f in np.unique(force):
             sel = force == f
             pts = self.kernel(turns[sel], force[sel], *self.unpack(u, f)[:3])
-            if out is None:  # arrays only (a kernel's summary covers its own call)
-                out = [np.empty(len(turns), a.dtype) if isinstance(a, np.ndarray) else None
-                       for a in pts]
+            if out is None:  # arrays only (a kernel's summary, a tuple, covers its own call)
+                out = [None if a is None or isinstance(a, tuple)
+                       else np.empty(len(turns), np.asarray(a).dtype) for a in pts]
             for arr, a in zip(out, pts, strict=True):
                 if arr is not None:
                     arr[sel] = a
