@@ -92,6 +92,14 @@ def _faults(h):
             "(fresh memory the kernel zeroes)")
 
 
+def _memory_row(call, n, mem, target):
+    """A row of peak traced memory over the memory of the result of ``call`` at ``n`` values."""
+    return _row(f"public {call}, {n:.0e} turns values: peak traced memory / memory of its "
+                "result", mem["peak_to_result"], "x", target, mem["peak_to_result"] <= 1.5,
+                f"peak {mem['peak_per_element']:.3g} B per element, result "
+                f"{mem['result'] / n:.3g} B per element (tracemalloc)")
+
+
 def _dna_rows(r):
     h, n = r["hat"], r["hat"]["n"]
     per_point = r["hat_mem"].get(n, {}).get("result", float("nan")) / n
@@ -122,19 +130,12 @@ def _dna_rows(r):
                  f"{h['public_fast'] * 1e3:.3g} ms; / the multiply pass "
                  f"{h['public_fast_mul_ratio']:.3g}x"),
         ]
-    for m, mem in r["hat_mem"].items():
-        rows.append(_row(f"public sc.hat_curve, {m:.0e} turns values: peak traced memory / "
-                         "memory of its result", mem["peak_to_result"], "x",
-                         "<= 1.5x (at 1e7)", mem["peak_to_result"] <= 1.5,
-                         f"peak {mem['peak_per_element']:.3g} B per element, result "
-                         f"{mem['result'] / m:.3g} B per element (tracemalloc)"))
+    rows += [_memory_row("sc.hat_curve", m, mem, "<= 1.5x (at 1e7)")
+             for m, mem in r["hat_mem"].items()]
     m = r["hat_mem"] and next(iter(r["hat_mem"]))
-    for model, mem in r.get("hat_mem_models", {}).items():
-        rows.append(_row(f"public sc.hat_curve(model={model!r}), {m:.0e} turns values: peak "
-                         "traced memory / memory of its result", mem["peak_to_result"], "x",
-                         "<= 1.5x (at 1e7, for the default model)", mem["peak_to_result"] <= 1.5,
-                         f"peak {mem['peak_per_element']:.3g} B per element, result "
-                         f"{mem['result'] / m:.3g} B per element (tracemalloc)"))
+    rows += [_memory_row(f"sc.hat_curve(model={model!r})", m, mem,
+                         "<= 1.5x (at 1e7, for the default model)")
+             for model, mem in r.get("hat_mem_models", {}).items()]
     eq, em = r["eq"], r["eq_mem"]
     rows += [
         _row(f"public sc.plectoneme_equilibrium, {eq['n']} forces: CPU per force",

@@ -15,24 +15,13 @@ is the old secant's, bit for bit.
 import numpy as np
 import pytest
 from scipy.optimize import brentq
+from seed_kernels import equilibrium_of
 
 import supercoil as sc
 from supercoil.core.dna import coiled_table as ct
 from supercoil.core.dna import end_loop as el
 from supercoil.core.dna import free_energy as fe
-from supercoil.core.dna import plectoneme as pl
 from supercoil.exceptions import NoEquilibriumError, ValidityError
-
-
-@pytest.fixture(scope="module")
-def si():
-    d = sc.load_parameters("dna").si
-    return d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
-
-
-def _eq(si):
-    _, B, C, kT, r0 = si
-    return lambda T: pl.equilibrium(T, B, C, kT, r0)
 
 
 def _old_secant(x, pull, helix_linking, C, equilibrium, loop=None):
@@ -84,7 +73,7 @@ def _brentq(x, C, equilibrium, loop):
 def _problem(si, F, end_loop):
     """(pull, l_p at the pull, loop, linking at full coiling) at force F."""
     L, B, C, kT, _ = si
-    co = fe.coexistence(np.array([F]), L, B, C, kT, _eq(si))
+    co = fe.coexistence(np.array([F]), L, B, C, kT, equilibrium_of(si))
     if end_loop:
         lc = fe.loop_constants(co, L, B, C, kT)
         start = co.torque[0] / C + co.torsion[0] * (1.0 - lc.length[0] / L)
@@ -105,17 +94,17 @@ def test_table_matches_brentq_and_the_old_secant(si, F, end_loop, turns):
     x = (np.linspace(1.0 + 1e-6, 3.0, 400) * x_full if turns != "60-800"
          else 2 * np.pi * np.linspace(60.0, 800.0, 400) / L)
     p, s = np.full(x.size, pull), np.full(x.size, start)
-    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, _eq(si), loop)
-    M0, T0 = _old_secant(x, p, s, C, _eq(si), loop)
+    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, equilibrium_of(si), loop)
+    M0, T0 = _old_secant(x, p, s, C, equilibrium_of(si), loop)
     np.testing.assert_allclose(M, M0, rtol=2e-13)
     np.testing.assert_allclose(T, T0, rtol=2e-13)
     idx = np.linspace(0, x.size - 1, 7).astype(int)
-    ref = np.array([_brentq(x[i], C, _eq(si), loop) for i in idx])
+    ref = np.array([_brentq(x[i], C, equilibrium_of(si), loop) for i in idx])
     np.testing.assert_allclose(M[idx], ref[:, 0], rtol=1e-13)
     np.testing.assert_allclose(T[idx], ref[:, 1], rtol=1e-13)
     # the table itself resolves these points (no fallback to the secant), also on a
     # domain 1 % wider than the largest root (another table: within 3e-13)
-    got = ct.torque_at_linking(x, (pull, T.max() * 1.01), C, _eq(si), loop)
+    got = ct.torque_at_linking(x, (pull, T.max() * 1.01), C, equilibrium_of(si), loop)
     assert got is not None
     np.testing.assert_allclose(got[0], M, rtol=3e-13)
     np.testing.assert_allclose(got[1], T, rtol=3e-13)
@@ -129,14 +118,14 @@ def test_small_and_large_calls(si, n):
     pull, start, loop, x_full = _problem(si, 1.2e-12, False)
     x = np.linspace(1.0 + 1e-6, 1.5, n) * x_full
     p, s = np.full(n, pull), np.full(n, start)
-    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, _eq(si), loop)
-    M0, T0 = _old_secant(x, p, s, C, _eq(si), loop)
+    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, equilibrium_of(si), loop)
+    M0, T0 = _old_secant(x, p, s, C, equilibrium_of(si), loop)
     if n < ct.MIN_POINTS:
         np.testing.assert_array_equal(M, M0)
         np.testing.assert_array_equal(T, T0)
     np.testing.assert_allclose(M, M0, rtol=2e-13)
     np.testing.assert_allclose(T, T0, rtol=2e-13)
-    m, t = _brentq(x[-1], C, _eq(si), loop)
+    m, t = _brentq(x[-1], C, equilibrium_of(si), loop)
     np.testing.assert_allclose([M[-1], T[-1]], [m, t], rtol=1e-13)
 
 
@@ -145,10 +134,10 @@ def test_several_forces_in_one_call(si):
     L, B, C, kT, _ = si
     F = np.repeat([0.3e-12, 1.2e-12, 10e-12], 50)
     N = np.tile(np.linspace(50.0, 150.0, 50), 3)
-    p = fe.hat_points(N, F, L, B, C, kT, _eq(si))
+    p = fe.hat_points(N, F, L, B, C, kT, equilibrium_of(si))
     assert np.all(p.phase == fe.FULLY_COILED)
     for f in (0.3e-12, 1.2e-12, 10e-12):
-        q = fe.hat_points(N[F == f], F[F == f], L, B, C, kT, _eq(si))
+        q = fe.hat_points(N[F == f], F[F == f], L, B, C, kT, equilibrium_of(si))
         np.testing.assert_allclose(p.torque[F == f], q.torque, rtol=1e-13)
         np.testing.assert_allclose(p.free_energy[F == f], q.free_energy, rtol=1e-13)
     # the same torque at each force: it depends on N only
@@ -163,8 +152,8 @@ def test_unresolved_table_falls_back_to_the_secant(si, monkeypatch):
     x = np.linspace(1.0 + 1e-6, 3.0, 50) * x_full
     p, s = np.full(x.size, pull), np.full(x.size, start)
     monkeypatch.setattr(ct, "MAX_DEGREE", 8)
-    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, _eq(si), loop)
-    M0, T0 = _old_secant(x, p, s, C, _eq(si), loop)
+    M, T = fe.plectoneme_torque_at_linking(x, p, s, C, equilibrium_of(si), loop)
+    M0, T0 = _old_secant(x, p, s, C, equilibrium_of(si), loop)
     np.testing.assert_array_equal(M, M0)
     np.testing.assert_array_equal(T, T0)
 
@@ -174,7 +163,7 @@ def test_out_of_range_still_names_the_turns(si):
     L, B, C, kT, _ = si
     N = np.concatenate([np.linspace(30.0, 60.0, 20), [20000.0]])
     with pytest.raises(NoEquilibriumError, match=r"fully coiled plectoneme for \|N\| up to 20000"):
-        fe.hat_points(N, np.full(N.size, 1e-12), L, B, C, kT, _eq(si))
+        fe.hat_points(N, np.full(N.size, 1e-12), L, B, C, kT, equilibrium_of(si))
 
 
 def test_kinked_branch_falls_back_to_the_secant():

@@ -22,6 +22,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.optimize import elementwise
+from seed_kernels import equilibrium_of
 
 import supercoil as sc
 from supercoil.core.dna import free_energy as fe
@@ -35,27 +36,18 @@ FORCES = np.array([0.3, 0.4, 1.2, 3.0, 5.0, 10.0]) * 1e-12
 H_N, H_F = 1e-4, 1e-5
 
 
-@pytest.fixture(scope="module")
-def si():
-    d = sc.load_parameters("dna").si
-    return d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
-
-
-def _eq(si):
-    _, B, C, kT, r0 = si
-    return lambda T: pl.equilibrium(T, B, C, kT, r0)
 
 
 def _points(si, N, F, thermal=True):
     L, B, C, kT, _ = si
     N, F = np.broadcast_arrays(np.asarray(N, float), np.asarray(F, float))
-    return fe.hat_points(N, F, L, B, C, kT, _eq(si), thermal)
+    return fe.hat_points(N, F, L, B, C, kT, equilibrium_of(si), thermal)
 
 
 def _turns(si, F):
     """Turns in each phase at force F: stretched, plectoneme (to 98 % coiled), coiled."""
     L, B, C, kT, _ = si
-    co = fe.coexistence(np.array([F]), L, B, C, kT, _eq(si))
+    co = fe.coexistence(np.array([F]), L, B, C, kT, equilibrium_of(si))
     Nb = co.buckling_turns[0]
     Nf = Nb + L * co.linking_rate[0] / (2 * np.pi)
     st = np.array([0.02, 0.5, 0.99]) * Nb
@@ -103,7 +95,7 @@ def test_maxwell_relation_property(si, force, frac, plectoneme, sign):
     """Anywhere in 0.3-10 pN and in either phase (away from the boundary by 2 % of it)."""
     L, B, C, kT, _ = si
     F = force * 1e-12
-    co = fe.coexistence(np.array([F]), L, B, C, kT, _eq(si))
+    co = fe.coexistence(np.array([F]), L, B, C, kT, equilibrium_of(si))
     Nb = co.buckling_turns[0]
     N = Nb + frac * L * co.linking_rate[0] / (2 * np.pi) if plectoneme else frac * Nb
     ratio = _maxwell_ratio(si, np.array([sign * N]), F)
@@ -127,7 +119,7 @@ def test_fully_coiled_is_consistent(si, F):
     np.testing.assert_allclose(dM, 0.0, atol=1e-12 * p.torque.max())
     # the torque rises beyond full coiling (the plectoneme is twisted further)
     assert np.all(np.diff(p.torque) > 0) and p.torque[0] > fe.coexistence(
-        np.array([F]), *si[:4], _eq(si)).torque[0]
+        np.array([F]), *si[:4], equilibrium_of(si)).torque[0]
 
 
 @pytest.mark.parametrize("F", [0.3e-12, 1.2e-12, 10e-12])
@@ -169,7 +161,7 @@ def test_coexistence_is_a_minimum_in_S(si, F):
     N = pc[1]
     p = _points(si, N, F)
     S0, G0 = float(p.plectoneme_length), float(p.free_energy)
-    eq = _eq(si)
+    eq = equilibrium_of(si)
     rel = np.array([-0.05, -0.01, 0.0, 0.01, 0.05])
     S = S0 * (1 + rel)
     G = np.array([_constrained_G(si, N, F, s, eq) for s in S])
@@ -197,7 +189,7 @@ def test_athermal_limit_equals_li_zhao_athermal(si):
         st = p.phase == hc.STRETCHED
         np.testing.assert_allclose(p.free_energy[st],
                                    -F * L + (2 * np.pi * N[st]) ** 2 * C / (2 * L), rtol=1e-13)
-    co = fe.coexistence(FORCES, L, B, C, kT, _eq(si), thermal=False)
+    co = fe.coexistence(FORCES, L, B, C, kT, equilibrium_of(si), thermal=False)
     par = hc.hat_parameters(FORCES, L, B, C, kT, r0, thermal=False)
     np.testing.assert_array_equal(co.buckling_turns, par.buckling_turns)
     np.testing.assert_array_equal(co.slope, par.slope)
@@ -226,7 +218,7 @@ def test_coexistence_reduces_to_plectoneme_equations_at_effective_pull(si):
     """(GE1), (GE2) and T = -B kappa^2/2 + C omega tau - w hold with T = T_eff, and
     g_s(F, M*) = g_p(M*) (equal free energy at equal torque)."""
     L, B, C, kT, r0 = si
-    co = fe.coexistence(FORCES, L, B, C, kT, _eq(si))
+    co = fe.coexistence(FORCES, L, B, C, kT, equilibrium_of(si))
     st = pl.equilibrium(co.pull, B, C, kT, r0)
     for r in pl.equilibrium_residuals(co.pull, st.alpha, st.radius, co.torque / C,
                                       B, C, kT, r0):
@@ -274,7 +266,7 @@ def test_tail_torque_inverts_linking(si):
 
 def test_validity_errors_name_the_force(si):
     L, B, C, kT, _ = si
-    eq = _eq(si)
+    eq = equilibrium_of(si)
     with pytest.raises(ValidityError, match=r"0\.05 pN.*no positive tension"):
         fe.coexistence(np.array([0.05e-12]), L, B, C, kT, eq)
     with pytest.raises(ValidityError, match=r"60 pN.*bracket .* not positive"):
@@ -309,7 +301,7 @@ def test_model_class_wraps_the_kernel(si):
         np.testing.assert_array_equal(getattr(p, name), getattr(q, name))
     np.testing.assert_array_equal(model.free_energy(N, F, dna, True, HardCore()), q.free_energy)
     b = model.buckling(FORCES, dna, True, HardCore())
-    co = fe.coexistence(FORCES, *si[:4], _eq(si))
+    co = fe.coexistence(FORCES, *si[:4], equilibrium_of(si))
     np.testing.assert_array_equal(b.turns, co.buckling_turns)
     np.testing.assert_array_equal(b.slope, co.slope)
     assert model.validity(N, F, p, dna, True) == []

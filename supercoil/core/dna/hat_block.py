@@ -85,22 +85,11 @@ def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, o
     np.minimum(M, np.full(size, Mp) if np.ndim(Mp) == 0 else Mp, out=M)
     extension = out.extension[sl]
     if thermal:
-        Q = bracket  # Q = B T/kT^2 - 1/32 - (M / 2 kT)^2
-        np.multiply(M, 0.5 / kT, out=Q)
-        np.square(Q, out=Q)
-        np.subtract(s, Q, out=Q)
+        Q = _bracket(M, kT, s, bracket)
         q_lo = Q.min()
         if not q_lo > 0.0 and not np.all((Q > 0.0) | coiled):
             _mn.check_bracket(np.where(coiled, 1.0, Q), force, np.sign(turns) * M)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            # zeta = 1 - Q^(-1/2)/2 + B kT / ((B T - M^2/4) l), B T - M^2/4 = kT^2 (Q + 1/32)
-            np.add(Q, 1.0 / 32.0, out=extension)
-            extension *= tail
-            np.divide(B / kT, extension, out=extension)
-            np.sqrt(Q, out=zeta)
-            np.divide(-0.5, zeta, out=zeta)
-            zeta += 1.0
-            zeta += extension
+        _tail_zeta(Q, tail, B, kT, zeta, extension)
         if any_coiled:
             np.copyto(zeta, 0.0, where=coiled)
         np.multiply(zeta, tail, out=extension)
@@ -115,6 +104,30 @@ def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, o
     np.less(tail, short_tail_length, out=short)
     return block_summary(extension, M, zeta, Q if thermal else None, short,
                           q_lo=q_lo if thermal else None)
+
+
+def _bracket(M, kT, s, out):
+    """The Moroz-Nelson bracket ``Q = B T/kT^2 - 1/32 - (M / 2 kT)^2`` into ``out``."""
+    np.multiply(M, 0.5 / kT, out=out)
+    np.square(out, out=out)
+    return np.subtract(s, out, out=out)
+
+
+def _tail_zeta(Q, tail, B, kT, zeta, extension):
+    """``zeta = 1 - Q^(-1/2)/2 + B kT / ((B T - M^2/4) l)`` into ``zeta``, per point.
+
+    ``B T - M^2/4 = kT^2 (Q + 1/32)``; ``tail`` is l (an array, or the scalar L);
+    ``extension`` is the buffer of the finite-length term.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        np.add(Q, 1.0 / 32.0, out=extension)
+        extension *= tail
+        np.divide(B / kT, extension, out=extension)
+        np.sqrt(Q, out=zeta)
+        np.divide(-0.5, zeta, out=zeta)
+        zeta += 1.0
+        zeta += extension
+    return zeta
 
 
 def one_phase(lo, hi, const, length):
@@ -201,20 +214,11 @@ def fill_stretched(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_l
     extension = out.extension[sl]
     q_lo = None
     if thermal:
-        Q = bracket
-        np.multiply(M, 0.5 / kT, out=Q)
-        np.square(Q, out=Q)
-        np.subtract(s, Q, out=Q)
+        Q = _bracket(M, kT, s, bracket)
         q_lo = Q.min()
         if not q_lo > 0.0:
             return None
-        np.add(Q, 1.0 / 32.0, out=extension)
-        extension *= length
-        np.divide(B / kT, extension, out=extension)
-        np.sqrt(Q, out=zeta)
-        np.divide(-0.5, zeta, out=zeta)
-        zeta += 1.0
-        zeta += extension
+        _tail_zeta(Q, length, B, kT, zeta, extension)
         np.multiply(zeta, length, out=extension)
     else:
         zeta.fill(1.0)
