@@ -98,12 +98,16 @@ def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, o
         if any_coiled:
             np.copyto(zeta, 0.0, where=coiled)
         extension[:] = tail
-    if lo < 0.0 or np.signbit(lo):
-        np.copysign(M, turns, out=M)
-    short = out.short_tail[sl]
-    np.less(tail, short_tail_length, out=short)
+    short = _signed_and_short(M, turns, lo, tail, short_tail_length, out.short_tail[sl])
     return block_summary(extension, M, zeta, Q if thermal else None, short,
                           q_lo=q_lo if thermal else None)
+
+
+def _signed_and_short(M, turns, lo, tail, short_tail_length, short):
+    """The torque takes the sign of N (skipped without negative turns); the short-tail flags."""
+    if lo < 0.0 or np.signbit(lo):
+        np.copysign(M, turns, out=M)
+    return np.less(tail, short_tail_length, out=short)
 
 
 def _bracket(M, kT, s, out):
@@ -188,10 +192,7 @@ def fill_plectoneme(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_
     else:
         zeta.fill(1.0)
         extension[:] = tail
-    if lo < 0.0 or np.signbit(lo):
-        np.copysign(M, turns, out=M)
-    short = out.short_tail[sl]
-    np.less(tail, short_tail_length, out=short)
+    short = _signed_and_short(M, turns, lo, tail, short_tail_length, out.short_tail[sl])
     # M = sign(N) M_p: its extremes are those of the extreme turns (no reductions)
     return block_summary(extension, M, zeta, bracket if thermal else None, short,
                           q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
