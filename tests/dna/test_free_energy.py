@@ -375,3 +375,22 @@ def test_state_recorder_sees_final_fully_coiled_states_only(si):
     assert len(rec.states) == 4  # three Newton solves of the pull, one final coiled solve
     assert np.all(rec.states[-1].force > 1.2e-12) and rec.states[-1].force.size == 2
     np.testing.assert_array_equal(rec.states[-1].torque, p.torque[coiled])
+
+
+@pytest.mark.parametrize("block", [1, 2, 1 << 15])
+def test_validity_shortcut_agrees_with_the_messages(block):
+    """The block-by-block reduction (Q >= 1 wherever not fully coiled) is True exactly where
+    the message function finds nothing, at forces on both sides of the limits."""
+    from supercoil.dna.models import free_energy as fem
+
+    dna = sc.load_parameters("dna").si
+    N = np.array([0.0, 3.0, 8.0, 30.0])
+    for force in (0.105e-12, 0.15e-12, 0.5e-12, 3e-12):
+        F = np.full(N.size, force)
+        p = fem.FreeEnergy().points(N, F, dna, True, HardCore(), None)
+        quiet = fem._converged_everywhere(F, np.asarray(p.torque), np.asarray(p.phase), dna,
+                                          block=block)
+        Q = fe.tail_bracket(F, np.asarray(p.torque), dna.bending_rigidity, dna.kT)
+        full = fem._messages(F, Q, np.asarray(p.phase) != fe.FULLY_COILED, str)  # all masks
+        assert quiet == (full == [])
+        assert quiet == (force >= 0.5e-12)
