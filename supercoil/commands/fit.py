@@ -119,6 +119,9 @@ def register(sub):
                    "data and compare them (writes fit_comparison.csv and .png)")
     p.add_argument("--interaction", default="hard-core", metavar="NAME",
                    help="plectoneme interaction (default hard-core)")
+    p.add_argument("--end-loop", action="store_true",
+                   help="add the plectoneme end loop to every --model (docs/theory/end-loop.md; "
+                   "models free-energy and marko2007)")
     p.add_argument("--drop-incomplete", action="store_true",
                    help="drop rows with empty cells (listed in a warning) instead of failing")
     p.add_argument("--global", dest="global_fit", action="store_true",
@@ -165,10 +168,16 @@ def run(args) -> int:
     except argparse.ArgumentTypeError as exc:
         print(f"supercoil fit: error: {exc}", file=sys.stderr)
         return 2
-    from supercoil.commands.hat import check_names
+    from supercoil.commands.hat import check_names, model_with_options
 
-    models = list(dict.fromkeys(args.model or ["li-zhao"]))
-    problem = check_names("fit", models, args.interaction)
+    names = list(dict.fromkeys(args.model or ["li-zhao"]))
+    problem = check_names("fit", names, args.interaction)
+    models = []
+    for name in names if not problem else []:
+        model, problem = model_with_options("fit", name, args.end_loop)
+        if problem:
+            break
+        models.append(model)
     if problem:
         print(problem, file=sys.stderr)
         return 2

@@ -101,6 +101,9 @@ def register(sub):
     p.add_argument("--model", default="li-zhao", metavar="NAME",
                    help="DNA model (default li-zhao, the paper's); any registered model, "
                    "see supercoil.available_models()")
+    p.add_argument("--end-loop", action="store_true",
+                   help="add the plectoneme end loop (docs/theory/end-loop.md; models "
+                   "free-energy and marko2007)")
     p.add_argument("--interaction", default="hard-core", metavar="NAME",
                    help="inter-strand interaction of the plectoneme: hard-core (the paper's "
                    "Marko-Siggia w, default), screened (Debye-Hueckel with salt; needs a "
@@ -128,6 +131,25 @@ def check_names(command, models, interaction):
         return (f"supercoil {command}: error: --interaction {interaction!r} is not a registered "
                 f"interaction; available: {', '.join(available_interactions())}")
     return None
+
+
+def model_with_options(command, name, end_loop):
+    """``(model, None)``: the model ``name`` with its command-line options; or ``(None, error)``."""
+    from supercoil.dna.models import get_model
+
+    if not end_loop:
+        return get_model(name), None
+    if "end_loop" not in getattr(get_model(name), "OPTIONS", {}):
+        with_loop = [m for m in _models_with_end_loop()]
+        return None, (f"supercoil {command}: error: --end-loop: model {name!r} has no end loop "
+                      f"(models with one: {', '.join(with_loop)})")
+    return get_model(name, end_loop=True), None
+
+
+def _models_with_end_loop():
+    from supercoil.dna.models import available_models, get_model
+
+    return [m for m in available_models() if "end_loop" in getattr(get_model(m), "OPTIONS", {})]
 
 
 def _interaction_arg(args):
@@ -201,6 +223,8 @@ def run(args) -> int:
     from supercoil.units import ureg
 
     problem = check_names("hat", [args.model], args.interaction)
+    model, problem = (None, problem) if problem else model_with_options("hat", args.model,
+                                                                          args.end_loop)
     if problem:
         print(problem, file=sys.stderr)
         return 2
@@ -212,7 +236,7 @@ def run(args) -> int:
     forces = args.force or [ureg.Quantity(f) for f in DEFAULT_FORCES]
     force = ureg.Quantity(np.array([f.m_as("pN") for f in forces]), "pN")
     thermal = not args.athermal
-    mi = {"model": args.model, "interaction": _interaction_arg(args)}
+    mi = {"model": model, "interaction": _interaction_arg(args)}
 
     def compute():
         df = _curves(dna, force, args.turns, thermal, args.short_tail, mi)

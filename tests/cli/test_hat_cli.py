@@ -194,3 +194,32 @@ def test_default_turns_switch_exactly_at_the_denaturation_force(tmp_path, capsys
     df = sc.read_csv(tmp_path / "hat_curve.csv")
     assert df[df.force == 0.8]["turns"].min() == -40
     assert df[df.force == 0.81]["turns"].min() == 0
+
+
+def test_end_loop_flag_gives_the_library_curve_with_the_loop(tmp_path, dna, ureg):
+    """--end-loop: the model with its end loop (the library's numbers, provenance says so);
+    a model without one is a named usage error."""
+    from supercoil.dna.models import get_model
+
+    out = tmp_path / "loop"
+    assert main(["hat", "--model", "marko2007", "--end-loop", "--force", "1pN",
+                 "--turns", "0:20:0.5", "--out", str(out), "--no-plot"]) == 0
+    df = sc.read_csv(out / "hat_curve.csv")
+    assert df.attrs["provenance"]["model_options"] == {"end_loop": True}
+    turns = np.arange(0, 20.25, 0.5)
+    looped = sc.hat_curve(dna, 1 * ureg.pN, turns, model=get_model("marko2007", end_loop=True))
+    plain = sc.hat_curve(dna, 1 * ureg.pN, turns, model="marko2007")
+    np.testing.assert_allclose(df["extension"], looped["extension"], rtol=1e-10)
+    assert not np.allclose(looped["extension"], plain["extension"])  # the loop shows
+    nb = sc.read_csv(out / "buckling.csv")["buckling_turns"][0]
+    assert nb == pytest.approx(sc.buckling_turns(dna, 1 * ureg.pN, model=get_model(
+        "marko2007", end_loop=True)).m[0], rel=1e-10)
+
+
+def test_end_loop_flag_on_a_model_without_one_names_the_models_with_one(tmp_path, capsys):
+    assert main(["hat", "--end-loop", "--out", str(tmp_path), "--no-plot"]) == 2
+    err = capsys.readouterr().err
+    assert "--end-loop: model 'li-zhao' has no end loop" in err
+    assert "free-energy" in err and "marko2007" in err
+    assert main(["fit", "missing.csv", "--end-loop", "--out", str(tmp_path)]) == 2
+    assert "--end-loop: model 'li-zhao' has no end loop" in capsys.readouterr().err
