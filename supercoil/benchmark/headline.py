@@ -25,11 +25,13 @@ import numpy as np
 #: sizes of the full run (``supercoil bench``)
 FULL = {"hat_n": 10**6, "hat_mem": (10**6, 10**7), "eq_n": 1000, "eq_mem": 10**7,
         "loader_rows": 10**5, "fit_samples": 9, "pooled": 200, "replayed": (200, 2000),
+        "pool_repeats": 5,
         "import_repeat": 5, "cli_repeat": 3, "model_forces": 1000,
         "model_sizes": (1_000, 100_000), "samples": 9}
 #: sizes of ``supercoil bench --quick`` (seconds; the names of the rows give the sizes)
 QUICK = {"hat_n": 10**5, "hat_mem": (10**4, 10**5), "eq_n": 1000, "eq_mem": 10**5,
          "loader_rows": 5_000, "fit_samples": 2, "pooled": 4, "replayed": (4, 20),
+         "pool_repeats": 1,
          "import_repeat": 0, "cli_repeat": 0, "model_forces": 100, "model_sizes": (1_000,),
          "samples": 2}
 MODELS = ("li-zhao", "free-energy", "marko2007")
@@ -58,7 +60,8 @@ def measure(quick=False, log=print):
     log("headline: fit and fit_many ...")
     r["fit"] = targets_fit.fit_cost(samples=s["fit_samples"])
     r["many"] = targets_fit.fit_many_cost(pooled=s["pooled"], replayed=s["replayed"],
-                                          read_back=min(s["replayed"]))
+                                          read_back=min(s["replayed"]),
+                                          repeats=s["pool_repeats"])
     r["many"].update(pooled=s["pooled"], replayed=s["replayed"], read_back=min(s["replayed"]))
     log("headline: import time and the CLI main job (fresh interpreters) ...")
     r["cli"] = process.cli_hat_phases(repeat=s["cli_repeat"])
