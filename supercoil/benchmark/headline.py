@@ -44,8 +44,8 @@ def measure(quick=False, log=print):
     s = QUICK if quick else FULL
     r = {"load_start": os.getloadavg()[0]}
     log("headline: hat curve and plectoneme equilibrium (CPU, interleaved) ...")
-    r["hat"] = targets_dna.hat_throughput(s["hat_n"], samples=s["samples"])
-    r["hat"]["n"] = s["hat_n"]
+    r["hat"] = process.hat_throughput_regimes(s["hat_n"], samples=s["samples"])
+    r["hat_n"] = s["hat_n"]
     r["hat_mem"] = {n: targets_dna.hat_memory(n) for n in s["hat_mem"]}
     r["hat_mem_models"] = {m: targets_dna.hat_memory(s["hat_mem"][0], model=m)
                            for m in ("free-energy", "marko2007")}
@@ -103,36 +103,48 @@ def _memory_row(call, n, mem, target):
                 f"{mem['result'] / n:.3g} B per element (tracemalloc)")
 
 
-def _dna_rows(r):
-    h, n = r["hat"], r["hat"]["n"]
-    per_point = r["hat_mem"].get(n, {}).get("result", float("nan")) / n
-    ref = (f"one numpy pass np.sqrt(turns) over the same array (the issue's reference, "
-           f"{h['sqrt_pass'] * 1e3:.3g} ms)")
+#: the allocator regimes of the hat-curve rows (supercoil.benchmark.process.MALLOC_REGIMES)
+REGIMES = {"reused": "memory reused from the previous call",
+           "fresh": "fresh memory: every large array newly mapped, the pass's too"}
+
+
+def _hat_rows(h, n, per_point, regime):
+    """The four hat-curve rows (public, kernel; numpy and compiled) of one memory regime."""
+    when = f"[{REGIMES[regime]}]"
+    ref = f"one numpy pass np.sqrt(turns) over the same array ({h['sqrt_pass'] * 1e3:.3g} ms)"
     rows = [
-        _row(f"public sc.hat_curve, {n:.0e} turns values at 1.2 pN (numpy path, the default): "
-             f"CPU per call / {ref}", h["public_ratio"], "x", "<= 10x", h["public_ratio"] <= 10,
+        _row(f"public sc.hat_curve, {n:.0e} turns values at 1.2 pN (numpy path, the default) "
+             f"{when}: CPU per call / {ref}", h["public_ratio"], "x", "<= 10x",
+             h["public_ratio"] <= 10,
              f"{h['public'] * 1e3:.3g} ms; returns a 9-column DataFrame of {per_point:.3g} B per "
              f"point; writing the table's 9 fresh columns alone costs "
              f"{h['columns_write_ratio']:.3g}x; / np.multiply(turns, 2.0) "
              f"({h['numpy_pass'] * 1e3:.3g} ms): {h['public_mul_ratio']:.3g}x" + _faults(h)),
-        _row(f"kernel supercoil.core.dna.hat.hat_curve_points, {n:.0e} points (numpy path): "
-             "CPU per call / the same sqrt pass", h["kernel_ratio"], "x", "<= 5x",
+        _row(f"kernel supercoil.core.dna.hat.hat_curve_points, {n:.0e} points (numpy path) "
+             f"{when}: CPU per call / the same sqrt pass", h["kernel_ratio"], "x", "<= 5x",
              h["kernel_ratio"] <= 5,
              f"{h['kernel'] * 1e3:.3g} ms; / the multiply pass {h['kernel_mul_ratio']:.3g}x"),
     ]
     if "kernel_fast_ratio" in h:
         rows += [
             _row(f"compiled kernel hat_curve_points(fast=True) (numba, supercoil[fast]), "
-                 f"{n:.0e} points / the same sqrt pass", h["kernel_fast_ratio"], "x", "<= 5x",
-                 h["kernel_fast_ratio"] <= 5,
+                 f"{n:.0e} points {when} / the same sqrt pass", h["kernel_fast_ratio"], "x",
+                 "<= 5x", h["kernel_fast_ratio"] <= 5,
                  f"{h['kernel_fast'] * 1e3:.3g} ms; / the multiply pass "
                  f"{h['kernel_fast_mul_ratio']:.3g}x"),
             _row(f"public sc.hat_curve on the compiled kernel (SUPERCOIL_FAST=1), {n:.0e} turns "
-                 "values / the same sqrt pass", h["public_fast_ratio"], "x", "<= 10x",
+                 f"values {when} / the same sqrt pass", h["public_fast_ratio"], "x", "<= 10x",
                  h["public_fast_ratio"] <= 10,
                  f"{h['public_fast'] * 1e3:.3g} ms; / the multiply pass "
                  f"{h['public_fast_mul_ratio']:.3g}x"),
         ]
+    return rows
+
+
+def _dna_rows(r):
+    n = r["hat_n"]
+    per_point = r["hat_mem"].get(n, {}).get("result", float("nan")) / n
+    rows = [row for regime, h in r["hat"].items() for row in _hat_rows(h, n, per_point, regime)]
     rows += [_memory_row("sc.hat_curve", m, mem, "<= 1.5x (at 1e7)")
              for m, mem in r["hat_mem"].items()]
     m = r["hat_mem"] and next(iter(r["hat_mem"]))

@@ -145,3 +145,43 @@ def cli_hat_phases(repeat=3):
     return {"wall": float(np.median(walls)), "cpu": float(np.median(cpus)),
             "startup": wall - phases["inside"],
             **{k: phases[k] for k in ("import", "compute", "plot", "rest")}}
+
+
+#: glibc's malloc settings (environment variables read at start-up) of the two memory
+#: regimes of :func:`hat_throughput_regimes`: every large array from memory freed by the
+#: previous call (mmap threshold at its 32 MB maximum, no trimming), or every large
+#: array a fresh mapping (mmap threshold 1 MB: 8 MB arrays are mapped and unmapped, the
+#: block-sized temporaries of the kernels, 256 kB, stay on the heap).
+MALLOC_REGIMES = {
+    "reused": {"MALLOC_MMAP_THRESHOLD_": str(32 << 20), "MALLOC_TRIM_THRESHOLD_": str(1 << 40)},
+    "fresh": {"MALLOC_MMAP_THRESHOLD_": str(1 << 20)},
+}
+
+_HAT = """
+import json, sys
+from supercoil.benchmark.targets_dna import hat_throughput
+print(json.dumps(hat_throughput(int(sys.argv[1]), samples=int(sys.argv[2]))))
+"""
+
+
+def hat_throughput_regimes(n, samples=9):
+    """:func:`~supercoil.benchmark.targets_dna.hat_throughput` in a child per memory regime.
+
+    The time of a call that returns fresh arrays depends on whether the allocator
+    hands it memory freed by the previous call (no page faults) or new pages (a
+    fault per page; on the benchmark VM fresh memory costs about three times
+    mapped memory). In one process either can happen, by the heap's layout; each
+    child fixes one (:data:`MALLOC_REGIMES`, glibc; elsewhere the two are alike),
+    and the numpy pass of the reference is measured under the same regime.
+
+    Returns
+    -------
+    dict
+        ``{"reused": {...}, "fresh": {...}}``: the dicts of ``hat_throughput``.
+    """
+    out = {}
+    for regime, malloc in MALLOC_REGIMES.items():
+        env = {**_env(), **malloc}
+        text, _, _ = _run(["-c", _HAT, str(n), str(samples)], env)
+        out[regime] = json.loads(text.strip().splitlines()[-1])
+    return out

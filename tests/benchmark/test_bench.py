@@ -52,7 +52,9 @@ def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
                    "molecules read by sc.read_tweezers_csv",
                    "sc.plectoneme_equilibrium", "beyond its output, per force",
                    "import supercoil", "supercoil hat --params dna", "sc.read_tweezers_csv",
-                   "model free-energy / li-zhao"):
+                   "model free-energy / li-zhao",
+                   # the hat-curve rows in both allocator regimes (benchmark.process)
+                   "[memory reused from the previous call]", "[fresh memory"):
         assert needle in text, needle
     assert len(head) >= 20
     assert np.isfinite(head["value"].astype(float)).all()
@@ -178,3 +180,18 @@ def test_markdown_escapes_pipes_and_keeps_the_four_columns():
     # four cells: the escaped pipes do not split the row
     assert len(re.split(r"(?<!\\)\|", lines[2])) == 6
     assert lines[-1] == "Measured on: a machine; load average 1.0 at the start, 2.0 at the end."
+
+
+def test_the_two_memory_regimes_differ_in_page_faults():
+    """The children of hat_throughput_regimes run under glibc settings that reuse freed
+    memory (no page faults per call) or map every large array anew (faults, the pass's
+    output too): what the two rows of each hat-curve target stand for."""
+    import sys
+
+    if not sys.platform.startswith("linux"):
+        pytest.skip("glibc malloc settings (Linux)")
+    from supercoil.benchmark.process import hat_throughput_regimes
+
+    r = hat_throughput_regimes(2 * 10**5, samples=1)
+    assert r["reused"]["public_faults"] < 0.1 * r["fresh"]["public_faults"]
+    assert r["fresh"]["sqrt_pass_faults"] > 0 and r["reused"]["sqrt_pass_faults"] == 0
