@@ -59,9 +59,8 @@ def measure(quick=False, log=print):
     r["loader"]["n"] = s["loader_rows"]
     log("headline: fit and fit_many ...")
     r["fit"] = targets_fit.fit_cost(samples=s["fit_samples"])
-    r["many"] = targets_fit.fit_many_cost(pooled=s["pooled"], replayed=s["replayed"],
-                                          read_back=min(s["replayed"]),
-                                          repeats=s["pool_repeats"])
+    r["many"] = process.fit_many_cost_child(s["pooled"], s["replayed"], min(s["replayed"]),
+                                            s["pool_repeats"])
     r["many"].update(pooled=s["pooled"], replayed=s["replayed"], read_back=min(s["replayed"]))
     log("headline: import time and the CLI main job (fresh interpreters) ...")
     r["cli"] = process.cli_hat_phases(repeat=s["cli_repeat"])

@@ -185,3 +185,26 @@ def hat_throughput_regimes(n, samples=9):
         text, _, _ = _run(["-c", _HAT, str(n), str(samples)], env)
         out[regime] = json.loads(text.strip().splitlines()[-1])
     return out
+
+
+_FIT_MANY = """
+import json, sys
+from supercoil.benchmark.targets_fit import fit_many_cost
+replayed = tuple(int(x) for x in sys.argv[2].split(","))
+r = fit_many_cost(pooled=int(sys.argv[1]), replayed=replayed, read_back=int(sys.argv[3]),
+                  repeats=int(sys.argv[4]))
+print(json.dumps({k: (v if not hasattr(v, "tolist") else v.tolist()) for k, v in r.items()}))
+"""
+
+
+def fit_many_cost_child(pooled, replayed, read_back, repeats):
+    """:func:`~supercoil.benchmark.targets_fit.fit_many_cost` in a fresh interpreter.
+
+    A process pool forks its workers from the calling process: after the other
+    benchmarks that process holds a large heap of Python objects, whose pages
+    the workers copy as they touch them (reference counts), which a user's
+    fitting script does not. Measured in a fresh child, as such a script runs.
+    """
+    args = [str(pooled), ",".join(str(n) for n in replayed), str(read_back), str(repeats)]
+    text, _, _ = _run(["-c", _FIT_MANY, *args], _env())
+    return json.loads(text.strip().splitlines()[-1])
