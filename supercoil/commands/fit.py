@@ -148,6 +148,21 @@ def _bounds(items):
     return out
 
 
+def _models(args):
+    """``(models, None)``: the --model instances (each once, with --end-loop); or ``(_, error)``."""
+    from supercoil.commands.hat import check_names, model_with_options
+
+    names = list(dict.fromkeys(args.model or ["li-zhao"]))
+    problem = check_names("fit", names, args.interaction)
+    models = []
+    for name in names if not problem else []:
+        model, problem = model_with_options("fit", name, args.end_loop)
+        if problem:
+            break
+        models.append(model)
+    return models, problem
+
+
 def run(args) -> int:
     from pathlib import Path
 
@@ -168,16 +183,8 @@ def run(args) -> int:
     except argparse.ArgumentTypeError as exc:
         print(f"supercoil fit: error: {exc}", file=sys.stderr)
         return 2
-    from supercoil.commands.hat import check_names, model_with_options
 
-    names = list(dict.fromkeys(args.model or ["li-zhao"]))
-    problem = check_names("fit", names, args.interaction)
-    models = []
-    for name in names if not problem else []:
-        model, problem = model_with_options("fit", name, args.end_loop)
-        if problem:
-            break
-        models.append(model)
+    models, problem = _models(args)
     if problem:
         print(problem, file=sys.stderr)
         return 2
