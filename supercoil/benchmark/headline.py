@@ -44,7 +44,9 @@ def measure(quick=False, log=print):
     s = QUICK if quick else FULL
     r = {"load_start": os.getloadavg()[0]}
     log("headline: hat curve and plectoneme equilibrium (CPU, interleaved) ...")
-    r["hat"] = process.hat_throughput_regimes(s["hat_n"], samples=s["samples"])
+    # quick: no compiled kernel (its compilation in each child would dominate the run)
+    r["hat"] = process.hat_throughput_regimes(s["hat_n"], samples=s["samples"],
+                                              compiled=not quick)
     r["hat_n"] = s["hat_n"]
     r["hat_mem"] = {n: targets_dna.hat_memory(n) for n in s["hat_mem"]}
     r["hat_mem_models"] = {m: targets_dna.hat_memory(s["hat_mem"][0], model=m)

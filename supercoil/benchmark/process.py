@@ -160,11 +160,12 @@ MALLOC_REGIMES = {
 _HAT = """
 import json, sys
 from supercoil.benchmark.targets_dna import hat_throughput
-print(json.dumps(hat_throughput(int(sys.argv[1]), samples=int(sys.argv[2]))))
+print(json.dumps(hat_throughput(int(sys.argv[1]), samples=int(sys.argv[2]),
+                                compiled=sys.argv[3] == "1")))
 """
 
 
-def hat_throughput_regimes(n, samples=9):
+def hat_throughput_regimes(n, samples=9, compiled=True):
     """:func:`~supercoil.benchmark.targets_dna.hat_throughput` in a child per memory regime.
 
     The time of a call that returns fresh arrays depends on whether the allocator
@@ -182,7 +183,7 @@ def hat_throughput_regimes(n, samples=9):
     out = {}
     for regime, malloc in MALLOC_REGIMES.items():
         env = {**_env(), **malloc}
-        text, _, _ = _run(["-c", _HAT, str(n), str(samples)], env)
+        text, _, _ = _run(["-c", _HAT, str(n), str(samples), "1" if compiled else "0"], env)
         out[regime] = json.loads(text.strip().splitlines()[-1])
     return out
 

@@ -46,8 +46,10 @@ def _dna():
     return sc.load_parameters("dna")
 
 
-def hat_throughput(n, samples=9):
+def hat_throughput(n, samples=9, compiled=True):
     """CPU seconds per call at ``n`` turns values: public, kernel, one numpy pass.
+
+    ``compiled=False`` leaves out the compiled kernel (no numba compilation).
 
     Returns
     -------
@@ -77,7 +79,8 @@ def hat_throughput(n, samples=9):
         "numpy_pass": lambda: np.multiply(turns, 2.0),
         "columns_write": lambda: _columns_write(turns),
     }
-    if hat_fast.available():  # the compiled kernel (supercoil[fast]): compiled in warm-up
+    if compiled and hat_fast.available():  # the compiled kernel (supercoil[fast]): compiled
+        # in the warm-up
         funcs["kernel_fast"] = lambda: hat_kernel.hat_curve_points(turns, forces, *args,
                                                                    fast=True)
         funcs["public_fast"] = lambda: _with_fast(lambda: sc.hat_curve(dna, force_q, turns))

@@ -192,6 +192,6 @@ def test_the_two_memory_regimes_differ_in_page_faults():
         pytest.skip("glibc malloc settings (Linux)")
     from supercoil.benchmark.process import hat_throughput_regimes
 
-    r = hat_throughput_regimes(2 * 10**5, samples=1)
+    r = hat_throughput_regimes(2 * 10**5, samples=1, compiled=False)
     assert r["reused"]["public_faults"] < 0.1 * r["fresh"]["public_faults"]
     assert r["fresh"]["sqrt_pass_faults"] > 0 and r["reused"]["sqrt_pass_faults"] == 0
