@@ -5,7 +5,8 @@ its docstring exactly what it times:
 
 * :func:`hat_throughput`: the public ``sc.hat_curve`` (a DataFrame of 9
   columns) and the kernel it calls,
-  ``supercoil.core.dna.hat.hat_curve_points`` (float arrays), against one numpy
+  ``supercoil.core.dna.hat.hat_curve_points`` (float arrays; ``diagnostics=False``,
+  as the default model calls it), against one numpy
   pass over the same turns array: ``np.sqrt(turns)`` (the issue's reference,
   a new array) and the cheaper ``np.multiply(turns, 2.0)``; CPU time, median
   of interleaved samples; beside them the write of the table's 9 columns
@@ -74,7 +75,9 @@ def hat_throughput(n, samples=9, compiled=True):
     args = (d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)
     funcs = {
         "public": lambda: sc.hat_curve(dna, force_q, turns),
-        "kernel": lambda: hat_kernel.hat_curve_points(turns, forces, *args, fast=False),
+        # the kernel as hat_curve's default model calls it: no zeta/bracket arrays kept
+        "kernel": lambda: hat_kernel.hat_curve_points(turns, forces, *args, fast=False,
+                                                      diagnostics=False),
         "sqrt_pass": lambda: np.sqrt(turns),
         "numpy_pass": lambda: np.multiply(turns, 2.0),
         "columns_write": lambda: _columns_write(turns),
@@ -82,7 +85,8 @@ def hat_throughput(n, samples=9, compiled=True):
     if compiled and hat_fast.available():  # the compiled kernel (supercoil[fast]): compiled
         # in the warm-up
         funcs["kernel_fast"] = lambda: hat_kernel.hat_curve_points(turns, forces, *args,
-                                                                   fast=True)
+                                                                   fast=True,
+                                                                   diagnostics=False)
         funcs["public_fast"] = lambda: _with_fast(lambda: sc.hat_curve(dna, force_q, turns))
     t = interleaved_cpu(funcs, samples=samples)
     for k in ("public", "kernel", "columns_write", "kernel_fast", "public_fast"):
