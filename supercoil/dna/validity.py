@@ -79,7 +79,7 @@ HELICAL_REPEAT = 3.57e-9
 
 
 def checked_turns(turns, dna):
-    """Turns N (1-D float array) for a DNA function: real, finite, not empty, |sigma| <= 1.
+    """Turns N (1-D float array) for a DNA function: real, finite, |sigma| <= 1 (may be empty).
 
     One check for every DNA function taking turns (:func:`~supercoil.units.as_turns`
     reads plain numbers as turns and converts angle units).
@@ -89,7 +89,8 @@ def checked_turns(turns, dna):
     TypeError
         Not numbers (text, None, complex).
     ValueError
-        Not 1-D, empty, NaN or infinite.
+        Not 1-D, NaN or infinite. An empty array is returned as it is (the
+        callers give an empty result).
     ValidityError
         ``|N| > Lk_0 = L / h`` (supercoiling density |sigma| > 1, h = 3.57 nm): more
         turns than the molecule has helical turns, where no model applies (and
@@ -101,7 +102,7 @@ def checked_turns(turns, dna):
     if n.ndim != 1:
         raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
     if n.size == 0:
-        raise ValueError("turns is empty: give at least one number of turns")
+        return n.astype(float)
     lo, hi = n.min(), n.max()  # two reductions, no temporaries: NaN propagates, inf shows
     if not (np.isfinite(lo) and np.isfinite(hi)):
         raise ValueError(f"turns must be finite, got {n[~np.isfinite(n)][0]!r}")
