@@ -14,6 +14,7 @@ import pytest
 import supercoil as sc
 from supercoil.exceptions import DataError, NoEquilibriumError, ValidityError, ValidityWarning
 from supercoil.rod.design import sinusoidal_pitch
+from supercoil.tables import row_lines
 
 u = sc.ureg
 
@@ -336,7 +337,7 @@ def test_loader_row_lines_match_the_record_by_record_reading(tmp_path, monkeypat
         slow = src._data_lines_csv(5)
     assert fast.tolist() == slow.tolist() == [5, 8, 9, 10, 12]
     df = sc.read_tweezers_csv(p)
-    assert df.attrs["lines"].tolist() == [5, 8, 9, 10, 12]
+    assert row_lines(df).tolist() == [5, 8, 9, 10, 12]
     assert df["turns"].tolist() == [0, 1, 2, 3, 4]
 
 
@@ -344,14 +345,14 @@ def test_loader_row_lines_without_blank_lines_or_final_newline(tmp_path):
     p = tmp_path / "plain.csv"
     p.write_text("# x: 2\n\nforce [pN],turns,extension [um]\n1,0,0.3\n2,1,0.4")
     df = sc.read_tweezers_csv(p)
-    assert df.attrs["lines"].tolist() == [4, 5] and df.attrs["provenance"]["x"] == 2
+    assert row_lines(df).tolist() == [4, 5] and df.attrs["provenance"]["x"] == 2
 
 
 def test_loader_quoted_fields_fall_back_to_csv(tmp_path):
     p = tmp_path / "q.csv"
     p.write_text('molecule,force [pN],turns,extension [um]\n"a\nb",1,0,0.3\nc,1,1,0.3\n')
     df = sc.read_tweezers_csv(p)
-    assert df.attrs["lines"].tolist() == [2, 4]
+    assert row_lines(df).tolist() == [2, 4]
 
 
 def test_loader_not_utf8_names_the_line(tmp_path):
@@ -380,7 +381,7 @@ def test_loader_memory_beyond_the_table_is_bounded(tmp_path, monkeypatch):
         kept, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()
-    assert len(df) == n and df.attrs["lines"][-1] == n + 2
+    assert len(df) == n and row_lines(df)[-1] == n + 2
     # main: the whole text twice, per-row Python lists and a copy of the frame
     assert (peak - kept) / n <= 64, ((peak - base) / n, (kept - base) / n)
 

@@ -320,7 +320,7 @@ def _run_many(args, data, dna, fixed, bounds, start, options):
 
     n = data["molecule"].astype(str).nunique()
     # a tqdm bar on a terminal, one line per molecule in a log (issue 15)
-    bar = Progress(False if args.no_progress else None, n, prefix="supercoil fit: ")
+    bar = Progress(False if args.no_progress else "log", n, prefix="supercoil fit: ")
     kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start,
                   progress=lambda done, total, molecule: bar.update(molecule), **options)
     try:

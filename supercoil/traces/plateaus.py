@@ -106,9 +106,9 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
     t_guard = float(magnitude(guard, U.s, "guard"))
     tol_n = float(as_turns(turns_tolerance, "turns_tolerance"))
     tol_h = float(magnitude(height_tolerance, U.mm, "height_tolerance"))
-    if not (t_settle >= 0 and t_guard >= 0 and tol_n >= 0 and tol_h >= 0
-            and int(min_frames) >= 4):
-        raise ValueError("settle and the tolerances must be >= 0 and min_frames >= 4, got "
+    min_frames = check_min_frames(min_frames)
+    if not (t_settle >= 0 and t_guard >= 0 and tol_n >= 0 and tol_h >= 0):
+        raise ValueError("settle and the tolerances must be >= 0, got "
                          f"settle={settle}, turns_tolerance={turns_tolerance}, "
                          f"height_tolerance={height_tolerance}, min_frames={min_frames}")
     frames, _ = _frames(trace)
@@ -131,6 +131,17 @@ def find_plateaus(trace, settle=1.0 * ureg.s, *, turns_tolerance=1e-3,
                                 min_frames=int(min_frames)))
     out.attrs["moves"] = moves
     return out
+
+
+def check_min_frames(min_frames):
+    """``min_frames`` as an int >= 4; TypeError/ValueError naming it otherwise."""
+    if isinstance(min_frames, bool) or not isinstance(min_frames, int | np.integer | float
+                                                      | np.floating):
+        raise TypeError(f"min_frames must be a whole number of frames (>= 4), got "
+                        f"{type(min_frames).__name__} {min_frames!r}")
+    if not (np.isfinite(min_frames) and float(min_frames).is_integer() and min_frames >= 4):
+        raise ValueError(f"min_frames must be a whole number of frames >= 4, got {min_frames!r}")
+    return int(min_frames)
 
 
 _PLATEAU_UNITS = {"plateau": "", "start": "s", "used_from": "s", "used_to": "s", "end": "s",
@@ -315,6 +326,7 @@ def rotation_curves(trace, settle=1.0 * ureg.s, reference=None, *, surface=None,
         if isinstance(trace, pd.DataFrame) else "trace"
     if errors not in ("plateau", "pooled"):
         raise ValueError(f"errors must be 'plateau' or 'pooled', got {errors!r}")
+    min_frames = check_min_frames(min_frames)
     plateaus = find_plateaus(trace, settle, turns_tolerance=turns_tolerance,
                              height_tolerance=height_tolerance, min_frames=min_frames,
                              guard=guard, source=source)
