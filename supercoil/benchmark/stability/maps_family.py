@@ -43,16 +43,9 @@ _HELICAL_REPEAT = 3.57e-9  # m per helical turn (the package's h)
 
 def cases():
     """``(key, model name, interaction name or None)`` of every registered combination."""
-    from supercoil.dna.interactions import available_interactions
-    from supercoil.dna.models import available_models, get_model
+    from supercoil.benchmark.family import cases as family_cases
 
-    out = []
-    for name in available_models():
-        if get_model(name).uses_interaction:
-            out += [(f"family {name}/{i}", name, i) for i in available_interactions()]
-        else:
-            out.append((f"family {name}", name, None))
-    return out
+    return [(f"family {key}", name, inter) for key, name, inter in family_cases()]
 
 
 def _needs_salt(inter, dna):
