@@ -36,9 +36,9 @@ non-finite residual (scipy's TRF then shrinks the trust region).
 Caches (within one fit): the unpacked kernel arguments, the residual and the
 points at the last few parameter vectors (no repeated evaluation or unpacking
 at the same parameters), and the plectoneme
-equilibria keyed by the interaction, force and molecule; for the hard-core
-interaction the key leaves out the twist rigidity C, on which only ``omega =
-M/C`` and the twist energy depend (:mod:`supercoil.core.dna.plectoneme`).
+equilibria keyed by :meth:`~supercoil.dna.interactions.base.Interaction.cache_key`
+and the force: the key leaves out the length and the twist rigidity C, on which only
+``omega = M/C`` and the twist energy depend (for every interaction: (GE2) contains no C).
 """
 
 from __future__ import annotations
@@ -48,7 +48,6 @@ from collections import OrderedDict
 
 import numpy as np
 
-from supercoil.dna.interactions.hard_core import HardCore
 from supercoil.dna.models.base import HatPoints
 from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 from supercoil.units import BOLTZMANN
@@ -81,19 +80,14 @@ class _CachedInteraction:
     def __init__(self, interaction, store):
         self._inter = interaction
         self._store = store
-        self._reduced = type(interaction) is HardCore
 
     def __getattr__(self, name):
         return getattr(self._inter, name)
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)
-        if self._reduced:  # C-free key; omega and the twist energy scale with 1/C
-            key_dna = (dna.bending_rigidity, dna.kT, dna.radius)
-        else:
-            key_dna = tuple(dna)
-        key = (type(self._inter), tuple(sorted(self._inter.values.items())), key_dna,
-               tension.tobytes())
+        # C-free key (Interaction.cache_key): omega and the twist energy scale with 1/C
+        key = (self._inter.cache_key(dna), tension.tobytes())
         hit = self._store.get(key)
         if hit is None:
             state = self._inter.equilibrium(tension, dna)
