@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["broadcast_shape", "check_finite_output", "check_flag", "check_material"]
+__all__ = ["broadcast_shape", "check_finite_output", "check_flag", "check_material", "check_scale"]
 
 
 def check_flag(value, name):
@@ -65,3 +65,24 @@ def check_finite_output(value, name, inputs):
         raise ValidityError(f"{name} is {bad!r} for {inputs}: the result leaves the "
                             "floating-point range (about 1.8e308)")
     return value
+
+
+def check_scale(value, what, lo=-np.inf, hi=np.inf, why=""):
+    """``value`` unchanged if ``lo <= value <= hi``; else ValidityError naming it and the limit.
+
+    One check for a derived scale of the inputs that a kernel divides by or
+    exponentiates (the reduced stiffness A/r0 of the hard-core plectoneme, the
+    Debye length of a buffer): absurd inputs such as a radius of 1e-300 nm or
+    a salt of 1e300 M give a message naming the quantity, its value and the
+    limit instead of a ZeroDivisionError or an overflow deep in the kernel.
+    ``what`` describes the quantity (e.g. ``"the Debye length (salt 1e+300 M)"``),
+    ``why`` the reason of the limit. NaN fails both bounds.
+    """
+    from supercoil.exceptions import ValidityError
+
+    v = float(value)
+    if lo <= v <= hi:
+        return value
+    side, limit = ("below", lo) if not v >= lo else ("above", hi)
+    raise ValidityError(f"{what} is {v:.6g}, {side} its limit {limit:.6g}"
+                        + (f": {why}" if why else ""))
