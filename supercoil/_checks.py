@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["broadcast_shape", "check_finite_output", "check_flag", "check_material", "check_scale"]
+__all__ = ["broadcast_shape", "check_callable", "check_finite_output", "check_flag",
+           "check_material", "check_scale", "profile_values"]
 
 
 def check_flag(value, name):
@@ -86,3 +87,36 @@ def check_scale(value, what, lo=-np.inf, hi=np.inf, why=""):
     side, limit = ("below", lo) if not v >= lo else ("above", hi)
     raise ValidityError(f"{what} is {v:.6g}, {side} its limit {limit:.6g}"
                         + (f": {why}" if why else ""))
+
+
+def check_callable(value, name, signature):
+    """``value`` if it is callable; TypeError naming ``name`` and the ``signature`` expected.
+
+    For the profile arguments (``pitch(s)`` of the design, ``pitch_derivative(s)``):
+    a quantity or None gave "'Quantity' object is not callable" from inside.
+    """
+    if callable(value):
+        return value
+    hint = ""
+    if hasattr(value, "_units"):
+        hint = (f" ({value} is a value; a constant profile is a callable too: "
+                "lambda s: value * numpy.ones(numpy.shape(s)))")
+    raise TypeError(f"{name} must be a callable {signature}, got "
+                    f"{type(value).__name__}{hint}")
+
+
+def profile_values(values, shape, name):
+    """A profile callable's magnitudes broadcast to the grid ``shape``; ValueError naming it.
+
+    One check for every user callable evaluated on a grid (``pitch(s)``,
+    ``pitch_derivative(s)``, ``twist_rate(slack)``): a scalar or one value per
+    point; any other shape gave numpy's broadcast message, naming neither the
+    callable nor the shape it must return.
+    """
+    a = np.asarray(values, dtype=float)
+    try:
+        return np.broadcast_to(a, shape)
+    except ValueError:
+        raise ValueError(f"{name} returned an array of shape {a.shape}; it must return a "
+                         f"scalar or one value per point of its argument (shape {shape})"
+                         ) from None
