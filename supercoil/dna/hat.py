@@ -70,8 +70,9 @@ def resolve(dna, force, thermal, model, interaction):
                          f"interaction (got interaction={interaction!r})")
     else:
         inter = get_interaction(interaction)
-    inter.check(si)
-    return si, f, thermal, m, _v.StateRecorder(inter)
+    rec = _v.StateRecorder(inter)
+    (rec if m.uses_interaction else inter).check(si)  # the recorder adds the shared scales
+    return si, f, thermal, m, rec
 
 
 def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION):
