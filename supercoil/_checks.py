@@ -5,7 +5,17 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["broadcast_shape", "check_callable", "check_finite_output", "check_flag",
-           "check_material", "check_scale", "profile_values"]
+           "check_material", "check_scale", "named", "profile_values"]
+
+
+def named(exc, argument):
+    """``exc`` with its ``argument`` attribute set (the argument's name; the CLI maps it to a flag).
+
+    The checks below raise ``named(TypeError(...), name)``; ``SupercoilError`` takes
+    ``argument=`` in its constructor (supercoil.exceptions).
+    """
+    exc.argument = argument
+    return exc
 
 
 def check_flag(value, name):
@@ -15,7 +25,7 @@ def check_flag(value, name):
     """
     if isinstance(value, bool | np.bool_):
         return bool(value)
-    raise TypeError(f"{name} must be True or False, got {value!r}")
+    raise named(TypeError(f"{name} must be True or False, got {value!r}"), name)
 
 
 def check_material(value, cls, name):
@@ -32,8 +42,8 @@ def check_material(value, cls, name):
         hint = f" (load it first: supercoil.load_parameters({value!r}))"
     elif type(value).__name__ in ("DNA", "ElasticRod"):
         hint = " (an ElasticRod is a rod scene's material, a DNA the tweezers scenes')"
-    raise TypeError(f"{name} must be a supercoil.{cls.__name__}, got "
-                    f"{type(value).__name__}{hint}")
+    raise named(TypeError(f"{name} must be a supercoil.{cls.__name__}, got "
+                          f"{type(value).__name__}{hint}"), name)
 
 
 def broadcast_shape(**arrays):
@@ -47,9 +57,9 @@ def broadcast_shape(**arrays):
         return np.broadcast_shapes(*shapes.values())
     except ValueError:
         listed = ", ".join(f"{k} {v}" for k, v in shapes.items())
-        raise ValueError(f"the shapes of {', '.join(arrays)} do not broadcast together "
-                         f"({listed}); give scalars, equal shapes, or numpy-broadcastable "
-                         "ones") from None
+        raise named(ValueError(f"the shapes of {', '.join(arrays)} do not broadcast together "
+                               f"({listed}); give scalars, equal shapes, or "
+                               "numpy-broadcastable ones"), tuple(arrays)) from None
 
 
 def check_finite_output(value, name, inputs):
