@@ -74,9 +74,10 @@ def add_parser(sub):
                    help="MagScope: motor log of the rotation in turns (default ZaberNmsMotor.txt)")
     p.add_argument("--height-log", default="ZaberLsqMotor.txt",
                    help="MagScope: motor log of the height in mm (default ZaberLsqMotor.txt)")
-    p.add_argument("--errors", choices=("plateau", "pooled"), default="plateau",
-                   help="sigma of each plateau mean: its own blocking error (default), or the "
-                   "naive error times the inefficiency pooled per bead and magnet height")
+    p.add_argument("--errors", choices=("pooled", "plateau"), default="pooled",
+                   help="sigma of each plateau mean: its standard deviation with the "
+                   "inefficiency pooled per bead and magnet height (default), or its own "
+                   "blocking error")
     p.add_argument("--no-check-settled", action="store_true",
                    help="keep plateaus whose two halves differ (not settled) instead of failing")
     p.add_argument("--out", default="curves_out", help="output folder (default: curves_out)")
