@@ -122,7 +122,9 @@ def test_the_benchmark_fit_gives_the_numbers_of_the_code_before(problem, base):
     for name, (v, e) in BEFORE.items():
         assert r.parameters[name].m == pytest.approx(v, rel=1e-9), name
         assert r.stderr[name].m == pytest.approx(e, rel=1e-7), name
-    assert r.chi_square == pytest.approx(BEFORE_CHI2, rel=1e-9)
+    # issue 22: chi_square is dimensionless now (nfree with unit weights); the sum of
+    # squares is the number recorded before
+    assert r.sum_squares.m_as("nm**2") == pytest.approx(BEFORE_CHI2, rel=1e-9)
 
 
 def test_reading_the_table_leaves_the_callers_frame_alone(problem):

@@ -211,6 +211,10 @@ def run_fit(spec: FitSpec) -> dict:
     n = len(r)
     chi2 = float(r @ r)
     nfree = n - len(u)
+    # dimensionless chi-square: extension-only unit weights are 1 nm; the noise estimate
+    # (residual variance) is their sigma (then chisqr == nfree by construction)
+    s2 = chi2 / nfree if spec.data.weighting == "unit" and not spec.data.has_torque else 1.0
+    s2 = s2 if s2 > 0 else 1.0
     channels = channels_info(spec, prob, u, noise)
     cov_u, undetermined, note = covariance(J, prob.names)
     records = [("FitWarning", note)] if note else []
@@ -234,6 +238,8 @@ def run_fit(spec: FitSpec) -> dict:
         "names": list(prob.names), "params": spec.params, "values": u * scales,
         "stderr": stderr, "covariance": cov, "start": start, "undetermined": undetermined,
         "chi_square": chi2, "reduced_chi_square": chi2 / nfree, "ndata": n, "nfree": nfree,
+        "chisqr": chi2 / s2, "redchi": chi2 / s2 / nfree, "jac": J / np.sqrt(s2),
+        "residual_scale": float(np.sqrt(s2)),
         "nfev": int(res.nfev), "njev": int(prob.njev), "kernel_calls": prob.n_kernel_calls,
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
