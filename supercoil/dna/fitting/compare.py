@@ -53,9 +53,14 @@ def information_criteria(chi2, ndata, nvarys):
 
 def _fit_one(data, dna, model, vary, own, kw):
     m = get_model(model)
-    names = list(vary) + [k for k in m.parameters if own and k not in vary]
+    added = [k for k in m.parameters if own and k not in vary]
+    names = list(vary) + added
+    # the default DNA fields and the model's own parameters added here are dropped when the
+    # model does not use them (issue 22: marko2007 has no radius; no loop, no loop writhe)
+    optional = added + (list(DEFAULT_VARY) if tuple(vary) == DEFAULT_VARY else [])
     interaction = kw["interaction"] if m.uses_interaction else None
-    spec = prepare(data, dna, vary=names, model=m, **dict(kw, interaction=interaction))
+    spec = prepare(data, dna, vary=names, model=m, optional=optional,
+                   **dict(kw, interaction=interaction))
     core = run_fit(spec)
     return FitResult(core, spec, data, dna)
 

@@ -148,6 +148,9 @@ def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
         for name, q in result.fixed.items():
             lines.append(f"    {name:<{width}}{q.magnitude:>12.6g}  {q.units:~P}")
     lines += _correlation_lines(result, min_correlation, max_correlations)
+    if result.notes:
+        lines.append("[[Notes]]")
+        lines.extend(f"    {n}" for n in result.notes)
     if result.warnings:
         lines.append("[[Warnings]]")
         lines.extend(f"    {w}" for w in result.warnings)

@@ -176,6 +176,10 @@ class FitResult:
         ``data - model`` (pN nm); else None.
     warnings : list of str
         Every warning of the fit (also in :meth:`report`).
+    notes : list of str
+        What the fit decided for the user (also in :meth:`report`): a default
+        parameter the model does not use and so not varied, the channel that
+        gave the turns-offset start, the length start read from the data.
     """
 
     def __init__(self, core, spec, data, dna):
@@ -223,6 +227,7 @@ class FitResult:
         self.best_fit = quantity(core["model"] * 1e9, U.nm)
         self.residuals = quantity(resid * 1e9, U.nm)
         self.warnings = [m for _, m in core["warnings"]]
+        self.notes = list(core.get("notes", ()))
         self.torque_best_fit = self.torque_residuals = None
         if spec.data.has_torque:
             self.torque_best_fit = quantity(core["torque"] * 1e21, U.pN * U.nm)
