@@ -58,14 +58,18 @@ def test_undetermined_parameter_gets_infinite_stderr(base):
 
 
 def test_chi_square_is_in_the_units_of_the_weighting(result, true_dna, base):
-    """Audit B2: chi_square was in m^2 with unit weights while reduced_chi_square used nm^2."""
+    """Audit B2, issue 22: the chi-square is dimensionless; with unit weights the noise
+    estimate is the sigma (chi_square == nfree), the sum of squares is in nm^2."""
     resid = result.residuals.m_as("nm")
-    assert result.chi_square == pytest.approx(np.sum(resid**2), rel=1e-9)  # sigma = 1 nm
+    assert result.sum_squares.m_as("nm**2") == pytest.approx(np.sum(resid**2), rel=1e-9)
+    assert result.chi_square == pytest.approx(
+        np.sum((resid / result.residual_rms.m_as("nm")) ** 2), rel=1e-9)
+    assert result.chi_square == pytest.approx(result.nfree, rel=1e-12)
     assert result.chi_square / result.nfree == pytest.approx(result.reduced_chi_square,
                                                              rel=1e-12)
     assert result.to_frame()["chi_square"].iloc[0] == pytest.approx(result.chi_square)
     assert result.residual_rms.m_as("nm") == pytest.approx(
-        np.sqrt(result.reduced_chi_square), rel=1e-9)
+        np.sqrt(result.sum_squares.m_as("nm**2") / result.nfree), rel=1e-9)
     df = simulate(true_dna, seed=11, sigma_column=True)
     r = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"])
     assert r.chi_square == pytest.approx(np.sum((r.residuals.m_as("nm") / NOISE) ** 2),

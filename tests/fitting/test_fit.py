@@ -34,7 +34,8 @@ def test_recovers_non_default_parameters_within_reported_errors(result, true_dna
         "twist_persistence"].m_as("nm")
     # unit weights: the scatter estimates the noise level
     assert result.weighting == "unit"
-    assert np.sqrt(result.reduced_chi_square) == pytest.approx(NOISE, rel=0.15)
+    assert result.residual_rms.m_as("nm") == pytest.approx(NOISE, rel=0.15)
+    assert result.reduced_chi_square == 1.0  # issue 22: the noise estimate is the sigma
     assert result.residuals.check("[length]")
     assert np.std(result.residuals.m_as("nm")) == pytest.approx(NOISE, rel=0.15)
     assert result.dna.twist_persistence.m_as("nm") == pytest.approx(
@@ -51,7 +52,7 @@ def test_sigma_column_gives_absolute_errors(true_dna, base, result):
         assert r.parameters[name].m == pytest.approx(result.parameters[name].m, rel=1e-6)
         # absolute vs rescaled errors differ by sqrt(reduced chi-square) only
         assert r.stderr[name].m == pytest.approx(
-            result.stderr[name].m / np.sqrt(result.reduced_chi_square) * NOISE, rel=1e-4)
+            result.stderr[name].m / result.residual_rms.m_as("nm") * NOISE, rel=1e-4)
     # the sigma argument overrides the column; sigmas twice the noise fail the chi-square test
     with pytest.warns(FitWarning, match=r"chi-square .* smaller than the stated sigmas imply"):
         r2 = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"],

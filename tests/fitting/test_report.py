@@ -54,7 +54,7 @@ def test_unit_weights_show_the_noise_estimate_not_a_chi_square(result, true_dna,
     """Audit P3: with unit weights the headline is the residual RMS in nm."""
     import matplotlib.pyplot as plt
 
-    noise = np.sqrt(result.reduced_chi_square)
+    noise = result.residual_rms.m_as("nm")
     fig = result.plot()
     title = fig._suptitle.get_text()
     plt.close(fig)

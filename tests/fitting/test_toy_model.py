@@ -178,10 +178,13 @@ def test_compare_table_statistics_are_lmfits(base, true_dna):
                                       noise=5 * u.nm, seed=6)
     table, _ = _compare(hat, base)
     for _, row in table.iterrows():
-        n, k, chi2 = row["ndata"], row["nparams"], row["chi_square"]
+        # unit weights: the criteria use the sum of squares on the 1 nm scale (issue 22: the
+        # table's chi_square is dimensionless, nfree)
+        n, k = row["ndata"], row["nparams"]
+        chi2 = row["residual_rms"] ** 2 * (n - k)
         assert row["aic"] == pytest.approx(n * np.log(chi2 / n) + 2 * k, rel=1e-12)
         assert row["bic"] == pytest.approx(n * np.log(chi2 / n) + np.log(n) * k, rel=1e-12)
-        assert row["reduced_chi_square"] == pytest.approx(chi2 / (n - k), rel=1e-12)
+        assert row["reduced_chi_square"] == pytest.approx(1.0, rel=1e-12)
     li = table.set_index("model").loc["li-zhao"]
     assert li["nparams"] == 4 and np.isnan(li["width"])
     assert table.attrs["units"]["width"] == ""

@@ -6,12 +6,18 @@ included) and ``chi2`` the sum of squared weighted residuals:
 
 * ``chi_square = chi2``; ``reduced_chi_square = chi2 / (N - N_varys)``;
 * ``aic = N ln(chi2 / N) + 2 N_varys`` (Akaike information criterion);
-* ``bic = N ln(chi2 / N) + ln(N) N_varys`` (Bayesian information criterion).
+* ``bic = N ln(chi2 / N) + ln(N) N_varys`` (Bayesian information criterion),
+
+computed by :class:`~supercoil.dna.fitting.result.FitResult` (``aic``,
+``bic``); ``N_varys`` counts only the parameters the data determine (an
+undetermined one, a flat direction of the Jacobian, buys nothing and costs
+nothing).
 
 Lower is better; only differences between models fitted to the same data with
 the same weights mean anything (``delta_aic``, ``delta_bic`` from the best).
-With unit weights ``chi2`` is in nm^2, which shifts every model's AIC by the
-same constant.
+With unit weights ``chi2`` in the criteria is the sum of squares in nm^2, which
+shifts every model's AIC by the same constant (the table's ``chi_square`` is
+the dimensionless one, :attr:`FitResult.chisqr`).
 
 A joint extension + torque fit has one such term per channel c with n_c
 points, ``sum_c n_c ln(chi2_c / n_c)`` (the Gaussian log-likelihood with each
@@ -45,27 +51,16 @@ def information_criteria(chi2, ndata, nvarys):
     return core + 2 * nvarys, core + math.log(ndata) * nvarys
 
 
-def _log_likelihood_term(result):
-    """``N ln(chi2 / N)``, or its sum over the channels of a joint fit (module docstring)."""
-    if "torque" not in result.channels:
-        return None
-    total = 0.0
-    for name, c in result.channels.items():
-        n = c["ndata"]
-        if c["noise"] is None:  # stated sigmas
-            chi2 = c["chi_square"]
-        else:  # sum of squares on the channel's fixed unit scale
-            unit = "nm" if name == "extension" else "pN*nm"
-            chi2 = c["residual_rms"].m_as(unit) ** 2 * c["dof"]
-        total += n * math.log(chi2 / n)
-    return total
-
-
 def _fit_one(data, dna, model, vary, own, kw):
     m = get_model(model)
-    names = list(vary) + [k for k in m.parameters if own and k not in vary]
+    added = [k for k in m.parameters if own and k not in vary]
+    names = list(vary) + added
+    # the default DNA fields and the model's own parameters added here are dropped when the
+    # model does not use them (issue 22: marko2007 has no radius; no loop, no loop writhe)
+    optional = added + (list(DEFAULT_VARY) if tuple(vary) == DEFAULT_VARY else [])
     interaction = kw["interaction"] if m.uses_interaction else None
-    spec = prepare(data, dna, vary=names, model=m, **dict(kw, interaction=interaction))
+    spec = prepare(data, dna, vary=names, model=m, optional=optional,
+                   **dict(kw, interaction=interaction))
     core = run_fit(spec)
     return FitResult(core, spec, data, dna)
 
@@ -74,11 +69,8 @@ def _row(label, result, error):
     row = {"model": label, "success": result is not None, "error": error}
     if result is None:
         return row, {}
-    n, k = result.ndata, len(result.names)
-    aic, bic = information_criteria(result.chi_square, n, k)
-    core = _log_likelihood_term(result)
-    if core is not None:  # a joint fit: one term per channel
-        aic, bic = core + 2 * k, core + math.log(n) * k
+    n, k = result.ndata, result.n_determined
+    aic, bic = result.aic, result.bic  # undetermined parameters are not counted (issue 22)
     row.update(nparams=k, ndata=n, chi_square=result.chi_square,
                reduced_chi_square=result.reduced_chi_square, aic=aic, bic=bic,
                residual_rms=result.residual_rms.m_as("nm"),
@@ -150,8 +142,9 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     -------
     pandas.DataFrame (or (DataFrame, dict) with ``return_results``)
         One row per model, sorted by AIC (best first): ``model``, ``success``,
-        ``error`` (a failed fit), ``nparams`` (free parameters, offsets
-        included), ``ndata``, ``chi_square``, ``reduced_chi_square``, ``aic``,
+        ``error`` (a failed fit), ``nparams`` (free parameters the data
+        determine, offsets included: those AIC and BIC count), ``ndata``,
+        ``chi_square``, ``reduced_chi_square`` (dimensionless), ``aic``,
         ``bic``, ``delta_aic``, ``delta_bic`` (from the best model),
         ``residual_rms`` (nm), ``goodness_p`` (p-value of the goodness-of-fit
         test, see :mod:`supercoil.dna.fitting.diagnostics`), every fitted

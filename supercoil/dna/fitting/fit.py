@@ -24,6 +24,7 @@ from scipy.optimize import least_squares
 from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
+from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
@@ -65,6 +66,8 @@ class FitSpec:
     max_nfev: int | None
     tol: float
     vary: list
+    #: what the preparation decided for the user (a dropped parameter, ...): the report's notes
+    notes: list = dataclasses.field(default_factory=list)
 
 
 def resolve_model(model, interaction):
@@ -81,14 +84,20 @@ def resolve_model(model, interaction):
 def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, sigma=None,
             fit_turns_offset=True, fit_extension_offset=True, thermal=True, max_nfev=None,
             tol=1e-10, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION, params=None,
-            rotation=None):
-    """Validate every argument and convert to SI: the :class:`FitSpec` of one fit."""
+            rotation=None, optional=None):
+    """Validate every argument and convert to SI: the :class:`FitSpec` of one fit.
+
+    ``optional``: varied names that are dropped (held at their value, with a
+    note) when the model does not use them; default: the names of
+    :data:`DEFAULT_VARY` when ``vary`` is the default (issue 22).
+    """
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
     fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     inter.check(dna.si)
+    own_params = params is not None
     if rotation is None:
         rot = RotationData.from_frame(data, sigma=sigma)
     else:
@@ -103,9 +112,31 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
             raise FitError("give either params= or vary/fixed/bounds/start, not both")
         params, si = params.copy(), dna.si
         _check_params(params, rot, m, inter)
+    if optional is None:  # a params= set is the user's full control: nothing dropped
+        default = (not own_params and not isinstance(vary, str)
+                   and tuple(vary or ()) == DEFAULT_VARY)
+        optional = DEFAULT_VARY if default else ()
+    notes = _drop_unused(params, optional, rot, si, m, inter, thermal,
+                         dna.wlc_persistence is None)
     vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
     return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal, max_nfev,
-                   float(tol), vary)
+                   float(tol), vary, notes)
+
+
+def _drop_unused(params, optional, rot, si, model, inter, thermal, xi_is_bending):
+    """Hold the ``optional`` free parameters the model does not use; the notes saying so."""
+    names = [n for n in dict.fromkeys(optional) if n in params and params[n].vary]
+    if not names:
+        return []
+    unused = _start.unused_parameters(names, rot.force, si, model, inter, thermal,
+                                      xi_is_bending)
+    if len(unused) == len(params.free):
+        return []  # nothing left to fit: let the Jacobian say it
+    for name in unused:
+        params[name].vary = False
+    return [f"{name} not varied: the model {model.name!r} does not use it (its extensions "
+            "and torques do not change with it), so the data cannot determine it; give it "
+            "in vary explicitly to fit it anyway" for name in unused]
 
 
 def _check_params(params, rot, model, inter):
@@ -212,6 +243,10 @@ def run_fit(spec: FitSpec) -> dict:
     n = len(r)
     chi2 = float(r @ r)
     nfree = n - len(u)
+    # dimensionless chi-square: extension-only unit weights are 1 nm; the noise estimate
+    # (residual variance) is their sigma (then chisqr == nfree by construction)
+    s2 = chi2 / nfree if spec.data.weighting == "unit" and not spec.data.has_torque else 1.0
+    s2 = s2 if s2 > 0 else 1.0
     channels = channels_info(spec, prob, u, noise)
     cov_u, undetermined, note = covariance(J, prob.names)
     records = [("FitWarning", note)] if note else []
@@ -227,7 +262,8 @@ def run_fit(spec: FitSpec) -> dict:
     dna, model, inter, n0, z0 = prob.unpack(u)
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
-    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
+    skip = [n for n, bad in zip(prob.names, undetermined, strict=True) if bad]
+    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params, skip)]
     gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
@@ -235,6 +271,8 @@ def run_fit(spec: FitSpec) -> dict:
         "names": list(prob.names), "params": spec.params, "values": u * scales,
         "stderr": stderr, "covariance": cov, "start": start, "undetermined": undetermined,
         "chi_square": chi2, "reduced_chi_square": chi2 / nfree, "ndata": n, "nfree": nfree,
+        "chisqr": chi2 / s2, "redchi": chi2 / s2 / nfree, "jac": J / np.sqrt(s2),
+        "residual_scale": float(np.sqrt(s2)),
         "nfev": int(res.nfev), "njev": int(prob.njev), "kernel_calls": prob.n_kernel_calls,
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
@@ -245,7 +283,7 @@ def run_fit(spec: FitSpec) -> dict:
         "calibration": {k: prob.scale(k, u) for k in CALIBRATION},
         "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),
         "residual_weighted": r, "goodness": gof_info, "warnings": records,
-        "channels": channels,
+        "channels": channels, "notes": list(spec.notes),
         "seconds": time.perf_counter() - t0,
     }
 

@@ -33,8 +33,9 @@ def _statistics(result):
         stats = [
             f"    noise estimate     = {_in_data_unit(result, noise)} (residual RMS, "
             "sqrt(sum of squared residuals / degrees of freedom))",
-            f"    sum of squares     = {result.chi_square:.6g} nm^2 (unit weights: no "
-            "chi-square, the noise level is estimated from the scatter)",
+            f"    sum of squares     = {result.sum_squares.magnitude:.6g} nm^2 (unit weights: "
+            "no chi-square test: the noise level is estimated from the scatter and is the "
+            "sigma, so redchi = 1 by construction)",
         ]
         if np.isfinite(g.get("p_value", np.nan)):
             stats.append(f"    goodness of fit    = runs test (Wald-Wolfowitz): "
@@ -89,7 +90,8 @@ def _parameter_lines(result, width):
     return lines
 
 
-def _correlation_lines(result, min_correlation):
+def _correlation_lines(result, min_correlation, max_correlations=6):
+    """The ``max_correlations`` largest ``|C| >= min_correlation`` (lmfit's ``min_correl``)."""
     pairs = []
     names = result.names
     corr = result.correlation.to_numpy()
@@ -99,11 +101,16 @@ def _correlation_lines(result, min_correlation):
                 pairs.append((abs(corr[a, b]), names[a], names[b], corr[a, b]))
     if not pairs:
         return []
-    return [f"[[Correlations]] (|C| >= {min_correlation:g})"] + [
-        f"    C({a}, {b}) = {v:+.4f}" for _, a, b, v in sorted(pairs, reverse=True)]
+    pairs.sort(reverse=True)
+    shown = pairs[: max(0, int(max_correlations))]
+    more = len(pairs) - len(shown)
+    head = f"[[Correlations]] (|C| >= {min_correlation:g}"
+    head += f"; the {len(shown)} largest of {len(pairs)}, all in result.correlation)" \
+        if more else ")"
+    return [head] + [f"    C({a}, {b}) = {v:+.4f}" for _, a, b, v in shown]
 
 
-def fit_report(result, min_correlation=0.1) -> str:
+def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
     """Statistics, parameter table with units, fixed values, correlations, warnings."""
     d = result._spec.data
     forces = np.unique(d.force)
@@ -126,6 +133,9 @@ def fit_report(result, min_correlation=0.1) -> str:
         f"    free parameters    = {len(result.names)}",
         f"    degrees of freedom = {result.nfree}",
         *stats,
+        f"    Akaike info crit   = {result.aic:.6g}",
+        f"    Bayesian info crit = {result.bic:.6g} ({result.n_determined} determined "
+        "parameters counted)",
         f"    weighting          = {wtext}",
         *_channel_lines(result),
         f"    converged          = {result.success} ({result.message})",
@@ -137,7 +147,10 @@ def fit_report(result, min_correlation=0.1) -> str:
         lines.append("[[Fixed]]")
         for name, q in result.fixed.items():
             lines.append(f"    {name:<{width}}{q.magnitude:>12.6g}  {q.units:~P}")
-    lines += _correlation_lines(result, min_correlation)
+    lines += _correlation_lines(result, min_correlation, max_correlations)
+    if result.notes:
+        lines.append("[[Notes]]")
+        lines.extend(f"    {n}" for n in result.notes)
     if result.warnings:
         lines.append("[[Warnings]]")
         lines.extend(f"    {w}" for w in result.warnings)

@@ -12,7 +12,7 @@ from supercoil.dna.fitting.parameters import DNA_FIELDS
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, quantity
 
-__all__ = ["FitResult", "fmt_pm"]
+__all__ = ["FitResult", "fmt_pm", "log_likelihood_term"]
 
 
 def fmt_pm(v, e):
@@ -38,6 +38,32 @@ def _correlation(cov, undetermined):
 
 
 _CHANNEL_UNITS = {"extension": U.nm, "torque": U.pN * U.nm}
+
+
+def log_likelihood_term(channels, sum_squares, ndata):
+    """``N ln(chi2 / N)``, or its sum over the channels of a joint fit.
+
+    The Gaussian log-likelihood (times -2, constants dropped) with the noise
+    level of each channel profiled out, as lmfit's AIC and BIC use it:
+    ``chi2`` is the sum of squared residuals weighted by the stated sigmas,
+    or on the channel's fixed unit scale (1 nm, 1 pN nm) where the fit
+    estimated the noise: the estimated noise itself differs between models and
+    must not enter the criterion (with it every model's ``chi2`` would be ``N``).
+    ``channels`` are the plain per-channel records of the fit core;
+    ``sum_squares`` the extension-only fit's weighted sum (1 nm unit weights).
+    """
+    if "torque" not in channels:
+        return ndata * math.log(sum_squares / ndata)
+    total = 0.0
+    for name, c in channels.items():
+        n = c["n"]
+        if c["noise"] is None:  # stated sigmas
+            chi2 = c["chi_square"]
+        else:  # sum of squares on the channel's fixed unit scale
+            unit = 1e-9 if name == "extension" else 1e-21
+            chi2 = (c["rms"] / unit) ** 2 * c["dof"]
+        total += n * math.log(chi2 / n)
+    return total
 
 
 def _channel_stats(channels):
@@ -79,15 +105,45 @@ class FitResult:
         The parameters held fixed (DNA fields not varied, offsets switched off).
     covariance, correlation : pandas.DataFrame
         Of the free parameters in the units of ``parameters`` (``attrs["units"]``).
+    chisqr, redchi : float
+        lmfit's names: ``chisqr = sum(((model - data) / sigma)^2)``, always
+        dimensionless, and ``redchi = chisqr / nfree``. With per-point sigmas
+        the usual chi-square (``redchi`` near 1 when model and sigmas describe
+        the data). With unit weights sigma is the noise estimate
+        (:attr:`residual_rms`, the residual RMS), so ``chisqr == nfree`` and
+        ``redchi == 1`` by construction: no goodness of fit (the report then
+        shows the noise estimate and the runs test); the sum of squared
+        residuals itself is :attr:`sum_squares`. A joint extension + torque
+        fit sums both channels, each weighted by its sigmas or its own noise
+        estimate (then ``chisqr`` is about ``nfree``; see :attr:`channels`).
     chi_square, reduced_chi_square : float
-        ``sum(((data - model) / sigma)^2)`` and the same divided by ``nfree``:
-        with per-point sigma the usual chi-square; with unit weights sigma =
-        1 nm, so they are the sum of squared residuals and the residual
-        variance in nm^2 (not a goodness of fit; the report then shows
-        :attr:`residual_rms`). Always ``chi_square / nfree == reduced_chi_square``.
-        A joint extension + torque fit sums both channels, each weighted by
-        its sigmas or its own noise estimate (then ``chi_square`` is about
-        ``nfree``; see :attr:`channels`).
+        The same numbers as ``chisqr`` and ``redchi`` (the package's older
+        names). Before issue 22 they were in nm^2 with unit weights.
+    sum_squares : pint.Quantity
+        ``sum((data - model)^2)`` of the extensions (nm^2).
+    aic, bic : float
+        Akaike and Bayesian information criteria as lmfit defines them,
+        ``N ln(chi2 / N) + 2 k`` and ``N ln(chi2 / N) + ln(N) k``, with ``chi2``
+        the weighted sum of squares on the stated sigmas or the fixed unit
+        scale (1 nm, 1 pN nm; per channel in a joint fit, see
+        :func:`log_likelihood_term`) and ``k`` = :attr:`n_determined`, the
+        free parameters the data determine (undetermined ones are not
+        counted). Only differences between fits of the same data mean anything.
+    nvarys, n_determined : int
+        Free parameters (offsets included), and those not in :attr:`undetermined`.
+    x : numpy.ndarray
+        The best-fit values of the free parameters in the order of
+        :attr:`names`, in their display units (scipy's ``OptimizeResult.x``).
+    jac : numpy.ndarray, shape (ndata, nvarys)
+        Jacobian of the normalised residuals ``(model - data) / sigma`` (whose
+        squares sum to ``chisqr``) with respect to :attr:`x` (display units),
+        at the solution: ``inv(jac.T @ jac)`` is :attr:`covariance` when every
+        parameter is determined.
+    residual : numpy.ndarray
+        The normalised residuals ``(model - data) / sigma`` (extensions, then
+        torques); ``residual @ residual == chisqr``.
+    success : bool
+        The optimiser converged (scipy's ``status > 0``); ``message`` says how.
     residual_rms : pint.Quantity
         ``sqrt(sum((data - model)^2) / nfree)`` (nm) of the extensions (in a
         joint fit with the extension channel's share of ``nfree``): with unit
@@ -120,6 +176,10 @@ class FitResult:
         ``data - model`` (pN nm); else None.
     warnings : list of str
         Every warning of the fit (also in :meth:`report`).
+    notes : list of str
+        What the fit decided for the user (also in :meth:`report`): a default
+        parameter the model does not use and so not varied, the channel that
+        gave the turns-offset start, the length start read from the data.
     """
 
     def __init__(self, core, spec, data, dna):
@@ -138,15 +198,26 @@ class FitResult:
         undetermined = np.asarray(core["undetermined"], dtype=bool)
         self._undetermined_mask = undetermined
         self.undetermined = [n for n, u in zip(self.names, undetermined, strict=True) if u]
-        self.chi_square = float(core["chi_square"])
-        self.reduced_chi_square = float(core["reduced_chi_square"])
+        self.chisqr = self.chi_square = float(core["chisqr"])
+        self.redchi = self.reduced_chi_square = float(core["redchi"])
         resid = spec.data.extension - core["model"]
+        self.sum_squares = quantity(float(resid @ resid) * 1e18, U.nm**2)
         self.nfree = int(core["nfree"])
+        self.nvarys = len(self.names)
+        self.n_determined = self.nvarys - len(self.undetermined)
+        self.x = np.array([self.parameters[n].magnitude for n in self.names], dtype=float)
+        rs = float(core["residual_scale"])
+        to_display = np.array([p.scale * p.factor for p in free], dtype=float)
+        self.jac = np.asarray(core["jac"], dtype=float) / to_display
+        self.residual = np.asarray(core["residual_weighted"], dtype=float) / rs
         self.channels = _channel_stats(core["channels"])
         # the extension channel's own degrees of freedom (all of nfree without torque)
         self.residual_rms = self.channels["extension"]["residual_rms"]
         self.goodness = dict(core["goodness"])
         self.ndata = int(core["ndata"])
+        term = log_likelihood_term(core["channels"], float(core["chi_square"]), self.ndata)
+        self.aic = term + 2 * self.n_determined
+        self.bic = term + math.log(self.ndata) * self.n_determined
         self.nfev = int(core["nfev"])
         self.message = core["message"]
         self.success = core["status"] > 0
@@ -156,6 +227,7 @@ class FitResult:
         self.best_fit = quantity(core["model"] * 1e9, U.nm)
         self.residuals = quantity(resid * 1e9, U.nm)
         self.warnings = [m for _, m in core["warnings"]]
+        self.notes = list(core.get("notes", ()))
         self.torque_best_fit = self.torque_residuals = None
         if spec.data.has_torque:
             self.torque_best_fit = quantity(core["torque"] * 1e21, U.pN * U.nm)
@@ -212,11 +284,16 @@ class FitResult:
             return f"noise estimate {self.residual_rms.magnitude:.{digits}g} nm"
         return f"reduced chi-square {self.reduced_chi_square:.{digits}g}"
 
-    def report(self, min_correlation=0.1) -> str:
-        """A fit report: statistics, parameter table with units, fixed values, correlations."""
+    def report(self, min_correlation=0.1, max_correlations=6) -> str:
+        """A fit report: statistics, parameter table with units, fixed values, correlations.
+
+        Only the ``max_correlations`` largest correlations with ``|C| >=
+        min_correlation`` are listed (lmfit's ``min_correl``); the full matrix
+        is :attr:`correlation`.
+        """
         from supercoil.dna.fitting.report import fit_report
 
-        return fit_report(self, min_correlation)
+        return fit_report(self, min_correlation, max_correlations)
 
     def plot(self, fig=None, n_curve=300):
         """Data, fit and residuals per force (offset-corrected); returns the Figure."""
@@ -230,8 +307,8 @@ class FitResult:
 
         Columns ``<name>`` and ``<name>_stderr`` in the units of ``parameters``
         (``attrs["units"]``; the stderr is ``inf`` for an undetermined
-        parameter), then ``reduced_chi_square``, ``chi_square`` (see the class
-        docstring), ``residual_rms`` (nm), ``ndata``, ``nfree``, ``nfev``,
+        parameter), then ``reduced_chi_square``, ``chi_square``, ``aic``,
+        ``bic`` (see the class docstring), ``residual_rms`` (nm), ``ndata``, ``nfree``, ``nfev``,
         ``weighting``, ``determined`` (False if any parameter is undetermined);
         with torque data also ``torque_residual_rms`` (pN nm),
         ``torque_chi_square``, ``torque_weighting``.
@@ -243,6 +320,7 @@ class FitResult:
             units[name] = units[f"{name}_stderr"] = self.units[name]
         for k, v, unit in (("reduced_chi_square", self.reduced_chi_square, ""),
                            ("chi_square", self.chi_square, ""),
+                           ("aic", self.aic, ""), ("bic", self.bic, ""),
                            ("residual_rms", self.residual_rms.magnitude, "nm"),
                            ("ndata", self.ndata, ""), ("nfree", self.nfree, ""),
                            ("nfev", self.nfev, ""), ("weighting", self.weighting, ""),
