@@ -32,8 +32,9 @@ from supercoil.tables import make_table, provenance
 __all__ = ["MaxwellCheck", "maxwell_check"]
 
 _TWO_PI = 2.0 * math.pi
-_COLUMNS = {"force": "pN", "side": "", "buckling_turns": "turn", "window_start": "turn",
-            "window_end": "turn", "n_points": "", "slope": "nm/turn", "slope_error": "nm/turn",
+_COLUMNS = {"force": "pN", "side": "", "centre": "turn", "buckling_turns": "turn",
+            "window_start": "turn", "window_end": "turn", "n_points": "", "slope": "nm/turn",
+            "slope_error": "nm/turn",
             "plateau_torque": "pN nm", "plateau_torque_error": "pN nm",
             "maxwell_slope": "nm/turn", "maxwell_slope_error": "nm/turn", "note": ""}
 
@@ -136,7 +137,9 @@ class MaxwellCheck:
         """Per-force table: plateau torque, slope, the slope the Maxwell relation gives.
 
         Columns (units in ``attrs["units"]``): ``[molecule,] force [pN], side,
-        buckling_turns, window_start, window_end`` (turns from the centre),
+        centre`` (the turns where the torque crosses zero: an estimate of the
+        turns offset), ``buckling_turns, window_start, window_end`` (turns from
+        the centre),
         ``n_points, slope, slope_error`` (nm/turn), ``plateau_torque,
         plateau_torque_error`` (pN nm, signed), ``maxwell_slope,
         maxwell_slope_error`` (``-2 pi dtau_b/dF``, nm/turn), ``note`` (why a
@@ -203,7 +206,8 @@ def _curves(rot, idx, margin, floor, label):
         except DataError as exc:
             c, note = None, str(exc)
         for side, sgn in (("+", 1.0), ("-", -1.0)):
-            row = {"molecule": label, "force": float(f), "side": side}
+            row = {"molecule": label, "force": float(f), "side": side,
+                   "centre": np.nan if c is None else float(c)}
             got = None
             if c is not None:
                 m = sgn * (nn - c) >= 0
