@@ -124,3 +124,18 @@ def test_bad_calibration_names_and_values(true_dna, base, kw, match):
                                   points_per_force=30)
     with pytest.raises(FitError, match=match):
         sc.fit_hat_curves(df, base, **kw)
+
+
+def test_compare_models_takes_the_scale_and_start_values(scaled_torque, base):
+    from supercoil.dna.fitting import compare_models
+
+    start = {"turns_offset": 0.2}
+    table, res = compare_models(scaled_torque, base, ["li-zhao"],
+                                vary={"li-zhao": ["twist_persistence", "radius", "torque_scale"]},
+                                start=start, return_results=True)
+    single = sc.fit_hat_curves(scaled_torque, base,
+                               vary=["twist_persistence", "radius", "torque_scale"],
+                               start=start)
+    assert table["torque_scale"].iloc[0] == pytest.approx(
+        single.parameters["torque_scale"].m, rel=1e-9)
+    assert res["li-zhao"]._core["start"][-2] == pytest.approx(0.2)  # the turns offset

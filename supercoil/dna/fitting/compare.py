@@ -114,7 +114,7 @@ def _assemble(rows, units):
 def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None, *,
                    sigma=None, fit_turns_offset=True, fit_extension_offset=True, thermal=True,
                    interaction=DEFAULT_INTERACTION, max_nfev=None, tol=1e-10,
-                   return_results=False):
+                   return_results=False, start=None):
     """Fit several DNA models to the same data; a table ranked by AIC.
 
     Parameters
@@ -137,6 +137,10 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         For the models with a plectoneme helix (others take none).
     return_results : bool
         Also return the :class:`FitResult` of each model (dict by row label).
+    start : dict of str -> Quantity, optional
+        Start values as for :func:`fit_hat_curves` (the same for every model;
+        e.g. ``{"turns_offset": 0.0}`` for one-sided curves, where the guess
+        from the centre of symmetry fails).
 
     Returns
     -------
@@ -168,7 +172,7 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         raise ValueError("compare_models needs at least one model")
     kw = dict(fixed=fixed, bounds=bounds, sigma=sigma, fit_turns_offset=fit_turns_offset,
               fit_extension_offset=fit_extension_offset, thermal=thermal,
-              interaction=interaction, max_nfev=max_nfev, tol=tol)
+              interaction=interaction, max_nfev=max_nfev, tol=tol, start=start)
     rows, units, results = [], {}, {}
     for spec, label in zip(models, model_labels(models), strict=True):
         name = get_model(spec).name

@@ -187,6 +187,17 @@ def _apply_bounds(bounds, names, params):
             p.min, p.max = lo, hi
 
 
+def _fixed_calibration(params, vary, values, data):
+    """A fixed calibration scale other than 1 as a fixed parameter; FitError for a torque
+    scale without torque data."""
+    for base in CALIBRATION:
+        if base not in vary and values[("calibration", base)] != 1.0:
+            params.add(calibration_parameter(base, values[("calibration", base)], vary=False))
+    if "torque_scale" in params and not data.has_torque:
+        raise FitError("torque_scale scales the torque channel, but the data have no "
+                       "'torque' column")
+
+
 def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=None, start=None,
                      fit_turns_offset=True, fit_extension_offset=True):
     """The :class:`FitParameters` of a fit and the model/interaction with fixed values applied.
@@ -218,12 +229,7 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     for base in vary:
         params.add(_global_parameter(names, owners[base], base, values[(owners[base], base)],
                                      True))
-    for base in CALIBRATION:  # a fixed calibration scale other than 1: a fixed parameter
-        if base not in vary and values[("calibration", base)] != 1.0:
-            params.add(calibration_parameter(base, values[("calibration", base)], vary=False))
-    if "torque_scale" in params and not data.has_torque:
-        raise FitError("torque_scale scales the torque channel, but the data have no "
-                       "'torque' column")
+    _fixed_calibration(params, vary, values, data)
     for i, lab in enumerate(data.labels):
         suffix = f"[{lab}]" if data.has_molecule else ""
         for base, table, unit, scale in (("turns_offset", n0, "turn", 1.0),
