@@ -139,3 +139,25 @@ def test_compare_models_takes_the_scale_and_start_values(scaled_torque, base):
     assert table["torque_scale"].iloc[0] == pytest.approx(
         single.parameters["torque_scale"].m, rel=1e-9)
     assert res["li-zhao"]._core["start"][-2] == pytest.approx(0.2)  # the turns offset
+
+
+def test_plot_and_fit_many_carry_the_scales(scaled_torque, base):
+    import matplotlib.pyplot as plt
+
+    vary = ["twist_persistence", "radius", "torque_scale"]
+    r = sc.fit_hat_curves(scaled_torque, base, vary=vary)
+    fig = r.plot()
+    # the fitted torque curve is the predicted measurement tau / s: its plateau matches the
+    # measured plateau (about 1 / 0.7 of the model's own)
+    ax = next(a for a in fig.axes if a.get_ylabel() == "torque (pN nm)")
+    curve = ax.get_lines()[-1].get_ydata()
+    f0 = scaled_torque["force"].min()
+    measured = scaled_torque.loc[scaled_torque["force"] == f0, "torque"]
+    assert np.max(curve) == pytest.approx(np.percentile(measured, 95), rel=0.1)
+    plt.close(fig)
+    df = scaled_torque.copy()
+    df.insert(0, "molecule", "m1")
+    df.attrs["units"] = {"molecule": "", **scaled_torque.attrs["units"]}
+    table = sc.fit_many(df, base, vary=vary)
+    assert table["torque_scale"].iloc[0] == pytest.approx(r.parameters["torque_scale"].m,
+                                                          rel=1e-6)

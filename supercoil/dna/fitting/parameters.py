@@ -66,9 +66,9 @@ PLAUSIBLE = {
 }
 
 #: Calibration nuisance parameters (dimensionless, default 1 = off): name -> (the channels
-#: it acts on, plausible low, plausible high, definition). docs/theory/fitting.md#calibration-
-#: nuisance-parameters. The measured channel and its sigmas are never rescaled: the model's
-#: prediction of the measurement is.
+#: it acts on, plausible low, plausible high, definition);
+#: docs/theory/fitting.md#calibration-nuisance-parameters. The measured channel and its
+#: sigmas are never rescaled: the model's prediction of the measurement is.
 CALIBRATION = {
     "torque_scale": ("torque", 0.5, 2.0,
                      "model torque = torque_scale x measured torque: the fit predicts the "
