@@ -123,3 +123,16 @@ def test_no_coexistence_is_a_named_error():
         m.melting_torque(1e-12, A, C, 0.0, KT, melt_twist=1e9)
     with pytest.raises(ValidityError, match="c_m"):
         m.melted_gibbs(1e-12, 0.0, KT, melt_twist_stiffness=0.0)
+
+
+def test_melting_torque_force_derivative_and_maxwell_slope():
+    M, dM = m.melting_torque(FORCES, A, C, 0.0, KT, derivative=True)
+    h = 1e-5 * FORCES
+    fd = (m.melting_torque(FORCES + h, A, C, 0.0, KT)
+          - m.melting_torque(FORCES - h, A, C, 0.0, KT)) / (2 * h)
+    np.testing.assert_allclose(dM, fd, rtol=1e-6)
+    np.testing.assert_array_equal(M, m.melting_torque(FORCES, A, C, 0.0, KT))
+    # Maxwell: -2 pi dM/dF = extension lost per melted turn, (x_s - x_m) / (per-turn
+    # twist difference); at 1 pN about 2.5 nm per turn (docs/theory/melting.md#calibration)
+    slope = -2 * np.pi * dM
+    assert np.all((slope > 2.0e-9) & (slope < 3.0e-9))

@@ -143,11 +143,15 @@ def melted_gibbs(F, M, kT, melt_free_energy=DEFAULTS["melt_free_energy"],
     return PhaseGibbs(phi, -x, -(melt_twist + M / kc), np.full(F.shape, -1.0 / kc))
 
 
-def melting_torque(F, A, C, G, kT, writhe_factor=1.0, **melt):
+def melting_torque(F, A, C, G, kT, writhe_factor=1.0, derivative=False, **melt):
     """Coexistence torque ``M_melt(F)`` (N m, negative) of stretched B-DNA with melted DNA.
 
     ``phi_s(F, M) = phi_m(F, M)`` solved in closed form (module docstring)
     [melting.md#melting-torque]. ``melt`` takes the keywords of :func:`melted_gibbs`.
+    With ``derivative=True`` returns ``(M_melt, dM_melt/dF)`` (N m, m), the latter by
+    implicit differentiation, ``dM/dF = (x_s - x_m) / (Omega_m - Omega_s)`` at M_melt:
+    the Maxwell relation makes ``-2 pi dM/dF`` the extension change per turn on the
+    melting plateau.
 
     Raises
     ------
@@ -174,4 +178,9 @@ def melting_torque(F, A, C, G, kT, writhe_factor=1.0, **melt):
         raise ValidityError(f"melting torque undefined at force {np.ravel(F)[i] * 1e12:.6g}"
                             " pN: no coexistence of B-DNA with melted DNA (Delta + g_s - g_m "
                             "must be positive and Omega_m^2 + 4 a D non-negative)")
-    return -2.0 * D / (-om + np.sqrt(disc))
+    M = -2.0 * D / (-om + np.sqrt(disc))
+    if not derivative:
+        return M
+    s_ = _tb.stretched_gibbs(F, M, A, C, G, kT, writhe_factor)
+    m_ = melted_gibbs(F, M, kT, **{k: p[k] for k in DEFAULTS})
+    return M, -(s_.dphi_dF - m_.dphi_dF) / (s_.dphi_dM - m_.dphi_dM)
