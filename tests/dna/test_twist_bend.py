@@ -108,3 +108,19 @@ def test_nonpositive_force_is_a_named_error(bad):
 def test_bad_stiffness_is_a_named_error():
     with pytest.raises(ValidityError, match="C must be"):
         tb.twist_bend_renormalisation(A, -1.0, 0.0)
+
+
+def test_mixed_partials_agree():
+    # dx/dM = dOmega/dF (Maxwell relation of one phase): d(dphi_dF)/dM = d(dphi_dM)/dF
+    G = 30e-9
+    f, mq = F[1:5], M[:, [0, 1, 3, 4]]
+    a = _fd(lambda m: tb.stretched_gibbs(f, m, A, C, G, KT).dphi_dF, mq, 1e-23)
+    b = _fd(lambda x: tb.stretched_gibbs(x, mq, A, C, G, KT).dphi_dM, f, 1e-5 * f)
+    np.testing.assert_allclose(a, b, rtol=1e-6)
+
+
+def test_only_the_square_of_the_coupling_enters():
+    p = tb.stretched_gibbs(F, M, A, C, 35e-9, KT)
+    q = tb.stretched_gibbs(F, M, A, C, -35e-9, KT)
+    for u, v in zip(p, q, strict=True):
+        np.testing.assert_array_equal(u, v)

@@ -92,7 +92,7 @@ def _langevin(u):
 def melted_stretch_gain(F, kT, ss_kuhn_length, ss_contour_per_base, ss_stretch_modulus,
                         rise_per_bp, strands=2.0):
     """``g_m(F)`` (N) and ``x_m = dg_m/dF`` (1) of the melted state per B contour length."""
-    f = _tb._check_force(F, "melted-DNA stretching", allow_zero=True) / strands
+    f = _tb.check_force(F, "melted-DNA stretching", allow_zero=True) / strands
     b, ell = ss_kuhn_length, ss_contour_per_base
     u = f * b / kT
     per_base = ell * kT / b * _log_sinhc(u) + ell * f * f / (2.0 * ss_stretch_modulus)
@@ -135,7 +135,7 @@ def melted_gibbs(F, M, kT, melt_free_energy=DEFAULTS["melt_free_energy"],
         Naming the force where F < 0 or not finite, or a non-positive c_m.
     """
     F, M = np.broadcast_arrays(np.asarray(F, dtype=float), np.asarray(M, dtype=float))
-    _tb._check_positive(melt_twist_stiffness, "melt_twist_stiffness c_m", "melted DNA")
+    _tb.check_positive(melt_twist_stiffness, "melt_twist_stiffness c_m", "melted DNA")
     g, x = melted_stretch_gain(F, kT, ss_kuhn_length, ss_contour_per_base,
                                ss_stretch_modulus, rise_per_bp, strands)
     kc = kT * melt_twist_stiffness
@@ -160,7 +160,7 @@ def melting_torque(F, A, C, G, kT, writhe_factor=1.0, derivative=False, **melt):
         exists (``D <= 0``: melted DNA stable at zero torque; or a negative discriminant).
     """
     p = {**DEFAULTS, **melt}
-    F = _tb._check_force(F, "melting torque")
+    F = _tb.check_force(F, "melting torque")
     om = p["melt_twist"]
     if not om < 0.0:
         raise ValidityError(f"melting torque: the melted twist Omega_m = {om:.4g} rad/m "

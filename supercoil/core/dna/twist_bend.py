@@ -30,6 +30,8 @@ from .phases import PhaseGibbs
 
 __all__ = [
     "BOUCHIAT_COEFFICIENTS",
+    "check_force",
+    "check_positive",
     "effective_twist_stiffness",
     "stretched_gibbs",
     "twist_bend_renormalisation",
@@ -61,7 +63,8 @@ def _reduced_work(x):
     return w + np.sum(_A * x[..., None] ** (_POW + 1) / (_POW + 1), axis=-1)
 
 
-def _check_force(force, what, allow_zero=False):
+def check_force(force, what, allow_zero=False):
+    """Force array (N); :class:`ValidityError` naming ``what`` and the force if not valid."""
     f = np.asarray(force, dtype=float)
     bad = ~np.isfinite(f) | ((f < 0.0) if allow_zero else (f <= 0.0))
     if np.any(bad):
@@ -72,7 +75,8 @@ def _check_force(force, what, allow_zero=False):
     return f
 
 
-def _check_positive(value, name, what):
+def check_positive(value, name, what):
+    """``value`` as an array; :class:`ValidityError` naming ``name`` unless finite, > 0."""
     v = np.asarray(value, dtype=float)
     if np.any(~np.isfinite(v) | (v <= 0.0)):
         raise ValidityError(f"{what}: {name} must be finite and positive, got {v}")
@@ -96,7 +100,7 @@ def wlc_extension(force, A, kT):
     x, dx_dF : arrays
         Relative extension (0 <= x < 1) and its derivative (1/N).
     """
-    f = _check_force(force, "worm-like chain extension")
+    f = check_force(force, "worm-like chain extension")
     p = f * A / kT
     lo = np.zeros_like(p)
     hi = np.ones_like(p)
@@ -133,8 +137,8 @@ def twist_bend_renormalisation(A, C, G):
     ``2/A = 1/A_b + 1/(A_b - u)``; ``C~ = C - G^2/A_b`` (> 0 for every G)
     [melting.md#twist-bend]. G = 0 gives ``(A, C)`` exactly.
     """
-    A = _check_positive(A, "A", "twist-bend renormalisation")
-    C = _check_positive(C, "C", "twist-bend renormalisation")
+    A = check_positive(A, "A", "twist-bend renormalisation")
+    C = check_positive(C, "C", "twist-bend renormalisation")
     G = np.asarray(G, dtype=float)
     if np.any(~np.isfinite(G)):
         raise ValidityError(f"twist-bend renormalisation: G must be finite, got {G}")
@@ -150,7 +154,7 @@ def effective_twist_stiffness(force, A, C, G, kT, writhe_factor=1.0):
     w = 1 the Moroz-Nelson resummation. Raises :class:`ValidityError` naming the force
     where F <= 0.
     """
-    f = _check_force(force, "effective twist stiffness")
+    f = check_force(force, "effective twist stiffness")
     _, Ct = twist_bend_renormalisation(A, C, G)
     k = writhe_factor * np.sqrt(kT / A) / (4.0 * A)
     inv = 1.0 / Ct + k / np.sqrt(f)
