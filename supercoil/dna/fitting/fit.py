@@ -34,6 +34,7 @@ from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
+from supercoil.dna.validity import check_interaction
 from supercoil.exceptions import (
     BoundWarning,
     FitError,
@@ -128,7 +129,10 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
-    inter.check(dna.si)
+    if m.uses_interaction:
+        check_interaction(inter, dna.si)  # with the hard-core scale A/r0
+    else:
+        inter.check(dna.si)
     if rotation is None:
         rotation = RotationData.from_frame(data)
     rot = rotation if sigma is None else rotation.with_sigma(checked_sigma(sigma, rotation))

@@ -225,6 +225,8 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
                        f"{extension_unit!r}")
     m, inter = resolve_model(model, interaction)
+    if m.uses_interaction:
+        _v.check_interaction(inter, dna.si)  # the scales the public DNA functions check
     rng = _rng(seed)
     F = _forces(force)
     sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
