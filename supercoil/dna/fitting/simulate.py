@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag, check_material
+from supercoil._checks import check_flag, check_material, scalar
 from supercoil.dna import validity as _v
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
@@ -143,7 +143,7 @@ def _torque_sd(torque_noise):
     """The torque noise (N m) or None; FitError unless finite and >= 0."""
     if torque_noise is None:
         return None
-    sd_t = float(magnitude(torque_noise, U.N * U.m, "torque_noise"))
+    sd_t = scalar(magnitude(torque_noise, U.N * U.m, "torque_noise"), "torque_noise")
     if not (np.isfinite(sd_t) and sd_t >= 0):
         raise FitError(f"torque_noise must be finite and >= 0, got {sd_t * 1e21:g} pN nm")
     return sd_t
@@ -229,7 +229,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         _v.check_interaction(inter, dna.si)  # the scales the public DNA functions check
     rng = _rng(seed)
     F = _forces(force)
-    sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
+    sd = 5e-9 if noise is None else scalar(magnitude(noise, U.m, "noise"), "noise")
     if not (np.isfinite(sd) and sd >= 0):
         raise FitError(f"noise must be finite and >= 0, got {sd * 1e9:g} nm")
     sd_t = _torque_sd(torque_noise)
