@@ -148,3 +148,16 @@ def test_per_molecule_offsets_and_seeds_still_work(dna):
     b = sc.simulate_rotation_curves(dna, 1.2 * u.pN, [-1, 4], seed=np.int64(3), noise=0 * u.nm)
     assert a.attrs["provenance"]["turns_offset"] == [1.0, 2.0]
     np.testing.assert_allclose(a["extension"][:2], b["extension"], rtol=1e-13)
+
+
+@pytest.mark.parametrize("model", ["li-zhao", "marko2007"])
+def test_valid_turns_range_checks_its_forces_like_every_dna_function(dna, model):
+    from supercoil.dna.fitting import valid_turns_range
+
+    assert valid_turns_range(dna, np.array([]) * u.pN, model=model).shape == (0,)
+    with pytest.raises(sc.NoEquilibriumError, match="force must be positive"):
+        valid_turns_range(dna, -1 * u.pN, model=model)  # main (marko2007): raw sqrt warning
+    with pytest.raises(ValueError, match="force must be finite"):
+        valid_turns_range(dna, np.nan * u.pN, model=model)
+    with pytest.raises(ValueError, match=r"force must be a scalar or 1-D"):
+        valid_turns_range(dna, np.ones((2, 2)) * u.pN, model=model)

@@ -30,19 +30,25 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     linking rate D; for other models from their buckling constants: ``N_b +
     z_b (1 - l_min / L) / |dz/dN|`` (the plectoneme phase taken as linear).
 
-    Returns a float array (turns), one per force.
+    Returns a float array (turns), one per force (empty for no force).
 
     Raises
     ------
     FitError
         For a model that does not buckle at a force (no finite range).
+    ValueError, NoEquilibriumError
+        Forces not finite, not 1-D, or not positive (as every DNA function).
     """
     from supercoil.core.dna.hat import hat_parameters
 
     thermal = check_flag(thermal, "thermal")
     si = check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
-    F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
+    if m.uses_interaction:
+        _v.check_interaction(inter, si)
+    F = _v.checked_forces(force)  # the shared DNA force check (finite, positive, 1-D)
+    if F.size == 0:
+        return np.empty(0)
     lmin = 4 * si.bending_persistence if min_tail is None else float(
         magnitude(min_tail, U.m, "min_tail"))
     if type(m) is LiZhao and inter.name == DEFAULT_INTERACTION:
