@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["broadcast_shape", "check_callable", "check_finite_output", "check_flag",
-           "check_material", "check_scale", "named", "profile_values"]
+           "check_material", "check_scale", "named", "profile_values", "scalar"]
 
 
 def named(exc, argument):
@@ -130,3 +130,12 @@ def profile_values(values, shape, name):
         raise ValueError(f"{name} returned an array of shape {a.shape}; it must return a "
                          f"scalar or one value per point of its argument (shape {shape})"
                          ) from None
+
+
+def scalar(mag, name):
+    """``mag`` (a magnitude from :func:`~supercoil.units.magnitude`) as a float; ValueError
+    naming ``name`` unless it is one number (``float()`` of an array raised numpy's
+    "only 0-dimensional arrays can be converted to Python scalars")."""
+    if np.ndim(mag) != 0:
+        raise ValueError(f"{name} must be a scalar, got an array of shape {np.shape(mag)}")
+    return float(mag)

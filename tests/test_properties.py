@@ -376,3 +376,223 @@ def test_fitting_functions_name_a_rod_passed_as_dna(which):
 def test_rough_helix_names_a_wrong_material(material):
     with pytest.raises(TypeError, match=r"rod must be a supercoil\.ElasticRod"):
         sc.rough_helix(material, 40)  # main: AttributeError on .si / DNASI
+
+
+# ---------------------------------------------------------------------------
+# issue 20: empty inputs, absurd molecules, and the fitting / design surface
+# ---------------------------------------------------------------------------
+
+#: the DNA functions of FUNCTIONS (every model and interaction) that take a force
+DNA_FORCE_FUNCTIONS = sorted(k for k, (_, args, _) in FUNCTIONS.items()
+                             if "force" in args and not k.startswith(("smooth", "twist", "geo")))
+
+
+@pytest.mark.parametrize("fname", DNA_FORCE_FUNCTIONS)
+def test_empty_forces_give_empty_results(fname):
+    """An empty force array: a result of no element (main: numpy reduction errors)."""
+    func, args, fixed = FUNCTIONS[fname]
+    kw = {a: np.array([0.5 * strat_bounds(a, args)]) * unit for a, (unit, _) in args.items()}
+    kw["force"] = np.array([]) * u.pN
+    if fname == "free_energy":  # li-zhao has none: the ModelError stays, empty or not
+        with pytest.raises(sc.ModelError, match="free energy"):
+            func(**fixed, **kw)
+        return
+    result = canon(func(**fixed, **kw))
+    parts = result if isinstance(result, tuple) else (result,)
+    for p in parts:
+        assert (len(p.df) if isinstance(p, Frame) else p.mag.size) == 0, (fname, p)
+
+
+@pytest.mark.parametrize("fname", sorted(k for k in FUNCTIONS if k.startswith(("hat", "free"))))
+def test_empty_turns_give_empty_tables(fname):
+    func, _, fixed = FUNCTIONS[fname]
+    if fname == "free_energy":
+        with pytest.raises(sc.ModelError, match="free energy"):
+            func(**fixed, force=[1.0] * u.pN, turns=np.array([]))
+        return
+    got = func(**fixed, force=[1.0] * u.pN, turns=np.array([]))
+    ref = func(**fixed, force=[1.0] * u.pN, turns=np.array([1.0]))
+    if isinstance(got, pd.DataFrame):
+        assert len(got) == 0 and list(got.columns) == list(ref.columns)
+        assert got.attrs["units"] == ref.attrs["units"]
+    else:
+        assert got.size == 0 and got.units == ref.units
+
+
+#: one call per public DNA function, model and interaction, on a molecule ``d``
+DNA_CALLS = {
+    "plectoneme_equilibrium": lambda d: sc.plectoneme_equilibrium(d, [0.5, 2] * u.pN),
+    "plectoneme_equilibrium screened": lambda d: sc.plectoneme_equilibrium(
+        d, [0.5, 2] * u.pN, interaction="screened"),
+    "effective_twist_rigidity": lambda d: sc.effective_twist_rigidity(d, [0.5, 2] * u.pN),
+    "extension_factor": lambda d: sc.extension_factor(d, [0.5, 2] * u.pN, 5 * u.pN * u.nm,
+                                                      500 * u.nm),
+    "simulate_rotation_curves": lambda d: sc.simulate_rotation_curves(
+        d, [0.5, 2] * u.pN, points_per_force=5, seed=1),
+}
+for _model in MODELS:
+    for _inter in (("hard-core", "screened") if _model != "marko2007" else ("hard-core",)):
+        _kw = {"model": _model, "interaction": _inter}
+        DNA_CALLS[f"hat_curve {_model} {_inter}"] = (
+            lambda d, kw=_kw: sc.hat_curve(d, [0.5, 2] * u.pN, [0, 10, 30], **kw))
+        DNA_CALLS[f"buckling_turns {_model} {_inter}"] = (
+            lambda d, kw=_kw: sc.buckling_turns(d, [0.5, 2] * u.pN, **kw))
+        DNA_CALLS[f"post_buckling_slope {_model} {_inter}"] = (
+            lambda d, kw=_kw: sc.post_buckling_slope(d, [0.5, 2] * u.pN, **kw))
+        if _model != "li-zhao":
+            DNA_CALLS[f"free_energy {_model} {_inter}"] = (
+                lambda d, kw=_kw: sc.free_energy(d, [0.5, 2] * u.pN, [0, 10], **kw))
+
+#: the molecule's fields and absurd (but finite, positive) magnitudes of them
+DNA_FIELDS = {"length": u.nm, "bending_persistence": u.nm, "twist_persistence": u.nm,
+              "radius": u.nm, "temperature": u.K, "salt": u.mM, "wlc_persistence": u.nm}
+MAGNITUDES = (1e-300, 1e-30, 1e-3, 1e3, 1e30, 1e300)
+
+
+def known_model_defect(field, value, call):
+    """Outcomes still wrong in modules outside issue 20's DNA-surface fixes (listed in the
+    round-3 note): the free-energy model's effective tension turns NaN (with raw sqrt
+    warnings) for A <= 1e-3 nm or t >= 1e30 K; marko2007 overflows (raw warning) at
+    C_t = 1e300 nm; at t = 1e300 K li-zhao warns raw and the Moroz-Nelson C_eff is NaN;
+    the simulation at L = 1e-300 nm or t = 1e300 K warns raw before its named error."""
+    if "free-energy" in call:
+        return (field == "bending_persistence" and value <= 1e-3) or (
+            field == "temperature" and value >= 1e30)
+    if "marko2007" in call:
+        return field == "twist_persistence" and value == 1e300
+    if call in ("hat_curve li-zhao hard-core", "buckling_turns li-zhao hard-core",
+                "effective_twist_rigidity"):
+        return field == "temperature" and value == 1e300
+    if call == "simulate_rotation_curves":
+        return (field, value) in (("length", 1e-300), ("temperature", 1e300))
+    return False
+
+
+SALTY_150 = sc.load_parameters("dna_150mM_nacl")
+ABSURD = [(f, v, c) for f in DNA_FIELDS for v in MAGNITUDES for c in DNA_CALLS
+          if not known_model_defect(f, v, c)]
+
+
+def check_absurd(field, value, call):
+    """A named error (the material's, or the function's) or a finite/flagged result."""
+    try:
+        d = SALTY_150.replace(**{field: value * DNA_FIELDS[field]})
+    except (TypeError, ValueError) as exc:  # the material refuses: it must name the field
+        assert field in str(exc) or isinstance(exc, SupercoilError), exc
+        return
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        try:
+            result = DNA_CALLS[call](d)
+        except (SupercoilError, TypeError, ValueError) as exc:
+            assert isinstance(exc, SupercoilError) or type(exc) in (TypeError, ValueError), exc
+            result = None
+        except Exception as exc:
+            pytest.fail(f"{call} with {field} = {value:g}: unnamed {type(exc).__name__}: {exc}")
+    raw = [str(w.message) for w in rec if not issubclass(w.category, sc.SupercoilWarning)]
+    assert not raw, f"{call} with {field} = {value:g}: raw warnings {raw}"
+    if result is not None:
+        flagged = any(issubclass(w.category, ValidityWarning) for w in rec)
+        assert finite_check(canon(result)) or flagged, f"{call}, {field} = {value:g}: silent"
+
+
+@settings(max_examples=25)  # ~0.2 s per example (the screened solvers)
+@given(st.sampled_from(ABSURD))
+def test_absurd_molecules_give_named_errors_or_finite_results(case):
+    """Every public DNA function, model and interaction on a molecule with one absurd field."""
+    check_absurd(*case)
+
+
+@pytest.mark.parametrize("field", sorted(DNA_FIELDS))
+@pytest.mark.parametrize("value", [1e-300, 1e300])
+def test_the_extreme_molecules_of_the_default_model(field, value):
+    """The exhaustive corner of the sweep above for the default model (cheap calls)."""
+    for call in ("hat_curve li-zhao hard-core", "buckling_turns li-zhao hard-core",
+                 "plectoneme_equilibrium", "hat_curve marko2007 hard-core"):
+        if not known_model_defect(field, value, call):
+            check_absurd(field, value, call)
+
+
+@pytest.mark.xfail(strict=True, reason="known model defects outside issue 20's DNA-surface "
+                                       "fixes (known_model_defect); strict: a fix shows here")
+@pytest.mark.parametrize("case", [
+    ("bending_persistence", 1e-3, "hat_curve free-energy hard-core"),
+    ("temperature", 1e300, "effective_twist_rigidity")])
+def test_the_known_model_defects_are_still_there(case):
+    field, value, call = case
+    assert known_model_defect(field, value, call)
+    check_absurd(field, value, call)
+
+
+#: the fitting, simulation and design surface: (call taking the bad value, unit, names)
+_DATA = sc.simulate_rotation_curves(DNA, [1.2] * u.pN, np.linspace(-20, 20, 11), seed=1)
+_MANY = sc.simulate_rotation_curves(DNA, [1.2] * u.pN, np.linspace(-20, 20, 11), molecules=2,
+                                    seed=1)
+SURFACE = {
+    "fit_hat_curves sigma": (lambda v: sc.fit_hat_curves(_DATA, DNA, sigma=v), u.nm, "sigma"),
+    "fit_many sigma": (lambda v: sc.fit_many(_MANY, DNA, sigma=v), u.nm, "sigma"),
+    "compare_models sigma": (lambda v: sc.compare_models(_DATA, DNA, ["marko2007"], sigma=v),
+                             u.nm, "sigma"),
+    "fit_many executor": (lambda v: sc.fit_many(_MANY, DNA, executor=v), None, "executor"),
+    "compare_models models": (lambda v: sc.compare_models(_DATA, DNA, v), None, "model"),
+    "simulate molecules": (lambda v: sc.simulate_rotation_curves(DNA, 1.2 * u.pN, [0, 5],
+                                                                 molecules=v), None,
+                           "molecules"),
+    "simulate seed": (lambda v: sc.simulate_rotation_curves(DNA, 1.2 * u.pN, [0, 5], seed=v),
+                      None, "seed"),
+    "simulate turns_offset": (lambda v: sc.simulate_rotation_curves(
+        DNA, 1.2 * u.pN, [0, 5], turns_offset=v), u.turn, "turns_offset"),
+    "simulate extension_offset": (lambda v: sc.simulate_rotation_curves(
+        DNA, 1.2 * u.pN, [0, 5], extension_offset=v), u.nm, "extension_offset"),
+    "simulate noise": (lambda v: sc.simulate_rotation_curves(DNA, 1.2 * u.pN, [0, 5],
+                                                             noise=v), u.nm, "noise"),
+    "simulate torque_noise": (lambda v: sc.simulate_rotation_curves(
+        DNA, 1.2 * u.pN, [0, 5], torque_noise=v), u.pN * u.nm, "torque_noise"),
+    "simulate points_per_force": (lambda v: sc.simulate_rotation_curves(
+        DNA, 1.2 * u.pN, points_per_force=v), None, "points_per_force"),
+    "simulate turns": (lambda v: sc.simulate_rotation_curves(DNA, 1.2 * u.pN, v), u.turn,
+                       "turns"),
+    "simulate force": (lambda v: sc.simulate_rotation_curves(DNA, v, [0, 5]), u.pN, "force"),
+    "design pitch": (lambda v: sc.design_twist_schedule(ROD, v, n_points=21), u.mm, "pitch"),
+    "design pitch(s)": (lambda v: sc.design_twist_schedule(ROD, lambda s: v, n_points=21),
+                        u.mm, "pitch"),
+    "design pitch_derivative(s)": (lambda v: sc.design_twist_schedule(
+        ROD, lambda s: 16 * u.mm, pitch_derivative=lambda s: v, n_points=21),
+        u.dimensionless, "pitch_derivative"),
+    "design slack_max": (lambda v: sc.design_twist_schedule(
+        ROD, lambda s: 16 * u.mm, slack_max=v, n_points=21), u.mm, "slack_max"),
+    "rough_helix twist_rate(slack)": (lambda v: sc.rough_helix(ROD, 40, twist_rate=lambda S: v),
+                                      1 / u.m, "twist_rate"),
+}
+SURFACE_BAD = dict(BAD, **{"wrong length": lambda unit: np.ones(5) * unit,
+                           "bool": lambda unit: True})
+#: a twist rate of 1e300 rad/m takes the rough solver 5-11 s to its named error (not fixed)
+SURFACE_SLOW = {("rough_helix twist_rate(slack)", "huge")}
+
+
+@pytest.mark.parametrize("kind", sorted(SURFACE_BAD))
+@pytest.mark.parametrize("name", sorted(SURFACE))
+def test_the_fitting_and_design_surface_names_its_bad_arguments(name, kind):
+    if (name, kind) in SURFACE_SLOW:
+        pytest.skip("a named error, after seconds (see SURFACE_SLOW)")
+    call, unit, word = SURFACE[name]
+    value = SURFACE_BAD[kind](u.dimensionless if unit is None else unit)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        try:
+            result = call(value)
+        except SupercoilError:
+            result = None
+        except (TypeError, ValueError) as exc:
+            assert word in str(exc), f"{name}={kind}: {type(exc).__name__} without {word}: {exc}"
+            result = None
+        except Exception as exc:
+            pytest.fail(f"{name}={kind}: unnamed {type(exc).__name__}: {exc}")
+    raw = [str(w.message) for w in rec if not issubclass(w.category, sc.SupercoilWarning)]
+    assert not raw, f"{name}={kind}: raw warnings {raw}"
+    if isinstance(result, pd.DataFrame) and "error" in result.columns:  # compare_models:
+        failed = result[~result["success"]]  # a failed fit is a row naming its error
+        assert all(word in e for e in failed["error"]), (name, kind, list(failed["error"]))
+    elif result is not None and not isinstance(result, sc.FitResult):
+        assert finite_check(canon(result)) or any(
+            issubclass(w.category, ValidityWarning) for w in rec), f"{name}={kind}: silent"

@@ -29,6 +29,7 @@ __all__ = [
     "check_dna",
     "check_finite_output",
     "check_hard_core_radius",
+    "check_interaction",
     "checked_forces",
     "checked_turns",
     "denaturation_messages",
@@ -286,6 +287,17 @@ def check_hard_core_radius(dna, radius=None):
                     "beyond; give a hard-core radius of the order of the DNA radius (~1 nm)")
 
 
+def check_interaction(interaction, dna):
+    """The interaction's own check, and the hard-core scale where it uses ``dna.radius``.
+
+    One check for every caller that hands a DNA to an interaction (the public
+    DNA functions, the fits, the simulation).
+    """
+    if interaction.values.get("hard_core_radius") is None:
+        check_hard_core_radius(dna)
+    interaction.check(dna)
+
+
 class StateRecorder:
     """Wraps an interaction and keeps the plectoneme states a model asked for.
 
@@ -302,10 +314,8 @@ class StateRecorder:
         return getattr(self.interaction, name)
 
     def check(self, dna):
-        """The interaction's own check; the hard-core scale where it uses ``dna.radius``."""
-        if self.interaction.values.get("hard_core_radius") is None:
-            check_hard_core_radius(dna)
-        self.interaction.check(dna)
+        """:func:`check_interaction` of the wrapped interaction."""
+        check_interaction(self.interaction, dna)
 
     def equilibrium(self, tension, dna):
         st = self.interaction.equilibrium(tension, dna)

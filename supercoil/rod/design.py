@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_callable, profile_values
+from supercoil._checks import check_callable, check_finite_output, profile_values, scalar
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import design as _dh
 from supercoil.rod.material import check_rod
@@ -108,12 +108,13 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     Raises
     ------
     SingularityError
-        If P(s) <= 2 pi r somewhere (alpha >= pi/4), or P is not positive/finite.
+        If P(s) <= 2 pi r somewhere (alpha >= pi/4), or P is not positive.
     ValueError
         slack_max outside (0, L); n_points < 10; a pitch_derivative value that
         is NaN or infinite (the message names the s); cos2a_min outside (0, 1);
         pitch(s) or pitch_derivative(s) returning neither a scalar nor one
-        value per s (the message names the shape expected).
+        value per s (the message names the shape expected); pitch(s) NaN or
+        infinite (names the s); slack_max not a scalar.
     TypeError
         n_points not an integer; pitch (or pitch_derivative) not callable.
 
@@ -134,8 +135,8 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
         raise ValueError(f"n_points must be >= 10 (grid of the schedule: Simpson quadrature "
                          f"of N(S), linear interpolation of k in rough_helix), got {n_points}")
     cos2a_min = _sc.check_cos2a_min(cos2a_min)
-    S_end = L * (1.0 - 1e-6) if slack_max is None else float(
-        magnitude(slack_max, U.m, "slack_max"))
+    S_end = L * (1.0 - 1e-6) if slack_max is None else scalar(
+        magnitude(slack_max, U.m, "slack_max"), "slack_max")
     if not 0 < S_end < L:
         raise ValueError(f"slack_max must lie in (0, L = {L:.6g} m), got {S_end:.6g} m")
     s_end = 0.5 * S_end
@@ -149,7 +150,12 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     def P_si(x):
         x = np.asarray(x, float)
         p = magnitude(pitch(quantity(x, U.m)), U.m, "pitch(s)")
-        return profile_values(p, x.shape, "pitch(s)").astype(float)
+        p = profile_values(p, x.shape, "pitch(s)").astype(float)
+        if not np.all(np.isfinite(p)):
+            i = int(np.flatnonzero(~np.isfinite(p))[0])
+            raise ValueError(f"pitch(s) must be finite, got {float(p[i])!r} at s = "
+                             f"{float(x.flat[i]) * 1e3:.9g} mm")
+        return p
 
     P = P_si(s)
     if pitch_derivative is None:
@@ -161,7 +167,10 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
             i = int(np.flatnonzero(~np.isfinite(dP))[0])
             raise ValueError(f"pitch_derivative(s) must be finite, got {float(dP[i])!r} at "
                              f"s = {s[i] * 1e3:.9g} mm")
-    out = _dh.schedule(s, P, dP, r, L, B, C, cos2a_min)
+    with np.errstate(over="ignore", under="ignore"):  # P^2 of a huge pitch: alpha' -> 0
+        out = _dh.schedule(s, P, dP, r, L, B, C, cos2a_min)
+    for key in ("turns", "tension", "twist_rate"):
+        check_finite_output(out[key], key, "the designed schedule")
     a = out["alpha"]
     warn_hard_contact(a, "designed helix, pitch down to "
                          f"{float(np.min(out['pitch'])) * 1e3:.6g} mm")

@@ -81,3 +81,12 @@ def test_geometry_scalars_overflow_into_a_named_error_not_a_python_one():
         sc.geometry.writhe(0.4 * u.rad, 1e-300 * u.mm, 1e300 * u.mm)
     with pytest.raises(ValidityError, match="superhelical_turns"):
         sc.geometry.superhelical_turns(0.4 * u.rad, 1e-300 * u.mm, 1e300 * u.mm)
+
+
+def test_the_simulation_and_the_fit_check_the_hard_core_scale_too(dna):
+    bad = dna.replace(radius=1e-300 * u.nm)
+    with pytest.raises(ValidityError, match=r"A/r0"):  # main: ZeroDivisionError
+        sc.simulate_rotation_curves(bad, 1 * u.pN)
+    data = sc.simulate_rotation_curves(dna, [1.2] * u.pN, np.linspace(-20, 20, 11), seed=1)
+    with pytest.raises(ValidityError, match=r"A/r0"):
+        sc.fit_hat_curves(data, bad)

@@ -51,3 +51,30 @@ def test_a_twist_rate_of_the_wrong_shape_is_named(rod):
                                          r"\(3,\); it must return a scalar or one value per "
                                          r"point"):
         sc.rough_helix(rod, 40, twist_rate=lambda S: np.ones(3) / u.m)
+
+
+def test_a_non_finite_pitch_names_the_arclength(rod):
+    with pytest.raises(ValueError, match=r"pitch\(s\) must be finite, got inf at s = 0 mm"):
+        sc.design_twist_schedule(rod, lambda s: np.inf * u.mm, n_points=21)  # main: raw warning
+
+
+def test_a_huge_pitch_is_the_straight_limit_without_raw_warnings(rod):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.SupercoilWarning)  # no friction coefficient etc.
+        t = sc.design_twist_schedule(rod, lambda s: 1e300 * u.mm, n_points=21)  # main: overflow
+    assert (t["alpha"] < 1e-290).all() and np.isfinite(t["turns"]).all()
+
+
+@pytest.mark.parametrize("call", ["slack_max", "noise", "torque_noise"])
+def test_scalar_arguments_given_as_arrays_are_named(rod, call):
+    dna = sc.load_parameters("dna")
+    run = {"slack_max": lambda: sc.design_twist_schedule(rod, lambda s: 16 * u.mm,
+                                                         slack_max=[1, 2] * u.mm),
+           "noise": lambda: sc.simulate_rotation_curves(dna, 1 * u.pN, [0, 1],
+                                                        noise=[1, 2] * u.nm),
+           "torque_noise": lambda: sc.simulate_rotation_curves(
+               dna, 1 * u.pN, [0, 1], torque_noise=[1, 2] * u.pN * u.nm)}[call]
+    with pytest.raises(ValueError, match=rf"{call} must be a scalar, got an array of shape"):
+        run()  # main: "only 0-dimensional arrays can be converted to Python scalars"

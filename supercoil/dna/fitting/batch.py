@@ -22,7 +22,14 @@ import numpy as np
 
 from supercoil._checks import check_material
 from supercoil.dna.fitting.data import RotationData
-from supercoil.dna.fitting.fit import DEFAULT_VARY, FitSpec, emit, prepare, run_fit
+from supercoil.dna.fitting.fit import (
+    DEFAULT_VARY,
+    FitSpec,
+    checked_sigma,
+    emit,
+    prepare,
+    run_fit,
+)
 from supercoil.dna.fitting.prepare import strip_molecule_keys
 from supercoil.dna.fitting.progress import Progress
 from supercoil.dna.interactions import DEFAULT_INTERACTION
@@ -207,6 +214,36 @@ def _chunk_sizes(n_molecules, executor):
     return sizes
 
 
+def _check_executor(executor):
+    """TypeError naming ``executor`` unless it is None or has a callable ``submit``."""
+    if executor is None or callable(getattr(executor, "submit", None)):
+        return
+    hint = (" (a name is not an executor: pass e.g. concurrent.futures.ProcessPoolExecutor())"
+            if isinstance(executor, str) else "")
+    raise TypeError("executor must be None, a concurrent.futures.Executor or a "
+                    "dask.distributed.Client (an object with submit(fn, *args)), got "
+                    f"{type(executor).__name__}{hint}")
+
+
+def _future(fut, pending):
+    """``fut`` if it is a new future with ``result()``; else TypeError naming the executor.
+
+    An executor whose ``submit`` returned None (or one object for two submits)
+    lost every task but one under a single key: a bare KeyError at the end.
+    """
+    if not callable(getattr(fut, "result", None)):
+        raise TypeError(f"executor.submit() returned {type(fut).__name__}, not a future "
+                        "with a result() method")
+    try:
+        seen = fut in pending
+    except TypeError:  # unhashable
+        raise TypeError(f"executor.submit() returned an unhashable {type(fut).__name__}; "
+                        "fit_many keys its tasks by future") from None
+    if seen:
+        raise TypeError("executor.submit() returned the same future for two tasks")
+    return fut
+
+
 def _collect(pending, executor, finished):
     """Results of the submitted fits as they complete (``finished(label, row, records)``).
 
@@ -250,7 +287,9 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         client chunks of up to 16, the settings once per worker (``scatter``)
         and the tasks with ``pure=False``; any other executor one molecule per
         ``submit``. Each chunk is submitted as soon as it is built; results
-        and progress are per molecule. None: serial.
+        and progress are per molecule. None: serial. Anything without a
+        ``submit``, or a ``submit`` not returning a new future with
+        ``result()``, is a TypeError naming the executor.
     progress : None, bool, "log" or callable
         None (default): a :mod:`tqdm.auto` bar on stderr when stderr is a
         terminal or a notebook's output, else silent; ``"log"``: also one line
@@ -278,10 +317,11 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         parameter names); failures of single fits are reported in the table.
     """
     check_material(dna, DNA, "dna")
+    _check_executor(executor)
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
     whole = RotationData.from_frame(data)
     if sigma is not None:
-        whole = whole.with_sigma(sigma)  # converted once; split with the rows
+        whole = whole.with_sigma(checked_sigma(sigma, whole))  # converted once; split by rows
     # validate the arguments once on the whole table as one molecule (names, units, vary):
     # the settings every worker gets (SI floats, no pint objects)
     template = prepare(None, dna, vary, fixed, bounds, start, None, fit_turns_offset,
@@ -313,9 +353,10 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         for k in _chunk_sizes(len(labels), executor) if executor is not None else ():
             chunk = [next(tasks) for _ in range(k)]  # submitted as soon as it is built
             if k == 1 and not args:
-                pending[executor.submit(_fit_worker, chunk[0], pid)] = chunk[0]
+                pending[_future(executor.submit(_fit_worker, chunk[0], pid), pending)] = chunk[0]
             else:
-                pending[executor.submit(_fit_chunk, chunk, pid, *args, **extra)] = chunk
+                fut = executor.submit(_fit_chunk, chunk, pid, *args, **extra)
+                pending[_future(fut, pending)] = chunk
         _collect(pending, executor, finished)
     finally:
         bar.close()

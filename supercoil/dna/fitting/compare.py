@@ -167,7 +167,7 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     The warnings of each fit, prefixed by the row label.
     """
     return_results = check_flag(return_results, "return_results")
-    models = list(models) if not isinstance(models, str) else [models]
+    models = _model_list(models)
     if not models:
         raise ValueError("compare_models needs at least one model")
     kw = dict(fixed=fixed, bounds=bounds, sigma=sigma, fit_turns_offset=fit_turns_offset,
@@ -201,6 +201,19 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
                       criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
     table = make_table(cols, all_units, prov)
     return (table, results) if return_results else table
+
+
+def _model_list(models):
+    """``models`` as a list: one name or model, or a sequence of them; TypeError otherwise."""
+    from supercoil.dna.models.base import DNAModel
+
+    if isinstance(models, str | DNAModel):
+        return [models]
+    try:
+        return list(models)
+    except TypeError:
+        raise TypeError("models must be a model name, a DNAModel or a sequence of them, got "
+                        f"{type(models).__name__}") from None
 
 
 def model_labels(models):

@@ -35,6 +35,7 @@ from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
+from supercoil.dna.validity import check_interaction
 from supercoil.exceptions import (
     BoundWarning,
     FitError,
@@ -70,6 +71,46 @@ class FitSpec:
     notes: list = dataclasses.field(default_factory=list)
 
 
+def checked_sigma(sigma, rot):
+    """``sigma`` if it is a scalar or one value per data row; else ValueError naming the shapes.
+
+    A sigma per force (or any other length) is not guessed: with as many rows
+    as forces it would be ambiguous. Map it onto the rows, e.g.
+    ``per_force[np.searchsorted(forces, data["force"])]``.
+    """
+    shape = np.shape(getattr(sigma, "magnitude", sigma))
+    if shape not in ((), (rot.n,)):
+        raise ValueError(f"sigma has shape {shape}; give a scalar or one value per data row "
+                         f"(shape ({rot.n},)); for one sigma per force, map it onto the rows "
+                         "(e.g. s[np.searchsorted(forces, data['force'])])")
+    return sigma
+
+
+#: smallest stated sigma, in contour lengths: weighted residuals |z - model| / sigma
+#: of at most L / sigma = 1e150, whose squares sum within the float range (~1.8e308)
+SIGMA_MIN_PER_LENGTH = 1e-150
+
+
+def check_sigma_scale(rot, length):
+    """FitError naming sigma if a stated standard error is outside ``[1e-150 L, L]``.
+
+    Above the contour length L (larger than any extension) the data would
+    determine nothing: the optimiser stopped at its start (measured: sigma =
+    1e7 nm for 0.7 um extensions). Below 1e-150 L the weights 1/sigma (1e-300
+    nm: inf) leave the float range ("cannot start the fit: None" on main).
+    """
+    if rot.weighting == "unit":
+        return
+    lo, hi = float(np.min(rot.sigma)), float(np.max(rot.sigma))
+    if not (lo >= SIGMA_MIN_PER_LENGTH * length and hi <= length):
+        bad, limit = (lo, f"below 1e-150 L = {SIGMA_MIN_PER_LENGTH * length * 1e9:.3g} nm"
+                      ) if lo < SIGMA_MIN_PER_LENGTH * length else (
+                          hi, f"above the contour length L = {length * 1e9:.6g} nm")
+        raise FitError(f"sigma ({rot.weighting}) of {bad * 1e9:.6g} nm is {limit}: the "
+                       "standard error of an extension lies in [1e-150 L, L] (its weights "
+                       "1/sigma leave the float range below; the data determine nothing above)")
+
+
 def resolve_model(model, interaction):
     """``(model, interaction)`` instances; ModelError for an interaction the model cannot take."""
     m = get_model(model)
@@ -96,12 +137,15 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
-    inter.check(dna.si)
+    if m.uses_interaction:
+        check_interaction(inter, dna.si)  # with the hard-core scale A/r0
+    else:
+        inter.check(dna.si)
     own_params = params is not None
     if rotation is None:
-        rot = RotationData.from_frame(data, sigma=sigma)
-    else:
-        rot = rotation if sigma is None else rotation.with_sigma(sigma)
+        rotation = RotationData.from_frame(data)
+    rot = rotation if sigma is None else rotation.with_sigma(checked_sigma(sigma, rotation))
+    check_sigma_scale(rot, dna.si.length)
     if params is None:
         params, si, m, inter = build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
                                                 fit_turns_offset, fit_extension_offset)
@@ -377,8 +421,10 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         Start values overriding ``dna`` and the offset guesses (turns: centre
         of symmetry of the curves; extension: median difference to the model).
     sigma : Quantity [length], optional
-        Standard error of the extensions (scalar or per point; overrides a
-        ``sigma`` column). Without either: unit weights, errors scaled by the noise.
+        Standard error of the extensions: a scalar, or one value per data row
+        (overrides a ``sigma`` column); in ``[1e-150 L, L]``. Any other shape
+        (e.g. one per force) is a ValueError naming the accepted shapes.
+        Without either: unit weights, errors scaled by the noise.
     fit_turns_offset, fit_extension_offset : bool
         Fit the per-molecule offsets (default); off: held at 0 or at ``fixed``.
     thermal : bool
@@ -405,7 +451,10 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         The table is malformed (names the row and column).
     FitError
         Unknown or conflicting names, bad bounds, a start value outside its
-        bounds, the model failing at the start, or no convergence.
+        bounds, the model failing at the start, or no convergence; a stated
+        sigma outside ``[1e-150 L, L]``.
+    ValueError
+        ``sigma`` neither a scalar nor one value per data row.
     ModelError
         Unknown model or interaction; an interaction for a model without one.
 

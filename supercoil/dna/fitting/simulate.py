@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag, check_material
+from supercoil._checks import check_flag, check_material, scalar
+from supercoil.dna import validity as _v
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
 from supercoil.dna.material import DNA
@@ -29,19 +30,25 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     linking rate D; for other models from their buckling constants: ``N_b +
     z_b (1 - l_min / L) / |dz/dN|`` (the plectoneme phase taken as linear).
 
-    Returns a float array (turns), one per force.
+    Returns a float array (turns), one per force (empty for no force).
 
     Raises
     ------
     FitError
         For a model that does not buckle at a force (no finite range).
+    ValueError, NoEquilibriumError
+        Forces not finite, not 1-D, or not positive (as every DNA function).
     """
     from supercoil.core.dna.hat import hat_parameters
 
     thermal = check_flag(thermal, "thermal")
     si = check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
-    F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
+    if m.uses_interaction:
+        _v.check_interaction(inter, si)
+    F = _v.checked_forces(force)  # the shared DNA force check (finite, positive, 1-D)
+    if F.size == 0:
+        return np.empty(0)
     lmin = 4 * si.bending_persistence if min_tail is None else float(
         magnitude(min_tail, U.m, "min_tail"))
     if type(m) is LiZhao and inter.name == DEFAULT_INTERACTION:
@@ -59,19 +66,79 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
 
 
 def _labels(molecules):
+    """``(labels, has_molecule_column)``; TypeError/ValueError naming ``molecules``."""
     if molecules is None:
         return ["m1"], False
-    if isinstance(molecules, int):
-        return [f"m{i + 1}" for i in range(molecules)], True
-    return [str(m) for m in molecules], True
+    if isinstance(molecules, bool) or isinstance(molecules, float | str | bytes):
+        raise TypeError(f"molecules must be a positive integer or a sequence of labels, got "
+                        f"{molecules!r}")
+    if isinstance(molecules, int | np.integer):
+        if molecules < 1:
+            raise ValueError(f"molecules must be at least 1 (the number of molecules), got "
+                             f"{molecules}")
+        return [f"m{i + 1}" for i in range(int(molecules))], True
+    try:
+        labels = [str(m) for m in molecules]
+    except TypeError:
+        raise TypeError("molecules must be a positive integer or a sequence of labels, got "
+                        f"{type(molecules).__name__}") from None
+    if not labels:
+        raise ValueError("molecules is empty: give at least one label (or a count)")
+    if len(set(labels)) != len(labels):
+        dup = next(x for x in labels if labels.count(x) > 1)
+        raise ValueError(f"molecules repeats the label {dup!r}: the molecules' rows would "
+                         "merge; give distinct labels")
+    return labels, True
+
+
+def _per_molecule(values, n, name):
+    """One finite value, or one per molecule, as an (n,) array; ValueError naming ``name``."""
+    a = np.asarray(values, dtype=float)
+    if a.shape not in ((), (1,), (n,)):
+        raise ValueError(f"{name} has shape {a.shape}; give one value, or one per molecule "
+                         f"(shape ({n},) for {n} molecule{'s' if n > 1 else ''})")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite, got {values!r}")
+    return np.broadcast_to(a, (n,))
 
 
 def _offsets(turns_offset, extension_offset, n):
-    n0 = np.broadcast_to(np.asarray(as_turns(turns_offset, "turns_offset"), dtype=float), (n,))
-    z0 = np.broadcast_to(np.asarray(magnitude(
-        extension_offset if extension_offset is not None else 0 * U.nm, U.m,
-        "extension_offset"), dtype=float), (n,))
+    n0 = _per_molecule(as_turns(turns_offset, "turns_offset"), n, "turns_offset")
+    z0 = _per_molecule(magnitude(extension_offset if extension_offset is not None
+                                 else 0 * U.nm, U.m, "extension_offset"), n,
+                       "extension_offset")
     return n0, z0
+
+
+def _rng(seed):
+    """A numpy Generator from ``seed``; TypeError/ValueError naming ``seed``."""
+    if isinstance(seed, np.random.Generator):
+        return seed
+    if seed is None or isinstance(seed, np.random.SeedSequence):
+        return np.random.default_rng(seed)
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
+        raise TypeError(f"seed must be None, a non-negative integer or a "
+                        f"numpy.random.Generator, got {type(seed).__name__} {seed!r}")
+    if seed < 0:
+        raise ValueError(f"seed must be a non-negative integer, got {seed}")
+    return np.random.default_rng(int(seed))
+
+
+def _forces(force):
+    """Checked forces (N, 1-D, finite, positive: the shared DNA check); not empty."""
+    F = _v.checked_forces(force)
+    if F.size == 0:
+        raise ValueError("force is empty: give at least one force (one rotation curve per "
+                         "force)")
+    return F
+
+
+def _points_per_force(n):
+    if isinstance(n, bool) or not isinstance(n, int | np.integer):
+        raise TypeError(f"points_per_force must be an integer >= 2, got {n!r}")
+    if n < 2:
+        raise ValueError(f"points_per_force must be >= 2 (a curve from -N to +N), got {n}")
+    return int(n)
 
 
 #: units of the simulated extension column and their factor from metres
@@ -82,7 +149,7 @@ def _torque_sd(torque_noise):
     """The torque noise (N m) or None; FitError unless finite and >= 0."""
     if torque_noise is None:
         return None
-    sd_t = float(magnitude(torque_noise, U.N * U.m, "torque_noise"))
+    sd_t = scalar(magnitude(torque_noise, U.N * U.m, "torque_noise"), "torque_noise")
     if not (np.isfinite(sd_t) and sd_t >= 0):
         raise FitError(f"torque_noise must be finite and >= 0, got {sd_t * 1e21:g} pN nm")
     return sd_t
@@ -121,8 +188,8 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     molecules : int or sequence of str, optional
         Number (labels ``m1``, ``m2``, ...) or labels of molecules; with it the
         table has a ``molecule`` column.
-    seed : int or numpy.random.Generator, optional
-        Random seed (reproducible data).
+    seed : int, numpy.random.SeedSequence or numpy.random.Generator, optional
+        Random seed (a non-negative integer; reproducible data).
     thermal : bool
         Thermal (default) or athermal hat curve.
     extension_unit : str
@@ -136,6 +203,19 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         With it the table has a ``torque [pN nm]`` column: the model torque
         (sign of the turns) plus Gaussian noise of this standard deviation
         (drawn after the extension noise of each molecule).
+
+    Raises
+    ------
+    TypeError
+        ``molecules``, ``seed`` or ``points_per_force`` of the wrong type.
+    ValueError
+        ``force`` or ``turns`` empty, not finite, not 1-D (a force <= 0 is a
+        NoEquilibriumError); ``molecules`` < 1, empty or with repeated labels;
+        ``turns_offset`` / ``extension_offset`` neither one value nor one per
+        molecule; a negative ``seed``; ``points_per_force`` < 2.
+    FitError
+        ``noise``, ``torque_noise`` negative or not finite; an unknown
+        ``extension_unit``.
 
     Returns
     -------
@@ -151,9 +231,11 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
                        f"{extension_unit!r}")
     m, inter = resolve_model(model, interaction)
-    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
-    F = np.atleast_1d(np.asarray(magnitude(force, U.N, "force"), dtype=float))
-    sd = 5e-9 if noise is None else float(magnitude(noise, U.m, "noise"))
+    if m.uses_interaction:
+        _v.check_interaction(inter, dna.si)  # the scales the public DNA functions check
+    rng = _rng(seed)
+    F = _forces(force)
+    sd = 5e-9 if noise is None else scalar(magnitude(noise, U.m, "noise"), "noise")
     if not (np.isfinite(sd) and sd >= 0):
         raise FitError(f"noise must be finite and >= 0, got {sd * 1e9:g} nm")
     sd_t = _torque_sd(torque_noise)
@@ -162,9 +244,12 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     if turns is None:
         nmax = valid_turns_range(dna, quantity(F, U.N), thermal=thermal, model=m,
                                  interaction=interaction)
-        grids = [np.linspace(-x, x, points_per_force) for x in nmax]
+        grids = [np.linspace(-x, x, _points_per_force(points_per_force)) for x in nmax]
     else:
-        grids = [np.asarray(as_turns(turns, "turns"), dtype=float)] * len(F)
+        n = _v.checked_turns(turns, dna.si)  # the shared DNA turns check
+        if n.size == 0:
+            raise ValueError("turns is empty: give at least one number of turns")
+        grids = [n] * len(F)
     factor = _EXTENSION_FACTORS[extension_unit]
     N = np.concatenate(grids)
     FF = np.concatenate([np.full(len(g), f) for g, f in zip(grids, F, strict=True)])
