@@ -244,6 +244,7 @@ def test_a_jump_of_the_branch_is_named_and_roots_beside_it_are_found():
         assert len(calls) < 60
 
 
+@pytest.mark.filterwarnings("ignore::supercoil.exceptions.ValidityWarning")
 def test_the_screened_jump_to_contact_is_named_for_fully_coiled_turns():
     """10 mM NaCl (screened, strands snap into contact at ~5 pN): 300 turns at 1.2 pN
     fully coil past the jump of the branch; 200 turns fully coil below it."""

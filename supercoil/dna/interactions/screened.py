@@ -34,13 +34,17 @@ from supercoil.core.dna import screened as _sc
 from supercoil.core.dna.plectoneme import PlectonemeState
 from supercoil.dna.interactions.base import Interaction
 from supercoil.dna.parameters import ModelParameter
-from supercoil.exceptions import ParameterError
+from supercoil.exceptions import ParameterError, ValidityWarning
 from supercoil.units import U, quantity
 
 __all__ = ["Screened"]
 
 #: outer end of the tabulated branch, in hard-core radii (1 um for a = 1 nm)
 _R_MAX_FACTOR = 1000.0
+#: validity of Stigter's far-field charge: the strands' surface gap 2 (R - a) must be at
+#: least this many Debye lengths; below it (and in contact, gap 0) ValidityWarning
+#: (docs/theory/screened-interaction.md#validity)
+MIN_GAP_DEBYE_LENGTHS = 1.0
 
 
 def _si(dna):
@@ -82,6 +86,31 @@ def _branch(B, kT, lam, prefactor, conf, radius):
 def _contact(B, kT, lam, prefactor, conf, radius):
     partials = _partials_function(B, kT, lam, prefactor, conf)
     return _ct.contact_table(B, partials, radius)
+
+
+#: tension (N) above which the gap is below the limit, per buffer and interaction
+_ONSETS: dict = {}
+
+
+def _onset(gap_at, limit, lo, hi):
+    """The tension (N) in ``[lo, hi]`` where the gap falls below ``limit`` (bisection).
+
+    The equilibrium radius falls as the tension rises (also across the jump to
+    contact), so the gap is monotone; 3 significant digits are enough for the message.
+    """
+    if lo <= 0.0:
+        lo = hi * 1e-3
+        while lo > 1e-16 and gap_at(lo) < limit:
+            lo *= 1e-3
+    for _ in range(60):
+        if hi - lo <= 1e-4 * hi:
+            break
+        mid = 0.5 * (lo + hi)
+        if gap_at(mid) < limit:
+            hi = mid
+        else:
+            lo = mid
+    return hi
 
 
 class Screened(Interaction):
@@ -223,8 +252,44 @@ class Screened(Interaction):
         branch, contact = self.branch(si), self.contact_branch(si)
         force = np.asarray(tension, dtype=float)
         # blocks of 1024 forces: the solver's temporaries (~8 kB per force) stay bounded
-        return in_blocks(lambda f: self._state(f, si, partials, branch, contact), force, 1024,
-                         keep="force")
+        state = in_blocks(lambda f: self._state(f, si, partials, branch, contact), force, 1024,
+                          keep="force")
+        self._warn_validity(state, si, lam, partials, branch, contact)
+        return state
+
+    def _warn_validity(self, state, si, lam, partials, branch, contact):
+        """ValidityWarning where the strands' surface gap is below one Debye length.
+
+        The message names the salt, the Debye length and the tension above which the
+        equilibrium's gap ``2 (R - a)`` is below :data:`MIN_GAP_DEBYE_LENGTHS` Debye
+        lengths (the same text for every call on one buffer, so it is shown once).
+        """
+        a = self.values["hard_core_radius"]
+        limit = MIN_GAP_DEBYE_LENGTHS * lam
+        gap = 2.0 * (np.asarray(state.radius, float) - a)
+        outside = gap < limit * (1.0 - 1e-9)
+        if not np.any(outside):
+            return
+        key = (si.bending_rigidity, si.kT, lam, self.values["confinement"], a,
+               self.values["hard_contact"], self.values["charge_fraction"])
+        onset = _ONSETS.get(key)
+        if onset is None:  # once per buffer and interaction: the text is the same each call
+            lowest = float(np.min(np.asarray(state.force, float)[outside]))
+
+            def gap_at(t):
+                R = self._state(np.array([t]), si, partials, branch, contact).radius[0]
+                return 2.0 * (R - a)
+
+            onset = _ONSETS[key] = _onset(gap_at, limit, 0.0, lowest)
+        import warnings
+
+        warnings.warn(
+            f"screened interaction outside its validity at {si.salt:g} mM: above "
+            f"{onset * 1e12:.3g} pN tension the strands' surface gap 2(R - a) is below "
+            f"{MIN_GAP_DEBYE_LENGTHS:g} Debye length ({lam * 1e9:.3g} nm; 0 in contact), "
+            "where Stigter's far-field charge does not give the near-field repulsion: the "
+            "radius, torque and slope there are qualitative (the screened-interaction "
+            "theory page, 'Validity of the far-field charge')", ValidityWarning, stacklevel=3)
 
     @staticmethod
     def _state(force, si, partials, branch, contact):
