@@ -61,7 +61,8 @@ def add_parser(sub):
     p.add_argument("--reference", nargs="+", default=None, metavar="BEAD",
                    help="reference bead(s) (default: those the file marks, e.g. CALISTO R<i>)")
     p.add_argument("--calibration", default=None, metavar="FILE",
-                   help="CSV 'height [mm], force [pN]': magnet height -> force")
+                   help="CSV 'height [mm], force [pN]', or MagScope's force_calibrant.txt "
+                   "(position [mm], force [pN]): magnet height -> force")
     p.add_argument("--motor", default=None, metavar="FILE",
                    help="CALISTO text: the motor file (frame, time, position, rotation)")
     p.add_argument("--rotation-log", default="ZaberNmsMotor.txt",
@@ -116,14 +117,14 @@ def run(args) -> int:
     from pathlib import Path
 
     from .. import traces
-    from ..tables import read_csv, write_csv
+    from ..tables import write_csv
 
     out = Path(args.out)
     settle = args.settle if not isinstance(args.settle, str) else _time(args.settle)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         trace = _read(args)
-        calibration = read_csv(args.calibration) if args.calibration else None
+        calibration = traces.read_calibration(args.calibration) if args.calibration else None
         plateaus = traces.find_plateaus(trace, settle)
         curves = traces.rotation_curves(trace, settle, calibration=calibration,
                                         errors=args.errors)

@@ -19,7 +19,7 @@ HDF5 needs h5py: ``pip install 'supercoil[hdf5]'``.
 
 from .calisto import read_calisto
 from .errors import BlockingResult, blocking_error
-from .magscope import read_magscope, read_motor_log
+from .magscope import read_calibration, read_force_calibrant, read_magscope, read_motor_log
 from .mtdat import read_mtdat, read_mtdat_records
 from .plateaus import find_plateaus, force_from_height, rotation_curves
 from .plot import plot_plateaus
@@ -41,7 +41,9 @@ __all__ = [
     "find_plateaus",
     "force_from_height",
     "plot_plateaus",
+    "read_calibration",
     "read_calisto",
+    "read_force_calibrant",
     "read_magscope",
     "read_motor_log",
     "read_mtdat",
