@@ -10,8 +10,8 @@ logs ``ZaberNmsMotor.txt``/``ZaberLsqMotor.txt`` beside it) or a CALISTO
 recording (HDF5, or the headerless text bead file with ``--motor FILE``);
 ``--format`` picks the reader when the guess (MagScope for a folder or an HDF5
 file with a ``/tracking`` group, else CALISTO) is wrong. ``--calibration``
-is a CSV with columns ``height [mm]`` and ``force [pN]`` (magnet height ->
-force; there is no default calibration). The command writes
+is a CSV with columns ``height [mm]`` and ``force [pN]``, or MagScope's
+``force_calibrant.txt`` (magnet height -> force; there is no default calibration). The command writes
 
 * ``DIR/rotation_curves.csv``: ``molecule, force [pN], turns, extension [nm],
   sigma [nm]``, the table :func:`supercoil.read_tweezers_csv` reads and
