@@ -10,8 +10,9 @@ logs ``ZaberNmsMotor.txt``/``ZaberLsqMotor.txt`` beside it) or a CALISTO
 recording (HDF5, or the headerless text bead file with ``--motor FILE``);
 ``--format`` picks the reader when the guess (MagScope for a folder or an HDF5
 file with a ``/tracking`` group, else CALISTO) is wrong. ``--calibration``
-is a CSV with columns ``height [mm]`` and ``force [pN]`` (magnet height ->
-force; there is no default calibration). The command writes
+is a CSV with columns ``height [mm]`` and ``force [pN]``, or MagScope's
+``force_calibrant.txt`` (magnet height -> force; there is no default calibration).
+The command writes
 
 * ``DIR/rotation_curves.csv``: ``molecule, force [pN], turns, extension [nm],
   sigma [nm]``, the table :func:`supercoil.read_tweezers_csv` reads and
@@ -67,7 +68,8 @@ def add_parser(sub):
     p.add_argument("--reference", nargs="+", default=None, metavar="BEAD",
                    help="reference bead(s) (default: those the file marks, e.g. CALISTO R<i>)")
     p.add_argument("--calibration", default=None, metavar="FILE",
-                   help="CSV 'height [mm], force [pN]': magnet height -> force")
+                   help="CSV 'height [mm], force [pN]', or MagScope's force_calibrant.txt "
+                   "(position [mm], force [pN]): magnet height -> force")
     p.add_argument("--motor", default=None, metavar="FILE",
                    help="CALISTO text: the motor file (frame, time, position, rotation)")
     p.add_argument("--rotation-log", default="ZaberNmsMotor.txt",
@@ -122,13 +124,13 @@ def _read(args):
 
 def _calibration(path):
     """The ``--calibration`` table (None without one); its errors name the flag."""
+    from .. import traces
     from ..exceptions import DataError, SupercoilError
-    from ..tables import read_csv
 
     if path is None:
         return None
-    try:
-        return read_csv(path)
+    try:  # a CSV table or MagScope's own force_calibrant.txt
+        return traces.read_calibration(path)
     except SupercoilError as exc:
         raise DataError(str(exc), argument="calibration") from exc
 

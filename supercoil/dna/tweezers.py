@@ -128,10 +128,7 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
     units = df.attrs.get("units")
     hline = df.attrs.get("header_line")
     header = f"{source}, line {hline} (header)" if hline else f"{source}, header"
-    if lines is not None and is_line_runs(lines):
-        lines = expand_line_runs(lines)
-    if lines is not None and len(lines) != len(df):
-        lines = None
+    lines = _row_lines(lines, len(df))
     if units is None:
         raise DataError(f"{source}: the table has no attrs['units'] (the unit of every column)")
     for col in REQUIRED_COLUMNS:
@@ -171,6 +168,14 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
             raise DataError(f"{source}, {row_name(i)}, column 'molecule': missing label")
     out.attrs = dict(df.attrs)
     return out
+
+
+def _row_lines(lines, n_rows):
+    """The file line of every row (runs of ``attrs["lines"]`` expanded), or None if they do
+    not match the ``n_rows`` rows."""
+    if lines is not None and is_line_runs(lines):
+        lines = expand_line_runs(lines)
+    return lines if lines is not None and len(lines) == n_rows else None
 
 
 def _checked_values(raw, col, is_float, where):

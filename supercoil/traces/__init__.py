@@ -7,20 +7,20 @@ directly. Method: docs/theory/recordings.md.
 
 * :func:`read_magscope`: MagScope ``Tracking Data <timestamp>.h5`` plus motor logs;
 * :func:`read_calisto`: CALISTO HDF5, or headerless whitespace text;
+* :func:`read_mtdat`: MultiMT ``.mtdat`` (YAML header, binary records;
+  github.com/ddunlap91/MagTweezer);
 * :func:`find_plateaus`, :func:`rotation_curves`, :func:`force_from_height`;
 * :func:`blocking_error`: error of the mean of correlated frames
   (Flyvbjerg & Petersen, J. Chem. Phys. 91, 461 (1989));
 * :func:`write_synthetic_magscope`, :func:`write_synthetic_calisto`: sample data.
-
-The MultiMT/MagTweezer ``.mtdat`` format is not read: no public specification
-of it was found.
 
 HDF5 needs h5py: ``pip install 'supercoil[hdf5]'``.
 """
 
 from .calisto import read_calisto
 from .errors import BlockingResult, blocking_error
-from .magscope import read_magscope, read_motor_log
+from .magscope import read_calibration, read_force_calibrant, read_magscope, read_motor_log
+from .mtdat import read_mtdat, read_mtdat_records
 from .plateaus import find_plateaus, force_from_height, rotation_curves
 from .plot import plot_plateaus
 from .synthetic import (
@@ -41,9 +41,13 @@ __all__ = [
     "find_plateaus",
     "force_from_height",
     "plot_plateaus",
+    "read_calibration",
     "read_calisto",
+    "read_force_calibrant",
     "read_magscope",
     "read_motor_log",
+    "read_mtdat",
+    "read_mtdat_records",
     "rotation_curves",
     "simulate_recording",
     "synthetic_calibration",

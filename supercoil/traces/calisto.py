@@ -16,8 +16,17 @@ bead, ``M<id>`` (magnetic), ``R<id>`` (reference) or a bare integer ``<id>``
 Text (``.txt``): whitespace-separated, no header. Bead file: column 0 frame
 index (ignored), 1 time, then x, y, z of bead 0, of bead 1, ...; motor file:
 0 frame index, 1 time, 2 magnet position, 3 magnet rotation (turns). The token
-``-1.#IND000`` is NaN (CALISTO interpolates it; here such a record is dropped
-and counted, with a warning).
+``-1.#IND000`` (MSVC's printout of NaN: a lost bead) is NaN, and CALISTO fills
+it by linear interpolation along every column (``pandas.DataFrame.interpolate
+(method="linear", limit_direction="both")`` in ``load_bead_datafile`` of
+``src/CALISTO/engines/landing_engine.py``); so does this reader, with a
+DataWarning counting the values and naming the first file line. A column
+without any number (a bead never tracked) is not filled (CALISTO writes 0
+there): the bead is dropped with a DataWarning. Errors name the file line.
+
+Format: the file's first bytes decide, not its suffix: the HDF5 signature is
+read as CALISTO HDF5 whatever the name (``.hdf`` too); HDF4, LabVIEW TDMS and
+other binary files are a DataError saying the format is not supported.
 
 Units: CALISTO multiplies every quantity by per-setup factors
 (``bead_time_to_seconds``, ``bead_xy_position_to_nanometers``,
@@ -32,12 +41,13 @@ frames outside the motor record are dropped, with a warning).
 from __future__ import annotations
 
 import io
+import warnings
 
 import numpy as np
 import pandas as pd
 
-from .._csvfile import check_path, read_text
-from ..exceptions import DataError
+from .._csvfile import check_path, open_input, read_text
+from ..exceptions import DataError, DataWarning
 from ..units import ureg
 from .trace import build_trace, check_increasing, open_hdf5
 
@@ -54,8 +64,8 @@ def _factor(unit, target, name):
                          ) from None
 
 
-def _interp(t_log, v, t, where):
-    check_increasing(t_log, where, "motor time")
+def _interp(t_log, v, t, where, lines=None):
+    check_increasing(t_log, where, "motor time", lines)
     out = np.interp(t, t_log, v)
     out[(t < t_log[0]) | (t > t_log[-1])] = np.nan
     return out
@@ -87,7 +97,51 @@ def _read_text(path, min_cols, what):
                                    & df[j].notna())[0])
             raise DataError(f"{path}, line {lines[i]}, column {j}: non-numeric value "
                             f"{df[j].iloc[i]!r}; expected a number or -1.#IND000")
-    return df.to_numpy(dtype=float), lines
+    return _fill_gaps(df.to_numpy(dtype=float), lines, path), lines
+
+
+def _fill_gaps(data, lines, path):
+    """NaN (``-1.#IND000``) filled linearly along each column, as CALISTO does; DataWarning."""
+    nan = np.isnan(data)
+    if not nan.any():
+        return data
+    idx = np.arange(data.shape[0])
+    filled = 0
+    for j in np.flatnonzero(nan.any(axis=0)):
+        ok = ~nan[:, j]
+        if ok.any():  # a column without any number stays NaN (the bead is dropped)
+            data[~ok, j] = np.interp(idx[~ok], idx[ok], data[ok, j])
+            filled += int((~ok).sum())
+    if filled:
+        first = lines[int(np.flatnonzero(nan.any(axis=1))[0])]
+        warnings.warn(f"{path}: {filled} value(s) -1.#IND000 (NaN) in "
+                      f"{int(nan.any(axis=1).sum())} line(s), the first at line {first}: "
+                      "interpolated linearly from the neighbouring lines, as CALISTO does",
+                      DataWarning, stacklevel=5)
+    return data
+
+
+_HDF5 = b"\x89HDF\r\n\x1a\n"
+_NOT_SUPPORTED = {b"\x0e\x03\x13\x01": "HDF4", b"TDSm": "LabVIEW TDMS"}
+
+
+def _sniff(path):
+    """'hdf5' or 'text' from the file's first bytes; DataError for a binary format."""
+    path, fh = open_input(path, "CALISTO recording")
+    with fh:
+        head = fh.read(4096)
+    if head.startswith(_HDF5):
+        return "hdf5"
+    for magic, name in _NOT_SUPPORTED.items():
+        if head.startswith(magic):
+            raise DataError(f"{path}: a {name} file; this format is not supported (CALISTO "
+                            "recordings are HDF5 or whitespace text: export to one of them)")
+    if path.suffix.lower() in (".h5", ".hdf5", ".hdf", ".he5", ".tdms", ".tdms_index") \
+            or b"\0" in head:
+        raise DataError(f"{path}: not an HDF5 file nor text (binary, first bytes "
+                        f"{head[:8]!r}); this format is not supported: CALISTO recordings "
+                        "are HDF5 or whitespace-separated text")
+    return "text"
 
 
 def _calisto_text(path, motor_path, f_t, f_xy, f_z, f_mag, f_mt):
@@ -99,13 +153,13 @@ def _calisto_text(path, motor_path, f_t, f_xy, f_z, f_mag, f_mt):
         raise DataError(f"{path}, line {lines[0]}: {data.shape[1]} columns; expected "
                         "frame, time, then x, y, z per bead (2 + 3 n columns)")
     t = data[:, 1] * f_t
-    check_increasing(t, f"{path}, column 1", "frame time")
+    check_increasing(t, f"{path}, column 1", "frame time", lines)
     xyz = data[:, 2:].reshape(len(t), -1, 3) * np.array([f_xy, f_xy, f_z])
-    motor, _ = _read_text(motor_path, 4, "motor")
+    motor, mlines = _read_text(motor_path, 4, "motor")
     tm = motor[:, 1] * f_mt
     where = f"{motor_path}, column 1"
-    height = _interp(tm, motor[:, 2] * f_mag, t, where)
-    turns = _interp(tm, motor[:, 3], t, where)
+    height = _interp(tm, motor[:, 2] * f_mag, t, where, mlines)
+    turns = _interp(tm, motor[:, 3], t, where, mlines)
     beads = [str(i) for i in range(xyz.shape[1])]
     return t, beads, xyz, turns, height, []
 
@@ -113,8 +167,11 @@ def _calisto_text(path, motor_path, f_t, f_xy, f_z, f_mag, f_mt):
 def _calisto_hdf5(path, f_t, f_xy, f_z, f_mag, f_mt):
     with open_hdf5(path, "CALISTO recording") as fh:
         if "timestamp" not in fh:
+            hint = " (a MagScope tracking file: read it with read_magscope)" \
+                if "tracking" in fh else ""
             raise DataError(f"{path}: no dataset '/timestamp' (the frame times); expected "
-                            "/timestamp, /stage/{t_s, mag_pos_mm, mag_rot_turn}, /M<i>, /R<i>")
+                            "/timestamp, /stage/{t_s, mag_pos_mm, mag_rot_turn}, /M<i>, /R<i>"
+                            + hint)
         if "stage" not in fh:
             raise DataError(f"{path}: no group '/stage'; expected /stage/t_s, "
                             "/stage/mag_pos_mm and /stage/mag_rot_turn")
@@ -166,8 +223,9 @@ def read_calisto(path, motor_path=None, *, time_unit="s", xy_unit="nm", z_unit="
     Parameters
     ----------
     path : str or Path
-        ``.h5``/``.hdf5``: the single-file recording; anything else: the
-        whitespace-separated bead trace file.
+        An HDF5 file (found by its signature, whatever the suffix): the
+        single-file recording; a text file: the whitespace-separated bead
+        trace file. Other binary formats (HDF4, TDMS) are a DataError.
     motor_path : str or Path, optional
         The motor file of a text recording (required there).
     time_unit, xy_unit, z_unit, magnet_unit, motor_time_unit : str
@@ -200,7 +258,7 @@ def read_calisto(path, motor_path=None, *, time_unit="s", xy_unit="nm", z_unit="
     f_xy = _factor(xy_unit, "nm", "xy_unit")
     f_z = _factor(z_unit, "nm", "z_unit")
     f_mag = _factor(magnet_unit, "mm", "magnet_unit")
-    if path.suffix.lower() in (".h5", ".hdf5"):
+    if _sniff(path) == "hdf5":
         t, beads, xyz, turns, height, refs = _calisto_hdf5(path, f_t, f_xy, f_z, f_mag, f_mt)
         fmt = "calisto-hdf5"
     else:

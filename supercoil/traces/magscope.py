@@ -35,6 +35,7 @@ the force calibration the user passes decides that.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -43,7 +44,7 @@ from .._csvfile import check_path, read_text
 from ..exceptions import DataError
 from .trace import build_trace, check_increasing, hold_previous, open_hdf5
 
-__all__ = ["read_magscope", "read_motor_log"]
+__all__ = ["read_calibration", "read_force_calibrant", "read_magscope", "read_motor_log"]
 
 _DATASETS = ("frame_timestamps_ns", "frame_offsets", "bead_ids", "positions_nm")
 
@@ -90,6 +91,87 @@ def read_motor_log(path, column, what="value"):
     # equal timestamps: keep the last row (the state after the change)
     keep = np.append(np.diff(t) > 0, True)
     return t[keep], np.array(values)[keep]
+
+
+def read_force_calibrant(path):
+    """Read MagScope's force calibrant: magnet motor position [mm] -> force [pN].
+
+    The layout MagScope reads (repository 7jameslondon/MagScope, read
+    2026-12-01: README "Force Calibrants", the example file
+    ``examples/motors/force_calibrant.txt`` and its ``ForceCalibration`` class,
+    which loads it with ``numpy.loadtxt``):
+    whitespace-separated rows ``position force``, ``#`` lines (e.g. ``# Motor
+    Position (mm) Force (pN)``) ignored, in any order (MagScope sorts them by
+    position and interpolates with a monotone cubic without extrapolation, as
+    :func:`~supercoil.traces.force_from_height` does).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``height`` [mm], ``force`` [pN], sorted by height, with
+        ``attrs["units"]`` and the source in the provenance.
+
+    Raises
+    ------
+    DataError
+        Not a file, not UTF-8, a row without two numbers (names the line),
+        fewer than 2 rows, a repeated position, a non-positive force.
+    """
+    from ..tables import make_table, provenance
+
+    path, text = read_text(path, "force calibrant")
+    rows, lines = [], []
+    for num, line in enumerate(text.splitlines(), start=1):
+        body = line.split("#", 1)[0].strip()
+        if not body:
+            continue
+        fields = body.replace(",", " ").split()
+        try:
+            if len(fields) != 2:
+                raise ValueError
+            rows.append((float(fields[0]), float(fields[1])))
+        except ValueError:
+            raise DataError(f"{path}, line {num}: expected two numbers 'position [mm] force "
+                            f"[pN]', got {body[:60]!r}") from None
+        lines.append(num)
+    data = np.array(rows, dtype=float).reshape(-1, 2)
+    if len(data) < 2 or not np.isfinite(data).all():
+        raise DataError(f"{path}: a force calibrant needs at least 2 finite rows 'position "
+                        f"[mm] force [pN]', found {len(data)}")
+    order = np.argsort(data[:, 0], kind="stable")
+    data, lines = data[order], np.asarray(lines)[order]
+    same = np.flatnonzero(np.diff(data[:, 0]) == 0)
+    if same.size:
+        raise DataError(f"{path}, line {lines[same[0] + 1]}: position {data[same[0], 0]:g} mm "
+                        f"also on line {lines[same[0]]}; expected distinct positions")
+    bad = np.flatnonzero(data[:, 1] <= 0)
+    if bad.size:
+        raise DataError(f"{path}, line {lines[bad[0]]}: force {data[bad[0], 1]:g} pN; expected "
+                        "positive forces")
+    return make_table({"height": data[:, 0], "force": data[:, 1]}, {"height": "mm",
+                                                                     "force": "pN"},
+                      provenance(source=str(path), format="magscope-force-calibrant"))
+
+
+def read_calibration(path):
+    """A force calibration file: a supercoil CSV (``height [mm], force [pN]``) or MagScope's
+    ``force_calibrant.txt`` (two whitespace-separated columns, :func:`read_force_calibrant`).
+
+    The first line that is not a ``#`` line decides: a header with a letter is
+    the CSV, numbers are the MagScope layout.
+    """
+    from ..tables import read_csv
+
+    path, text = read_text(path, "force calibration")
+    first = next((ln for ln in text.splitlines() if ln.strip()
+                  and not ln.lstrip().startswith("#")), "")
+    if re.search(r"[A-DF-Za-df-z_]", first):  # a header (e/E alone: exponents)
+        table = read_csv(path)
+        if not {"height", "force"} <= set(table.columns):
+            raise DataError(f"{path}: a force calibration needs columns 'height [mm]' and "
+                            f"'force [pN]'; found {list(table.columns)}")
+        return table
+    return read_force_calibrant(path)
 
 
 def _read_tracking(path):

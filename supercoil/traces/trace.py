@@ -63,19 +63,24 @@ def open_hdf5(path, kind):
         raise DataError(f"{path}: not an HDF5 file ({exc})") from None
 
 
-def check_increasing(t, where, what="time"):
-    """DataError naming ``where`` and the first index where ``t`` does not increase."""
+def check_increasing(t, where, what="time", lines=None):
+    """DataError naming ``where`` and the first index (or file line, from ``lines``, the file
+    line of every value) where ``t`` is not finite or does not increase."""
     t = np.asarray(t, dtype=float)
+
+    def at(i):
+        return f"line {int(lines[i])}" if lines is not None else f"index {i}"
+
     bad = np.flatnonzero(~np.isfinite(t))
     if bad.size:
-        raise DataError(f"{where}: {what} is not finite at index {int(bad[0])} "
+        raise DataError(f"{where}: {what} is not finite at {at(int(bad[0]))} "
                         f"(expected finite, strictly increasing times)")
     step = np.diff(t)
     bad = np.flatnonzero(step <= 0)
     if bad.size:
         i = int(bad[0]) + 1
         raise DataError(
-            f"{where}: {what} is not strictly increasing at index {i} "
+            f"{where}: {what} is not strictly increasing at {at(i)} "
             f"({t[i - 1]!r} then {t[i]!r}); expected strictly increasing times")
 
 
@@ -105,7 +110,9 @@ def build_trace(time, beads, xyz, turns, height, *, source, fmt, reference_beads
 
     Frames without a motor state and bead records with a non-finite ``z`` are
     dropped; their numbers are recorded in the provenance (``dropped_frames``,
-    ``dropped_records``) and the reader warns.
+    ``dropped_records``) and the reader warns. A bead without any finite ``z``
+    (e.g. no Z-LUT for it) is dropped whole, named in a DataWarning and in the
+    provenance (``dropped_beads``); DataError if no bead is left.
     """
     import warnings
 
@@ -119,10 +126,8 @@ def build_trace(time, beads, xyz, turns, height, *, source, fmt, reference_beads
     if not known.any():
         raise DataError(f"{source}: no frame has a known magnet rotation and height "
                         "(the motor log does not overlap the frames)")
-    for j, lab in enumerate(beads):
-        if not np.isfinite(xyz[:, j, 2]).any():
-            raise DataError(f"{source}: bead {lab!r} has no frames (no finite z value); "
-                            "expected at least one tracked frame per bead")
+    xyz, beads, reference_beads, empty = _drop_empty_beads(xyz, beads, reference_beads, source)
+    n_beads = len(beads)
     zok = np.isfinite(xyz[:, :, 2]) & known[:, None]
     dropped_records = int(known.sum() * n_beads - zok.sum())
     dropped_frames = int((~known).sum())
@@ -140,7 +145,8 @@ def build_trace(time, beads, xyz, turns, height, *, source, fmt, reference_beads
     prov = provenance(source=str(source), format=fmt, frames=int(n_frames),
                       dropped_frames=dropped_frames, dropped_records=dropped_records,
                       time_origin=time_origin if time_origin is not None else float(t0),
-                      reference_beads=list(reference_beads), **(extra or {}))
+                      reference_beads=list(reference_beads), dropped_beads=empty,
+                      **(extra or {}))
     table = make_table(cols, {c: TRACE_UNITS[c] for c in cols}, prov)
     table.attrs["reference_beads"] = list(reference_beads)
     if dropped_frames or dropped_records:
@@ -149,6 +155,26 @@ def build_trace(time, beads, xyz, turns, height, *, source, fmt, reference_beads
             f"(outside the motor log) and {dropped_records} bead record(s) with a non-finite z",
             DataWarning, stacklevel=3)
     return table
+
+
+def _drop_empty_beads(xyz, beads, reference_beads, source):
+    """Beads with at least one finite z; DataWarning naming the others (DataError if none)."""
+    import warnings
+
+    from ..exceptions import DataWarning
+
+    beads = [str(b) for b in beads]
+    keep = np.isfinite(xyz[:, :, 2]).any(axis=0)
+    empty = [b for b, k in zip(beads, keep, strict=True) if not k]
+    if not empty:
+        return xyz, beads, list(reference_beads), []
+    if not keep.any():
+        raise DataError(f"{source}: no bead has a finite z value (beads: {beads}); expected "
+                        "at least one tracked frame per bead")
+    warnings.warn(f"{source}: dropped bead(s) {empty}: no finite z value in any frame (no "
+                  "Z-LUT for them, or never tracked)", DataWarning, stacklevel=4)
+    refs = [r for r in reference_beads if str(r) not in empty]
+    return xyz[:, keep], [b for b, k in zip(beads, keep, strict=True) if k], refs, empty
 
 
 def check_trace(trace, source="trace"):

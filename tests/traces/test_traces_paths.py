@@ -41,7 +41,7 @@ def test_read_calisto_names_a_latin1_byte_by_line(written, tmp_path):
 
 
 def test_read_calisto_missing_files_are_named(written, tmp_path):
-    with pytest.raises(DataError, match="no such CALISTO bead trace file"):
+    with pytest.raises(DataError, match="no such CALISTO recording"):
         read_calisto(tmp_path / "none.txt", written["calisto-text"].motor_path)
     with pytest.raises(DataError, match="no such CALISTO motor file"):
         read_calisto(written["calisto-text"].path, tmp_path / "none.txt")

@@ -176,8 +176,9 @@ def test_calisto_non_monotonic_time_and_empty_bead(written, tmp_path):
     path = _copy_calisto(written, tmp_path)
     with h5py.File(path, "a") as fh:
         fh["M0/z_nm"][...] = np.nan
-    with pytest.raises(DataError, match="bead 'M0' has no frames"):
-        read_calisto(path)
+    with pytest.warns(sc.DataWarning, match=r"dropped bead\(s\) \['M0'\]: no finite z"):
+        trace = read_calisto(path)
+    assert "M0" not in set(trace["bead"]) and trace.attrs["provenance"]["dropped_beads"] == ["M0"]
     with h5py.File(path, "a") as fh:
         t = fh["timestamp"]
         t[100] = t[99] - 0.01
@@ -202,16 +203,20 @@ def test_calisto_text_ragged_and_non_numeric_lines(written, tmp_path):
         read_calisto(rec.path)
 
 
-def test_calisto_text_nan_token_is_dropped_with_a_warning(written, tmp_path):
+def test_calisto_text_nan_token_is_interpolated_with_a_warning(written, tmp_path):
+    """CALISTO fills -1.#IND000 linearly along the column; so does the reader (was: dropped)."""
     rec = written["calisto-text"]
     lines = rec.path.read_text().splitlines()
     fields = lines[50].split()
     fields[4] = "-1.#IND000"
     path = tmp_path / "nan.txt"
     path.write_text("\n".join([*lines[:50], " ".join(fields), *lines[51:]]) + "\n")
-    with pytest.warns(sc.DataWarning, match="1 bead record"):
+    with pytest.warns(sc.DataWarning, match=r"1 value\(s\) -1.#IND000 .* at line 51"):
         trace = read_calisto(path, rec.motor_path)
-    assert trace.attrs["provenance"]["dropped_records"] == 1
+    assert trace.attrs["provenance"]["dropped_records"] == 0
+    z = trace[trace["bead"] == "0"]["z"].to_numpy()
+    before, after = float(lines[49].split()[4]), float(lines[51].split()[4])
+    assert z[50] == pytest.approx((before + after) / 2)
 
 
 def test_missing_h5py_names_the_extra(written, monkeypatch):
@@ -223,7 +228,8 @@ def test_missing_h5py_names_the_extra(written, monkeypatch):
 
 
 def test_magscope_bead_with_no_frames(written, tmp_path):
-    """A bead whose z is NaN in every record (no Z-LUT for it) is named."""
+    """A bead whose z is NaN in every record (no Z-LUT for it) is dropped and named (issue 22
+    item 8: it aborted the whole read)."""
     path = _copy_magscope(written, tmp_path)
     with h5py.File(path, "a") as fh:
         ids = fh["tracking/bead_ids"][()]
@@ -231,8 +237,10 @@ def test_magscope_bead_with_no_frames(written, tmp_path):
         z = pos[:, 2]
         z[ids == 1] = np.nan
         pos[:, 2] = z
-    with pytest.raises(DataError, match=r"bead '1' has no frames \(no finite z value\)"):
-        read_magscope(path)
+    with pytest.warns(sc.DataWarning, match=r"dropped bead\(s\) \['1'\]: no finite z value"):
+        trace = read_magscope(path)
+    assert sorted(set(trace["bead"])) == ["0", "2"]
+    assert trace.attrs["provenance"]["dropped_beads"] == ["1"]
 
 
 def test_magscope_recording_split_over_two_files(written, recording, tmp_path):
