@@ -28,7 +28,7 @@ from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
-from supercoil.dna.fitting.model import HatCurveModel, guess_turns_center
+from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.fitting.parameters import FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
@@ -112,6 +112,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
             raise FitError("give either params= or vary/fixed/bounds/start, not both")
         params, si = params.copy(), dna.si
         _check_params(params, rot, m, inter)
+    _check_length(params, si, rot)
     if optional is None:  # a params= set is the user's full control: nothing dropped
         default = (not own_params and not isinstance(vary, str)
                    and tuple(vary or ()) == DEFAULT_VARY)
@@ -121,6 +122,17 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
     return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal, max_nfev,
                    float(tol), vary, notes)
+
+
+def _check_length(params, si, rot):
+    """FitError when the extensions exceed a fixed contour length (a varied one warns)."""
+    p = params.get("length")
+    if rot is None or (p is not None and p.vary):
+        return
+    length = p.value if p is not None else si.length
+    msg = _start.length_excess(rot.extension, length)
+    if msg is not None:
+        raise FitError(msg + "; or vary the length")
 
 
 def _drop_unused(params, optional, rot, si, model, inter, thermal, xi_is_bending):
@@ -166,13 +178,35 @@ def _check_params(params, rot, model, inter):
 
 
 def _start_offsets(spec, prob):
-    """Guess the offsets that were not given: turns (centre of symmetry), extension (median)."""
+    """Start values not given, read from the data: the turns offsets (every channel that
+    locates zero, :func:`~supercoil.dna.fitting.start.turns_offset_start`), a varied length
+    (worm-like chain at the turns nearest zero), the extension offsets (median difference
+    to the model). Returns the notes saying what was used."""
     data, params = spec.data, spec.params
     groups = data.groups()
+    notes, n0 = [], np.zeros(data.n_molecules)
     for p in params.values():
+        if p.kind == "turns_offset" and p.molecule is not None:
+            n0[p.molecule] = p.value
         if p.vary and not p.given and p.kind == "turns_offset":
             g = groups[p.molecule]
-            p.value = guess_turns_center(data.turns[g], data.extension[g], data.force[g])
+            tq = None if data.torque is None else data.torque[g]
+            p.value, how, found = _start.turns_offset_start(data.turns[g], data.extension[g],
+                                                           data.force[g], tq)
+            n0[p.molecule] = p.value
+            others = ", ".join(f"{k}: {v:.3g}" for k, v in found.items() if k != how)
+            notes.append(f"{p.name} starts at {p.value:.4g} turn from the {how}"
+                         + (f" (other channels: {others})" if others else ""))
+    length = params.get("length")
+    if length is not None and length.vary and not length.given:
+        est = [_start.length_start(data.turns[g], data.extension[g], data.force[g], n0[i],
+                                   spec.dna) for i, g in enumerate(groups)]
+        est = [e for e in est if e is not None and np.isfinite(e) and e > 0]
+        if est:
+            length.value = float(np.median(est))
+            notes.append(f"length starts at {length.value * 1e9:.5g} nm, read from the data "
+                         "(Marko-Siggia worm-like chain inverted at the turns nearest zero, "
+                         "median over the forces); give start={'length': ...} to override")
     u = params.vector()
     try:
         z_start = np.asarray(prob.points(u)[0].extension, dtype=float)
@@ -186,6 +220,17 @@ def _start_offsets(spec, prob):
         if p.vary and not p.given and p.kind == "extension_offset":
             g = groups[p.molecule]
             p.value = float(np.median(data.extension[g] - z_start[g]))
+    return notes
+
+
+def _length_records(spec):
+    """A FitWarning when the extensions exceed the length the user gave (varied length)."""
+    p = spec.params.get("length")
+    if p is None or not p.vary:
+        return []
+    msg = _start.length_excess(spec.data.extension, spec.dna.length)
+    return [] if msg is None else [("FitWarning", msg + "; the fit starts the length from the "
+                                    "data")]
 
 
 def _start_vector(params):
@@ -231,7 +276,8 @@ def run_fit(spec: FitSpec) -> dict:
     t0 = time.perf_counter()
     prob = HatCurveModel(spec.data, spec.params, spec.dna, spec.model, spec.interaction,
                          spec.thermal, spec.xi_is_bending)
-    _start_offsets(spec, prob)
+    pre = _length_records(spec)
+    start_notes = _start_offsets(spec, prob)
     u0 = _start_vector(spec.params)
     start = u0 * spec.params.scales
     res = _solve(spec, prob, u0)
@@ -248,7 +294,7 @@ def run_fit(spec: FitSpec) -> dict:
     s2 = s2 if s2 > 0 else 1.0
     channels = channels_info(spec, prob, u, noise)
     cov_u, undetermined, note = covariance(J, prob.names)
-    records = [("FitWarning", note)] if note else []
+    records = pre + ([("FitWarning", note)] if note else [])
     if spec.data.weighting == "unit" and not spec.data.has_torque:
         cov_u = cov_u * (chi2 / nfree)
     scales = spec.params.scales
@@ -261,8 +307,7 @@ def run_fit(spec: FitSpec) -> dict:
     dna, model, inter, n0, z0 = prob.unpack(u)
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
-    skip = [n for n, bad in zip(prob.names, undetermined, strict=True) if bad]
-    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params, skip)]
+    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
     gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
@@ -281,7 +326,7 @@ def run_fit(spec: FitSpec) -> dict:
         "torque": np.asarray(pts.torque, dtype=float),
         "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),
         "residual_weighted": r, "goodness": gof_info, "warnings": records,
-        "channels": channels, "notes": list(spec.notes),
+        "channels": channels, "notes": list(spec.notes) + start_notes,
         "seconds": time.perf_counter() - t0,
     }
 

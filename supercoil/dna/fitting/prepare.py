@@ -209,6 +209,8 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
                                     shared="per-molecule", molecule=i, kind=base,
                                     owner="offset", plausible=(lo, hi), plausible_source=src,
                                     given=given, scale=scale))
+    if "length" in params and "length" not in dict(start or {}):
+        params["length"].given = False  # a varied length starts from the data (issue 22)
     _apply_bounds(dict(bounds or {}), names, params)
     n_free = len(params.free)
     if n_free == 0:
