@@ -24,6 +24,7 @@ from scipy.optimize import least_squares
 from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
+from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
@@ -93,7 +94,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     """
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
-    fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
+    fit_extension_offset, z0_per_force = _extension_offset_mode(fit_extension_offset)
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     inter.check(dna.si)
@@ -104,7 +105,8 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
         rot = rotation if sigma is None else rotation.with_sigma(sigma)
     if params is None:
         params, si, m, inter = build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
-                                                fit_turns_offset, fit_extension_offset)
+                                                fit_turns_offset, fit_extension_offset,
+                                                z0_per_force)
     else:
         if not isinstance(params, FitParameters):
             raise TypeError(f"params must be a FitParameters, got {type(params).__name__}")
@@ -112,43 +114,26 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
             raise FitError("give either params= or vary/fixed/bounds/start, not both")
         params, si = params.copy(), dna.si
         _check_params(params, rot, m, inter)
-    _check_length(params, si, rot)
+    _start.check_length(params, si, rot)
     if optional is None:  # a params= set is the user's full control: nothing dropped
         default = (not own_params and not isinstance(vary, str)
                    and tuple(vary or ()) == DEFAULT_VARY)
         optional = DEFAULT_VARY if default else ()
-    notes = _drop_unused(params, optional, rot, si, m, inter, thermal,
+    notes = _start.drop_unused(params, optional, rot, si, m, inter, thermal,
                          dna.wlc_persistence is None)
     vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
     return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal, max_nfev,
                    float(tol), vary, notes)
 
 
-def _check_length(params, si, rot):
-    """FitError when the extensions exceed a fixed contour length (a varied one warns)."""
-    p = params.get("length")
-    if rot is None or (p is not None and p.vary):
-        return
-    length = p.value if p is not None else si.length
-    msg = _start.length_excess(rot.extension, length)
-    if msg is not None:
-        raise FitError(msg + "; or vary the length")
-
-
-def _drop_unused(params, optional, rot, si, model, inter, thermal, xi_is_bending):
-    """Hold the ``optional`` free parameters the model does not use; the notes saying so."""
-    names = [n for n in dict.fromkeys(optional) if n in params and params[n].vary]
-    if not names:
-        return []
-    unused = _start.unused_parameters(names, rot.force, si, model, inter, thermal,
-                                      xi_is_bending)
-    if len(unused) == len(params.free):
-        return []  # nothing left to fit: let the Jacobian say it
-    for name in unused:
-        params[name].vary = False
-    return [f"{name} not varied: the model {model.name!r} does not use it (its extensions "
-            "and torques do not change with it), so the data cannot determine it; give it "
-            "in vary explicitly to fit it anyway" for name in unused]
+def _extension_offset_mode(value):
+    """``(fitted, per force)`` from ``fit_extension_offset`` (bool, "per-molecule", "per-force")."""
+    if isinstance(value, str):
+        if value not in ("per-molecule", "per-force"):
+            raise TypeError(f"fit_extension_offset must be True or False, got {value!r} (or "
+                            "'per-molecule', the default, or 'per-force')")
+        return True, value == "per-force"
+    return check_flag(value, "fit_extension_offset"), False
 
 
 def _check_params(params, rot, model, inter):
@@ -157,7 +142,8 @@ def _check_params(params, rot, model, inter):
                "offset": ("turns_offset", "extension_offset")}
     forces = np.unique(rot.force)
     for p in params.values():
-        want = ("per-molecule",) if p.owner == "offset" else ("global", "per-force")
+        want = (("per-molecule", "per-force") if p.kind == "extension_offset" else
+                ("per-molecule",)) if p.owner == "offset" else ("global", "per-force")
         if p.shared not in want:
             raise FitError(f"parameter {p.name!r}: shared={p.shared!r} is not supported for "
                            f"{p.owner} parameters (only {' or '.join(map(repr, want))})")
@@ -178,35 +164,12 @@ def _check_params(params, rot, model, inter):
 
 
 def _start_offsets(spec, prob):
-    """Start values not given, read from the data: the turns offsets (every channel that
-    locates zero, :func:`~supercoil.dna.fitting.start.turns_offset_start`), a varied length
-    (worm-like chain at the turns nearest zero), the extension offsets (median difference
-    to the model). Returns the notes saying what was used."""
+    """Start values not given, read from the data: the turns offsets and a varied length
+    (:func:`~supercoil.dna.fitting.start.start_from_data`), then the extension offsets
+    (median difference to the model). Returns the notes saying what was used."""
     data, params = spec.data, spec.params
     groups = data.groups()
-    notes, n0 = [], np.zeros(data.n_molecules)
-    for p in params.values():
-        if p.kind == "turns_offset" and p.molecule is not None:
-            n0[p.molecule] = p.value
-        if p.vary and not p.given and p.kind == "turns_offset":
-            g = groups[p.molecule]
-            tq = None if data.torque is None else data.torque[g]
-            p.value, how, found = _start.turns_offset_start(data.turns[g], data.extension[g],
-                                                           data.force[g], tq)
-            n0[p.molecule] = p.value
-            others = ", ".join(f"{k}: {v:.3g}" for k, v in found.items() if k != how)
-            notes.append(f"{p.name} starts at {p.value:.4g} turn from the {how}"
-                         + (f" (other channels: {others})" if others else ""))
-    length = params.get("length")
-    if length is not None and length.vary and not length.given:
-        est = [_start.length_start(data.turns[g], data.extension[g], data.force[g], n0[i],
-                                   spec.dna) for i, g in enumerate(groups)]
-        est = [e for e in est if e is not None and np.isfinite(e) and e > 0]
-        if est:
-            length.value = float(np.median(est))
-            notes.append(f"length starts at {length.value * 1e9:.5g} nm, read from the data "
-                         "(Marko-Siggia worm-like chain inverted at the turns nearest zero, "
-                         "median over the forces); give start={'length': ...} to override")
+    notes = _start.start_from_data(data, params, spec.dna)
     u = params.vector()
     try:
         z_start = np.asarray(prob.points(u)[0].extension, dtype=float)
@@ -218,19 +181,9 @@ def _start_offsets(spec, prob):
             f"the data's forces ({forces} pN): {type(exc).__name__}: {exc}") from exc
     for p in params.values():
         if p.vary and not p.given and p.kind == "extension_offset":
-            g = groups[p.molecule]
+            g = groups[p.molecule] if p.shared != "per-force" else _offsets.curve_rows(data, p)
             p.value = float(np.median(data.extension[g] - z_start[g]))
     return notes
-
-
-def _length_records(spec):
-    """A FitWarning when the extensions exceed the length the user gave (varied length)."""
-    p = spec.params.get("length")
-    if p is None or not p.vary:
-        return []
-    msg = _start.length_excess(spec.data.extension, spec.dna.length)
-    return [] if msg is None else [("FitWarning", msg + "; the fit starts the length from the "
-                                    "data")]
 
 
 def _start_vector(params):
@@ -274,9 +227,11 @@ def _solve(spec, prob, u0):
 def run_fit(spec: FitSpec) -> dict:
     """Run one fit on a prepared spec; a dict of plain data (picklable), warnings as records."""
     t0 = time.perf_counter()
-    prob = HatCurveModel(spec.data, spec.params, spec.dna, spec.model, spec.interaction,
-                         spec.thermal, spec.xi_is_bending)
-    pre = _length_records(spec)
+    cls = (_offsets.PerForceOffsetModel if _offsets.has_per_force_offsets(spec.params)
+           else HatCurveModel)
+    prob = cls(spec.data, spec.params, spec.dna, spec.model, spec.interaction, spec.thermal,
+               spec.xi_is_bending)
+    pre = _start.length_records(spec)
     start_notes = _start_offsets(spec, prob)
     u0 = _start_vector(spec.params)
     start = u0 * spec.params.scales
@@ -321,6 +276,7 @@ def run_fit(spec: FitSpec) -> dict:
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
         "interaction_obj": getattr(inter, "_inter", inter), "n0": n0, "z0": z0, "model": best,
+        "z0_points": np.asarray(z0_pts, dtype=float),
         "states": prob.states(u) if prob._per_force else None,
         "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
         "torque": np.asarray(pts.torque, dtype=float),
@@ -422,8 +378,15 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     sigma : Quantity [length], optional
         Standard error of the extensions (scalar or per point; overrides a
         ``sigma`` column). Without either: unit weights, errors scaled by the noise.
-    fit_turns_offset, fit_extension_offset : bool
-        Fit the per-molecule offsets (default); off: held at 0 or at ``fixed``.
+    fit_turns_offset : bool
+        Fit the per-molecule turns offset (default); off: held at 0 or at ``fixed``.
+    fit_extension_offset : bool or {"per-molecule", "per-force"}
+        Fit the extension offset (the bead-height reference). Default (True,
+        ``"per-molecule"``): a molecule is one bead, one offset for all its
+        forces. ``"per-force"``: one per (molecule, force) curve, named
+        ``extension_offset[0.3 pN]`` (``extension_offset[m1, 0.3 pN]`` with a
+        molecule column), for curves referenced separately. False: held at 0
+        or at ``fixed``.
     thermal : bool
         Thermal hat curve (Moroz-Nelson tail); False for the athermal variant.
     max_nfev : int, optional
@@ -485,9 +448,10 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
+    z0_fit, z0_per_force = _extension_offset_mode(fit_extension_offset)
     return build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
-                            check_flag(fit_turns_offset, "fit_turns_offset"),
-                            check_flag(fit_extension_offset, "fit_extension_offset"))[0]
+                            check_flag(fit_turns_offset, "fit_turns_offset"), z0_fit,
+                            z0_per_force)[0]
 
 
 #: names that lived in this module before the fit package was split (old import paths)

@@ -21,10 +21,11 @@ import math
 import numpy as np
 
 from supercoil.dna.fitting.model import dna_si, guess_turns_center
-from supercoil.exceptions import NoEquilibriumError, ValidityError
+from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 
-__all__ = ["TURNS_CHANNELS", "length_excess", "length_start",
-           "marko_siggia_relative_extension", "turns_offset_start", "unused_parameters"]
+__all__ = ["TURNS_CHANNELS", "check_length", "drop_unused", "length_excess", "length_records",
+           "length_start", "marko_siggia_relative_extension", "start_from_data",
+           "turns_offset_start", "unused_parameters"]
 
 _KERNEL_ERRORS = (NoEquilibriumError, ValidityError, FloatingPointError, ZeroDivisionError)
 _SAMPLE = 48  # points at which the use of a parameter is tested
@@ -268,3 +269,76 @@ def length_excess(z, length):
             "(the number of base pairs x 0.34 nm), or on the command line --start "
             "length=<L>nm with --vary length (or --fix length=<L>nm); "
             "docs/theory/fitting.md#start-values")
+
+
+# ---- used by the fit (supercoil.dna.fitting.fit) ----------------------------------------
+def check_length(params, si, rot):
+    """FitError when the extensions exceed a fixed contour length (a varied one warns)."""
+    p = params.get("length")
+    if rot is None or (p is not None and p.vary):
+        return
+    msg = length_excess(rot.extension, p.value if p is not None else si.length)
+    if msg is not None:
+        raise FitError(msg + "; or vary the length")
+
+
+def length_records(spec):
+    """A FitWarning record when the extensions exceed the length given (varied length)."""
+    p = spec.params.get("length")
+    if p is None or not p.vary:
+        return []
+    msg = length_excess(spec.data.extension, spec.dna.length)
+    return [] if msg is None else [("FitWarning", msg + "; the fit starts the length from the "
+                                    "data")]
+
+
+def drop_unused(params, optional, rot, si, model, inter, thermal, xi_is_bending):
+    """Hold the ``optional`` free parameters the model does not use; the notes saying so."""
+    names = [n for n in dict.fromkeys(optional) if n in params and params[n].vary]
+    if not names:
+        return []
+    unused = unused_parameters(names, rot.force, si, model, inter, thermal, xi_is_bending)
+    if len(unused) == len(params.free):
+        return []  # nothing left to fit: let the Jacobian say it
+    for name in unused:
+        params[name].vary = False
+    return [f"{name} not varied: the model {model.name!r} does not use it (its extensions "
+            "and torques do not change with it), so the data cannot determine it; give it "
+            "in vary explicitly to fit it anyway" for name in unused]
+
+
+def _turns_starts(data, params, groups):
+    """Start the turns offsets not given; ``(turns offset per molecule, notes)``."""
+    notes, n0 = [], np.zeros(data.n_molecules)
+    for p in params.values():
+        if p.kind != "turns_offset" or p.molecule is None:
+            continue
+        if p.vary and not p.given:
+            g = groups[p.molecule]
+            tq = None if data.torque is None else data.torque[g]
+            p.value, how, found = turns_offset_start(data.turns[g], data.extension[g],
+                                                     data.force[g], tq)
+            others = ", ".join(f"{k}: {v:.3g}" for k, v in found.items() if k != how)
+            notes.append(f"{p.name} starts at {p.value:.4g} turn from the {how}"
+                         + (f" (other channels: {others})" if others else ""))
+        n0[p.molecule] = p.value
+    return n0, notes
+
+
+def start_from_data(data, params, dna):
+    """Start values not given, from the data: the turns offsets (:func:`turns_offset_start`),
+    then a varied length (:func:`length_start`). Returns the notes saying what was used."""
+    groups = data.groups()
+    n0, notes = _turns_starts(data, params, groups)
+    length = params.get("length")
+    if length is None or not length.vary or length.given:
+        return notes
+    est = [length_start(data.turns[g], data.extension[g], data.force[g], n0[i], dna)
+           for i, g in enumerate(groups)]
+    est = [e for e in est if e is not None and np.isfinite(e) and e > 0]
+    if est:
+        length.value = float(np.median(est))
+        notes.append(f"length starts at {length.value * 1e9:.5g} nm, read from the data "
+                     "(Marko-Siggia worm-like chain inverted at the turns nearest zero, "
+                     "median over the forces); give start={'length': ...} to override")
+    return notes
