@@ -46,5 +46,5 @@ def test_per_force_offsets_on_request(true_dna, base, result):
                            fit_extension_offset="per-molecule")
     assert r1.parameters["extension_offset"].m == pytest.approx(
         result.parameters["extension_offset"].m, rel=1e-12)
-    with pytest.raises(TypeError, match="fit_extension_offset must be .* 'per-force'"):
+    with pytest.raises(TypeError, match=r"fit_extension_offset must be .* 'per-force'"):
         sc.fit_hat_curves(df, base, fit_extension_offset="per-curve")
