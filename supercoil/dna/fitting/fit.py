@@ -224,6 +224,10 @@ def _solve(spec, prob, u0):
     return res
 
 
+#: the solver under a public name (the profile likelihood's refits use it)
+solve = _solve
+
+
 def run_fit(spec: FitSpec) -> dict:
     """Run one fit on a prepared spec; a dict of plain data (picklable), warnings as records."""
     t0 = time.perf_counter()
