@@ -367,6 +367,9 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         Parameters fitted, shared by all forces and molecules: DNA fields
         (``length``, ``bending_persistence``, ``twist_persistence``,
         ``radius``) and the parameters the model and the interaction declare.
+        The default (:data:`DEFAULT_VARY`) drops a field the model does not
+        use (``radius`` for ``marko2007``), with a note; named explicitly it is
+        fitted and reported undetermined.
     fixed : dict of str -> Quantity, optional
         Values held fixed: DNA fields (override ``dna``), model or interaction
         parameters, or offsets (``"turns_offset"`` for all molecules,
@@ -377,8 +380,12 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         their declared range. Start values must lie strictly inside, else
         :class:`FitError` names the parameter before any fitting.
     start : dict of str -> Quantity, optional
-        Start values overriding ``dna`` and the offset guesses (turns: centre
-        of symmetry of the curves; extension: median difference to the model).
+        Start values overriding ``dna`` and the starts read from the data
+        (docs/theory/fitting.md#start-values): the turns offset from the
+        torque zero crossing, else the hat symmetry when the data straddle the
+        maximum, else 0 (the report's notes say which); a varied ``length``
+        from the worm-like chain at the turns nearest zero; the extension
+        offset from the median difference to the model.
     sigma : Quantity [length], optional
         Standard error of the extensions (scalar or per point; overrides a
         ``sigma`` column). Without either: unit weights, errors scaled by the noise.
@@ -415,7 +422,8 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         The table is malformed (names the row and column).
     FitError
         Unknown or conflicting names, bad bounds, a start value outside its
-        bounds, the model failing at the start, or no convergence.
+        bounds, extensions beyond a fixed contour length (names both and the
+        fix), the model failing at the start, or no convergence.
     ModelError
         Unknown model or interaction; an interaction for a model without one.
 
@@ -424,7 +432,9 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     BoundWarning
         An estimate sits on a bound.
     FitWarning
-        Singular Jacobian (names the parameters the data do not determine);
+        Extensions beyond the contour length given (varied length: the fit
+        starts it from the data); singular Jacobian (names the parameters the
+        data do not determine: they are not counted in AIC and BIC);
         an estimate at or beyond its plausible limit; residuals inconsistent
         with the stated sigmas (chi-square test) or with the model (runs test
         with unit weights); see :mod:`supercoil.dna.fitting.diagnostics`.
