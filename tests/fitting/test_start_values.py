@@ -94,3 +94,13 @@ def test_varied_length_warns_and_starts_from_the_data(one_sided, base, long_dna)
                            start={"length": 1900 * sc.ureg.nm})
     assert dict(zip(r2.names, r2._core["start"], strict=True))["length"] == pytest.approx(
         1.9e-6)
+
+
+def test_length_check_allows_noise_and_a_fitted_offset():
+    from supercoil.dna.fitting.start import length_excess
+
+    z = np.full(100, 800e-9)  # 6.7 % above L = 750 nm
+    assert length_excess(z, 750e-9, offset_fitted=True) is None  # a bead offset can do it
+    assert "800 nm" in length_excess(z, 750e-9, offset_fitted=False)
+    assert length_excess(np.full(100, 760e-9), 750e-9) is None  # noise
+    assert "1957" in length_excess(np.full(100, 1957e-9), 750e-9, offset_fitted=True)

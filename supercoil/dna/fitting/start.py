@@ -247,20 +247,23 @@ def length_start(turns, z, force, n0, dna):
     return float(np.median(est)) if est else None
 
 
-#: extensions may exceed the contour length by this fraction (noise, a small offset)
-LENGTH_TOLERANCE = 0.02
+#: extensions may exceed the contour length by this fraction: noise (extension offsets
+#: held at 0), or noise and a bead-height offset (extension offsets fitted)
+LENGTH_TOLERANCE = {False: 0.02, True: 0.2}
 
 
-def length_excess(z, length):
+def length_excess(z, length, offset_fitted=False):
     """A message if the extensions exceed the contour length (both m), else None.
 
-    Robust to noise and a small offset: the 95th percentile of the extensions
-    must exceed ``L (1 + LENGTH_TOLERANCE)``; the message names the largest.
+    Robust to noise and an offset: the 95th percentile of the extensions must
+    exceed ``L (1 + LENGTH_TOLERANCE[offset_fitted])`` (2 %, or 20 % when the
+    extension offsets are fitted, which may place the data above L); the
+    message names the largest.
     """
     if not len(z):
         return None
     zmax, z95 = float(np.max(z)), float(np.percentile(z, 95))
-    if not z95 > length * (1 + LENGTH_TOLERANCE):
+    if not z95 > length * (1 + LENGTH_TOLERANCE[bool(offset_fitted)]):
         return None
     return (f"the extensions of the data reach {zmax * 1e9:.5g} nm (95th percentile "
             f"{z95 * 1e9:.5g} nm), beyond the contour length L = {length * 1e9:.5g} nm of "
@@ -272,12 +275,17 @@ def length_excess(z, length):
 
 
 # ---- used by the fit (supercoil.dna.fitting.fit) ----------------------------------------
+def _offset_fitted(params):
+    return any(p.kind == "extension_offset" and p.vary for p in params.values())
+
+
 def check_length(params, si, rot):
     """FitError when the extensions exceed a fixed contour length (a varied one warns)."""
     p = params.get("length")
     if rot is None or (p is not None and p.vary):
         return
-    msg = length_excess(rot.extension, p.value if p is not None else si.length)
+    msg = length_excess(rot.extension, p.value if p is not None else si.length,
+                        _offset_fitted(params))
     if msg is not None:
         raise FitError(msg + "; or vary the length")
 
@@ -287,7 +295,7 @@ def length_records(spec):
     p = spec.params.get("length")
     if p is None or not p.vary:
         return []
-    msg = length_excess(spec.data.extension, spec.dna.length)
+    msg = length_excess(spec.data.extension, spec.dna.length, _offset_fitted(spec.params))
     return [] if msg is None else [("FitWarning", msg + "; the fit starts the length from the "
                                     "data")]
 
