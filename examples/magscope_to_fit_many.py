@@ -106,6 +106,9 @@ def main(argv=None):
     n0 = np.array([rec.offsets[m][0] for m in ok["molecule"]])
     pull = (ok["turns_offset"] - n0) / ok["turns_offset_stderr"]
     print(f"{'turns_offset':<20}{'':>8}{'':>10}{'':>8}{pull.mean():>11.2f}{pull.std(ddof=1):>9.2f}")
+    # the spread of n pulls is itself uncertain by about 1/sqrt(2 (n - 1)): +-0.16 for 20 beads
+    print(f"(sd pull of {len(ok)} beads: ideal 1, statistical uncertainty "
+          f"+-{1 / np.sqrt(2 * (len(ok) - 1)):.2f})")
     _figure(table, out / "parameter_distribution.png")
     print(f"wrote {out / 'rotation_curves.csv'}, {out / 'fit_molecules.csv'}, "
           f"{out / 'recording.png'}, {out / 'parameter_distribution.png'}")

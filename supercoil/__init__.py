@@ -76,6 +76,8 @@ _LAZY = {
     "units": ("supercoil.units", None),
     "validation": ("supercoil.validation", None),
     "write_csv": ("supercoil.tables", 'write_csv'),
+    "maxwell_check": ("supercoil.dna.fitting.consistency", 'maxwell_check'),
+    "read_published_curves": ("supercoil.datasets.published", 'read_published_curves'),
 }
 
 
@@ -97,7 +99,7 @@ def __dir__():
     return sorted(set(globals()) | set(_LAZY))
 
 
-__all__ = [
+__all__ = [  # noqa: RUF022 (new names appended at the end: parallel merges stay clean)
     "DNA",
     "BoundWarning",
     "DNAModel",
@@ -147,4 +149,6 @@ __all__ = [
     "twist_spinning",
     "ureg",
     "write_csv",
+    "maxwell_check",
+    "read_published_curves",
 ]

@@ -4,7 +4,18 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["broadcast_shape", "check_finite_output", "check_flag", "check_material"]
+__all__ = ["broadcast_shape", "check_callable", "check_finite_output", "check_flag",
+           "check_material", "check_scale", "named", "profile_values"]
+
+
+def named(exc, argument):
+    """``exc`` with its ``argument`` attribute set (the argument's name; the CLI maps it to a flag).
+
+    The checks below raise ``named(TypeError(...), name)``; ``SupercoilError`` takes
+    ``argument=`` in its constructor (supercoil.exceptions).
+    """
+    exc.argument = argument
+    return exc
 
 
 def check_flag(value, name):
@@ -14,7 +25,7 @@ def check_flag(value, name):
     """
     if isinstance(value, bool | np.bool_):
         return bool(value)
-    raise TypeError(f"{name} must be True or False, got {value!r}")
+    raise named(TypeError(f"{name} must be True or False, got {value!r}"), name)
 
 
 def check_material(value, cls, name):
@@ -31,8 +42,8 @@ def check_material(value, cls, name):
         hint = f" (load it first: supercoil.load_parameters({value!r}))"
     elif type(value).__name__ in ("DNA", "ElasticRod"):
         hint = " (an ElasticRod is a rod scene's material, a DNA the tweezers scenes')"
-    raise TypeError(f"{name} must be a supercoil.{cls.__name__}, got "
-                    f"{type(value).__name__}{hint}")
+    raise named(TypeError(f"{name} must be a supercoil.{cls.__name__}, got "
+                          f"{type(value).__name__}{hint}"), name)
 
 
 def broadcast_shape(**arrays):
@@ -46,9 +57,9 @@ def broadcast_shape(**arrays):
         return np.broadcast_shapes(*shapes.values())
     except ValueError:
         listed = ", ".join(f"{k} {v}" for k, v in shapes.items())
-        raise ValueError(f"the shapes of {', '.join(arrays)} do not broadcast together "
-                         f"({listed}); give scalars, equal shapes, or numpy-broadcastable "
-                         "ones") from None
+        raise named(ValueError(f"the shapes of {', '.join(arrays)} do not broadcast together "
+                               f"({listed}); give scalars, equal shapes, or "
+                               "numpy-broadcastable ones"), tuple(arrays)) from None
 
 
 def check_finite_output(value, name, inputs):
@@ -65,3 +76,57 @@ def check_finite_output(value, name, inputs):
         raise ValidityError(f"{name} is {bad!r} for {inputs}: the result leaves the "
                             "floating-point range (about 1.8e308)")
     return value
+
+
+def check_scale(value, what, lo=-np.inf, hi=np.inf, why=""):
+    """``value`` unchanged if ``lo <= value <= hi``; else ValidityError naming it and the limit.
+
+    One check for a derived scale of the inputs that a kernel divides by or
+    exponentiates (the reduced stiffness A/r0 of the hard-core plectoneme, the
+    Debye length of a buffer): absurd inputs such as a radius of 1e-300 nm or
+    a salt of 1e300 M give a message naming the quantity, its value and the
+    limit instead of a ZeroDivisionError or an overflow deep in the kernel.
+    ``what`` describes the quantity (e.g. ``"the Debye length (salt 1e+300 M)"``),
+    ``why`` the reason of the limit. NaN fails both bounds.
+    """
+    from supercoil.exceptions import ValidityError
+
+    v = float(value)
+    if lo <= v <= hi:
+        return value
+    side, limit = ("below", lo) if not v >= lo else ("above", hi)
+    raise ValidityError(f"{what} is {v:.6g}, {side} its limit {limit:.6g}"
+                        + (f": {why}" if why else ""))
+
+
+def check_callable(value, name, signature):
+    """``value`` if it is callable; TypeError naming ``name`` and the ``signature`` expected.
+
+    For the profile arguments (``pitch(s)`` of the design, ``pitch_derivative(s)``):
+    a quantity or None gave "'Quantity' object is not callable" from inside.
+    """
+    if callable(value):
+        return value
+    hint = ""
+    if hasattr(value, "_units"):
+        hint = (f" ({value} is a value; a constant profile is a callable too: "
+                "lambda s: value * numpy.ones(numpy.shape(s)))")
+    raise TypeError(f"{name} must be a callable {signature}, got "
+                    f"{type(value).__name__}{hint}")
+
+
+def profile_values(values, shape, name):
+    """A profile callable's magnitudes broadcast to the grid ``shape``; ValueError naming it.
+
+    One check for every user callable evaluated on a grid (``pitch(s)``,
+    ``pitch_derivative(s)``, ``twist_rate(slack)``): a scalar or one value per
+    point; any other shape gave numpy's broadcast message, naming neither the
+    callable nor the shape it must return.
+    """
+    a = np.asarray(values, dtype=float)
+    try:
+        return np.broadcast_to(a, shape)
+    except ValueError:
+        raise ValueError(f"{name} returned an array of shape {a.shape}; it must return a "
+                         f"scalar or one value per point of its argument (shape {shape})"
+                         ) from None

@@ -18,13 +18,90 @@ import numpy as np
 
 from supercoil.exceptions import DataError
 
-__all__ = ["BLOCK_BYTES", "CsvFile"]
+__all__ = ["BLOCK_BYTES", "CsvFile", "check_path", "decode_utf8", "open_input", "read_text"]
 
 #: bytes scanned at a time for the file lines of the rows
 BLOCK_BYTES = 1 << 20
 _BOM = b"\xef\xbb\xbf"
 _WHITE = np.zeros(256, dtype=bool)
 _WHITE[[9, 10, 13, 32]] = True
+
+
+def check_path(path, name="path"):
+    """``path`` as a :class:`~pathlib.Path`; TypeError naming ``name`` if it is not a path.
+
+    The one path check of every reader (CSV, CALISTO, MagScope, MultiMT).
+    """
+    if isinstance(path, bytes) or not (isinstance(path, str | Path)
+                                        or hasattr(path, "__fspath__")):
+        raise TypeError(f"{name} must be a str or a path, got {type(path).__name__}")
+    return Path(path)
+
+
+def open_input(path, kind="file", name="path"):
+    """``(Path, binary handle)`` of an input file; DataError naming the file otherwise.
+
+    DataError for a missing file, a directory, a file that cannot be read
+    (permissions, ...); TypeError (naming ``name``) for a non-path.
+    """
+    path = check_path(path, name)
+    if path.is_dir():
+        raise DataError(f"cannot read {path}: it is a directory, not a {kind}; give the "
+                        "file's path")
+    try:
+        return path, open(path, "rb")  # the caller closes it
+    except FileNotFoundError:
+        raise DataError(f"no such {kind}: {path}") from None
+    except OSError as exc:  # permissions, a device, ...
+        raise DataError(f"cannot read the {kind} {path}: {exc.strerror or exc}") from None
+
+
+def decode_utf8(raw, path, first_line=1, offset=0):
+    """``raw`` bytes as UTF-8 text; DataError naming the file line of a bad byte.
+
+    ``first_line``: file line of ``raw[0]``; ``offset``: its byte offset in the file.
+    """
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = first_line + raw[: exc.start].count(b"\n")
+        raise DataError(
+            f"{path}, line {line}: not UTF-8 text ({exc.reason} at byte "
+            f"{offset + exc.start}); save the file as UTF-8") from None
+
+
+def read_text(path, kind="file", name="path"):
+    """``(Path, text)`` of a whole UTF-8 text file (a byte-order mark is skipped).
+
+    The shared checks of :func:`open_input` and :func:`decode_utf8`.
+    """
+    path, fh = open_input(path, kind, name)
+    with fh:
+        raw = fh.read()
+    start = 3 if raw.startswith(_BOM) else 0
+    return path, decode_utf8(raw[start:], path, offset=start)
+
+
+def _mac_line_ends(fh):
+    """``fh``, or an in-memory copy with LF line ends if the file ends lines with CR only.
+
+    Classic Mac OS (and Excel's "CSV (Macintosh)") ends lines with a bare
+    carriage return; pandas and :mod:`csv` would read such a file as one line.
+    A file with a carriage return and no line feed in its whole text is read
+    into memory once with every CR turned into LF (same lines, same line numbers).
+    """
+    import io
+
+    head = fh.read(BLOCK_BYTES)
+    if b"\r" not in head or b"\n" in head:
+        fh.seek(0)
+        return fh
+    raw = head + fh.read()
+    if b"\n" in raw:
+        fh.seek(0)
+        return fh
+    fh.close()
+    return io.BytesIO(raw.replace(b"\r", b"\n"))
 
 
 class CsvFile:
@@ -46,29 +123,17 @@ class CsvFile:
     """
 
     def __init__(self, path):
-        if not isinstance(path, str | Path) and not hasattr(path, "__fspath__"):
-            raise TypeError(f"path must be a str or a path, got {type(path).__name__}")
-        self.path = Path(path)
+        self.path, fh = open_input(path, "file")  # closed below on error, else by close()
         try:
-            fh = open(self.path, "rb")  # closed below on error, else by close()
-        except FileNotFoundError:
-            raise DataError(f"no such file: {self.path}") from None
-        except (IsADirectoryError, PermissionError) as exc:
-            raise DataError(f"cannot read {self.path}: {exc.strerror}") from None
-        self.handle = fh
-        try:
+            fh = _mac_line_ends(fh)
+            self.handle = fh
             self._read_head(fh)
         except BaseException:
             fh.close()
             raise
 
     def _decode(self, raw, line_no, start):
-        try:
-            return raw.decode("utf-8")
-        except UnicodeDecodeError as exc:
-            raise DataError(
-                f"{self.path}, line {line_no}: not UTF-8 text ({exc.reason} at byte "
-                f"{start + exc.start}); save the file as UTF-8 CSV") from None
+        return decode_utf8(raw, self.path, line_no, start)
 
     def _read_head(self, fh):
         prov, comments, n = {}, [], 0
@@ -111,14 +176,7 @@ class CsvFile:
     def body_text(self):
         """The whole body as text (error paths only); DataError naming a non-UTF-8 line."""
         self.handle.seek(self.offset)
-        raw = self.handle.read()
-        try:
-            return raw.decode("utf-8")
-        except UnicodeDecodeError as exc:
-            line = self.n_comment + raw[: exc.start].count(b"\n") + 1
-            raise DataError(
-                f"{self.path}, line {line}: not UTF-8 text ({exc.reason} at byte "
-                f"{self.offset + exc.start}); save the file as UTF-8 CSV") from None
+        return decode_utf8(self.handle.read(), self.path, self.n_comment + 1, self.offset)
 
     def close(self):
         self.handle.close()

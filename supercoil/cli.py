@@ -21,7 +21,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="supercoil",
         description="Double helices of twisted filaments: rubber rods and DNA plectonemes "
-        "(Li, Zhao et al.; theory in docs/theory/index.md).",
+        "(Li, Zhao et al.; the physics is in the documentation's Theory pages).",
     )
     parser.add_argument("--version", action="version", version=f"supercoil {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -41,17 +41,36 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """Run the command line; the exit status.
+
+    0: done; 1: a fit failed (``supercoil fit``, documented there); 2: the command
+    cannot run as given (no command, a bad argument or ``--out``, unreadable data; the
+    message names the flag or the file, never a traceback).
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
-        parser.print_help()
-        return 0
+        # a missing subcommand is a usage error (argparse's convention: status 2)
+        parser.print_help(sys.stderr)
+        print("supercoil: error: a COMMAND is required", file=sys.stderr)
+        return 2
+    from supercoil.commands._common import argument_flags, check_out_folder, error_text
     from supercoil.exceptions import SupercoilError
 
+    out = getattr(args, "out", None)
+    problem = check_out_folder(out) if out is not None else None
+    if problem:  # before any computation (issue 20 item 12)
+        print(f"supercoil {args.command}: error: {problem}", file=sys.stderr)
+        return 2
     try:
         return int(args.func(args) or 0)
     except SupercoilError as exc:
-        print(f"supercoil {args.command}: error: {exc}", file=sys.stderr)
+        print(error_text(args.command, exc), file=sys.stderr)
+        return 2
+    except (TypeError, ValueError) as exc:
+        if not argument_flags(exc):  # not about a flag's value: a bug, keep the traceback
+            raise
+        print(error_text(args.command, exc), file=sys.stderr)
         return 2
 
 

@@ -18,6 +18,12 @@ Hierarchy
     ``DataError``: user data cannot be read (names the row and column)
     ``FitError``: a fit could not be set up or did not converge
 
+Every ``SupercoilError`` has an ``argument`` attribute: the name of the public
+function's argument the error is about (``"sigma"``, ``"fixed"``), or ``None``.
+The command line maps it to its flag (``supercoil.commands._common.ARGUMENT_FLAGS``)
+instead of rewriting the message; the argument checks of ``supercoil._checks`` set
+the same attribute on the ``TypeError``/``ValueError`` they raise.
+
 ``SupercoilWarning`` (base of all warnings, a ``UserWarning``)
     ``ValidityWarning``: a result is computed but lies outside the range where
         the model is trustworthy (short tail, curvature error, denaturation)
@@ -48,7 +54,28 @@ __all__ = [
 
 
 class SupercoilError(ValueError):
-    """Base class of all errors raised by supercoil."""
+    """Base class of all errors raised by supercoil.
+
+    Parameters
+    ----------
+    *args
+        The message (as for any exception).
+    argument : str, optional
+        The name of the argument of the public function that the error is about
+        (e.g. ``"sigma"``); ``None`` (the default) when it is about no single argument.
+    """
+
+    def __init__(self, *args, argument=None):
+        super().__init__(*args)
+        self.argument = argument
+
+    def __reduce__(self):
+        # keep ``argument`` through pickling (errors of fit_many's worker processes)
+        return (_rebuild, (type(self), self.args, self.argument))
+
+
+def _rebuild(cls, args, argument):
+    return cls(*args, argument=argument)
 
 
 class NoSolutionError(SupercoilError):

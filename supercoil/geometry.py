@@ -56,6 +56,18 @@ def _finite(x, name, given):
     return a
 
 
+def _quiet():
+    """numpy's float errors off around a kernel call: :func:`_out` names a non-finite result.
+
+    The checked scalars are numpy floats (``a[()]``), not Python floats: Python's
+    ``1e297 ** 2`` raises a bare OverflowError (and ``x / 0.0`` a
+    ZeroDivisionError) where numpy gives inf, which :func:`_out` turns into a
+    ValidityError naming the result and the inputs (issue 20, item 5); a result
+    below the float range underflows to 0, its value to rounding.
+    """
+    return np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore")
+
+
 def _alpha(alpha, hi_open=False):
     """Tilt in rad, finite and in [0, pi/2] (``[0, pi/2)`` with ``hi_open``)."""
     a = _finite(magnitude(alpha, U.rad, "alpha"), "alpha", alpha)
@@ -64,14 +76,14 @@ def _alpha(alpha, hi_open=False):
         raise ValueError(f"alpha must lie in [0, pi/2{')' if hi_open else ']'} (tilt "
                          f"arctan(2 pi R / P) with R, P > 0; the handedness is the sign of "
                          f"the turns N, not of alpha), got {alpha!r}")
-    return a if a.ndim else float(a)
+    return a if a.ndim else a[()]
 
 
 def _radius(radius):
     r = _finite(magnitude(radius, U.m, "radius"), "radius", radius)
     if np.any(r <= 0):
         raise ValueError(f"radius must be positive, got {radius!r}")
-    return r if r.ndim else float(r)
+    return r if r.ndim else r[()]
 
 
 def _length(value, name, positive=True):
@@ -80,7 +92,7 @@ def _length(value, name, positive=True):
     if np.any(x <= 0) if positive else np.any(x < 0):
         raise ValueError(f"{name} must be {'positive' if positive else '>= 0'} (the package "
                          f"carries the handedness in the sign of N), got {value!r}")
-    return x if x.ndim else float(x)
+    return x if x.ndim else x[()]
 
 
 def tilt_angle(radius, pitch):
@@ -124,7 +136,7 @@ def pitch_from_tilt(alpha, radius):
     broadcast_shape(alpha=a, radius=_radius(radius))
     if np.any(np.asarray(a) == 0):
         raise SingularityError("pitch diverges at alpha = 0 (straight strands)")
-    with np.errstate(over="ignore", divide="ignore"):
+    with _quiet():
         p = _g.pitch_from_tilt(a, _radius(radius))
     return _out(p, U.m, "pitch", alpha=alpha, radius=radius)
 
@@ -133,28 +145,28 @@ def radius_from_tilt(alpha, pitch):
     """Radius ``R = P tan(alpha) / (2 pi)``, alpha in [0, pi/2), pitch > 0 (finite)."""
     a = _alpha(alpha, hi_open=True)
     broadcast_shape(alpha=a, pitch=_length(pitch, "pitch"))
-    with np.errstate(over="ignore"):
+    with _quiet():
         r = _g.radius_from_tilt(a, _length(pitch, "pitch"))
     return _out(r, U.m, "radius", alpha=alpha, pitch=pitch)
 
 
 def curvature(alpha, radius):
     """Curvature ``kappa = sin^2(alpha) / R`` [Eq curvature1], in 1/m."""
-    with np.errstate(over="ignore"):
+    with _quiet():
         k = _g.curvature(*_alpha_radius(alpha, radius))
     return _out(k, U.per_m, "curvature", alpha=alpha, radius=radius)
 
 
 def torsion(alpha, radius):
     """Torsion ``tau = sin(alpha) cos(alpha) / R`` [Eq torsion1], in 1/m."""
-    with np.errstate(over="ignore"):
+    with _quiet():
         t = _g.torsion(*_alpha_radius(alpha, radius))
     return _out(t, U.per_m, "torsion", alpha=alpha, radius=radius)
 
 
 def curvature_partials(alpha, radius):
     """``(d kappa/d alpha [1/m/rad], d kappa/d R [1/m^2])``."""
-    with np.errstate(over="ignore"):
+    with _quiet():
         da, dr = _g.curvature_partials(*_alpha_radius(alpha, radius))
     return (_out(da, U.per_m / U.rad, "d kappa/d alpha", alpha=alpha, radius=radius),
             _out(dr, U.per_m / U.m, "d kappa/d R", alpha=alpha, radius=radius))
@@ -162,7 +174,7 @@ def curvature_partials(alpha, radius):
 
 def torsion_partials(alpha, radius):
     """``(d tau/d alpha [1/m/rad], d tau/d R [1/m^2])``."""
-    with np.errstate(over="ignore"):
+    with _quiet():
         da, dr = _g.torsion_partials(*_alpha_radius(alpha, radius))
     return (_out(da, U.per_m / U.rad, "d tau/d alpha", alpha=alpha, radius=radius),
             _out(dr, U.per_m / U.m, "d tau/d R", alpha=alpha, radius=radius))
@@ -171,8 +183,8 @@ def torsion_partials(alpha, radius):
 def curvature_error(dpitch_ds):
     """Appendix A factor ``e = sqrt(1 + (dP/ds)^2 / 4 pi^2)`` (dimensionless)."""
     d = _finite(magnitude(dpitch_ds, U.dimensionless, "dpitch_ds"), "dpitch_ds", dpitch_ds)
-    with np.errstate(over="ignore"):
-        e = _g.curvature_error(d if d.ndim else float(d))
+    with _quiet():
+        e = _g.curvature_error(d if d.ndim else d[()])
     return _out(e, U.dimensionless, "curvature_error", dpitch_ds=dpitch_ds)
 
 
@@ -182,7 +194,7 @@ def superhelical_turns(alpha, radius, slack):
     Unsigned (alpha >= 0, S >= 0): the magnitude of the count; the rod scenes
     attach sign(N) (see :class:`supercoil.SmoothHelix`).
     """
-    with np.errstate(over="ignore"):
+    with _quiet():
         a, r = _alpha_radius(alpha, radius)
         s = _length(slack, "slack", positive=False)
         broadcast_shape(alpha=a, radius=r, slack=s)
@@ -209,7 +221,7 @@ def writhe(alpha, radius, slack, method="exact"):
     broadcast_shape(alpha=a, radius=r, slack=s)
     if method not in ("exact", "one_view"):
         raise ValueError(f"method must be 'exact' or 'one_view', got {method!r}")
-    with np.errstate(over="ignore"):
+    with _quiet():
         wr = (_g.writhe_uniform if method == "exact" else _g.writhe_one_view)(a, r, s)
     return _out(wr, U.turn, "writhe", alpha=alpha, radius=radius, slack=slack)
 
@@ -235,7 +247,7 @@ def linking_number(alpha, radius, slack, length, omega_helix, omega_tail=None):
     wt = wh if omega_tail is None else _finite(
         magnitude(omega_tail, U.per_m, "omega_tail"), "omega_tail", omega_tail)
     broadcast_shape(alpha=a, radius=r, slack=s, length=L, omega_helix=wh, omega_tail=wt)
-    with np.errstate(over="ignore", invalid="ignore"):
+    with _quiet():
         tw = _g.twist_uniform(wh, wt, s, L)
         wr = _g.writhe_uniform(a, r, s)
         lk = tw + wr

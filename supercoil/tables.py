@@ -26,7 +26,8 @@ import pandas as pd
 from supercoil._csvfile import CsvFile
 from supercoil.exceptions import DataError
 
-__all__ = ["column_quantity", "make_table", "provenance", "read_csv", "write_csv"]
+__all__ = ["column_quantity", "line_runs", "make_table", "provenance", "read_csv", "row_lines",
+           "write_csv"]
 
 _HEADER = re.compile(r"^\s*(?P<name>.*?)\s*(?:\[(?P<unit>[^\]]*)\])?\s*$")
 
@@ -87,6 +88,50 @@ def make_table(columns, units, provenance_dict=None) -> pd.DataFrame:
     return df
 
 
+def line_runs(lines):
+    """File lines of the rows as runs ``[[first, last], ...]`` of consecutive lines (plain ints).
+
+    The form of ``attrs["lines"]``: plain Python values only (pandas compares
+    and deep-copies attrs; an array breaks ``pd.concat`` and a list of one int
+    per row costs a deep copy per row on every pandas operation). A file
+    without blank lines is one run.
+    """
+    v = np.asarray(lines, dtype=np.int64).ravel()
+    if v.size == 0:
+        return []
+    cut = np.flatnonzero(np.diff(v) != 1) + 1
+    first = np.concatenate(([0], cut))
+    last = np.concatenate((cut - 1, [v.size - 1]))
+    return [[int(a), int(b)] for a, b in zip(v[first], v[last], strict=True)]
+
+
+def expand_line_runs(runs):
+    """The file line of every row (int64 array) from :func:`line_runs`; None if malformed."""
+    try:
+        parts = [np.arange(int(a), int(b) + 1, dtype=np.int64) for a, b in runs]
+    except (TypeError, ValueError):
+        return None
+    return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
+
+
+def row_lines(df):
+    """File line of every row of a table read from a file (``attrs["lines"]``), or None.
+
+    Returns an int64 array of ``len(df)`` lines, or None when the table has no
+    line record or it no longer matches the rows (e.g. after filtering).
+    """
+    runs = getattr(df, "attrs", {}).get("lines")
+    if runs is None:
+        return None
+    lines = expand_line_runs(runs) if is_line_runs(runs) else np.asarray(runs, dtype=np.int64)
+    return lines if lines is not None and lines.size == len(df) else None
+
+
+def is_line_runs(lines):
+    return isinstance(lines, list) and all(isinstance(r, list | tuple) and len(r) == 2
+                                           for r in lines)
+
+
 def column_quantity(df, column):
     """Column ``column`` of a convention table as a pint quantity of :data:`supercoil.ureg`."""
     from supercoil.units import ureg
@@ -101,21 +146,41 @@ def write_csv(df, path) -> Path:
     """Write a convention table to ``path``: units in headers, provenance as ``#`` lines.
 
     Returns the path written.
+
+    Raises
+    ------
+    TypeError
+        ``df`` is not a DataFrame (e.g. a dict: build the table with
+        :func:`make_table`), or ``path`` is not a path.
+    ValueError
+        The table has no unit for a column; ``path`` is a directory, or the
+        file cannot be written (names the path and the reason).
     """
+    from supercoil._csvfile import check_path
+
+    if not isinstance(df, pd.DataFrame):
+        raise TypeError(f"write_csv: df must be a pandas DataFrame with attrs['units'] (build "
+                        f"one with supercoil.tables.make_table), got {type(df).__name__}")
+    path = check_path(path, "path")
+    if path.is_dir():
+        raise ValueError(f"write_csv: {path} is a directory; give a file name, e.g. "
+                         f"{path / 'table.csv'}")
     units = df.attrs.get("units")
     if units is None:
         raise ValueError("write_csv: the table has no df.attrs['units']")
     missing = [c for c in df.columns if c not in units]
     if missing:
         raise ValueError(f"write_csv: no unit for columns {missing} in df.attrs['units']")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     header = {c: (f"{c} [{units[c]}]" if units[c] else str(c)) for c in df.columns}
     prov = df.attrs.get("provenance", {})
-    with open(path, "w", newline="") as fh:
-        for key, value in prov.items():
-            fh.write(f"# {key}: {json.dumps(_jsonable(value), sort_keys=True)}\n")
-        df.rename(columns=header).to_csv(fh, index=False, float_format="%.12g")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(path, "w", newline="") as fh:
+            for key, value in prov.items():
+                fh.write(f"# {key}: {json.dumps(_jsonable(value), sort_keys=True)}\n")
+            df.rename(columns=header).to_csv(fh, index=False, float_format="%.12g")
+    except OSError as exc:  # a parent that is a file, no permission, disk full
+        raise ValueError(f"write_csv: cannot write {path}: {exc.strerror or exc}") from None
     return path
 
 

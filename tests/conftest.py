@@ -71,3 +71,23 @@ def installed_wheel(tmp_path_factory):
         return out.stdout
 
     return names, site, run
+
+
+def pytest_addoption(parser):
+    parser.addoption("--qian-s5", default=None,
+                     help="path of the Figure S5 workbook of Qian et al. (bioRxiv "
+                          "2024.10.15.618270) for the real-data tests (else the environment "
+                          "variable SUPERCOIL_QIAN_S5)")
+
+
+@pytest.fixture(scope="session")
+def qian_s5(request):
+    """Path of the user's Figure S5 workbook, or skip with the reason (the file is GPL)."""
+    from supercoil.datasets.published import ENV_VAR, published_curves_path
+
+    path = request.config.getoption("--qian-s5") or os.environ.get(ENV_VAR)
+    if not path:
+        pytest.skip(f"real-data test: give --qian-s5 PATH or set {ENV_VAR} to the Figure S5 "
+                    "workbook of Qian et al. (WangLabCornell/Qian_et_al, 'Source Data/Figure "
+                    "S5.xlsx'; GPL, not shipped)")
+    return published_curves_path(path)

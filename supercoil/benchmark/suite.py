@@ -8,6 +8,9 @@ Writes into DIR:
 * ``stability_map.png``: where each solver fails, is flagged, or is valid;
 * ``bench_measurements.csv``: every measured point (table convention);
 * ``unit_boundary.csv``, ``stability_map.csv``;
+* ``family_precision.csv`` and ``family_precision.png``: every registered model and
+  interaction, cost per hat curve and per fit against the difference from the reference
+  model (:mod:`supercoil.benchmark.family`);
 * ``dna_model_cost.csv``: the DNA models side by side (time per force, points
   per second, ratio to li-zhao);
 * ``headline.csv`` and ``headline.md``: one row per speed or memory target
@@ -122,7 +125,7 @@ def _headline_step(out, quick, log, machine, legacy):
 def run(out, quick=False, log=print):
     """Run every benchmark, write charts and tables into ``out``; returns the headline table."""
     import supercoil as sc
-    from supercoil.benchmark import dna, rod, stability, unit_boundary, work_precision
+    from supercoil.benchmark import dna, family, rod, stability, unit_boundary, work_precision
     from supercoil.core.dna import plectoneme as pl
     from supercoil.tables import make_table, provenance, write_csv
 
@@ -133,9 +136,9 @@ def run(out, quick=False, log=print):
     log(f"supercoil bench on {machine}")
 
     tols = rod.TOLERANCES[::3] if quick else rod.TOLERANCES
-    log("1/6 rough-rod profile: closed form vs solve_ivp ...")
+    log("1/7 rough-rod profile: closed form vs solve_ivp ...")
     rows = rod.rough_profile_work_precision(tolerances=tols, repeat=2 if quick else 3)
-    log("2/6 plectoneme equilibrium: tolerance, vectorised vs scalar loop ...")
+    log("2/7 plectoneme equilibrium: tolerance, vectorised vs scalar loop ...")
     eq_rows = dna.equilibrium_work_precision(n_forces=50 if quick else 200,
                                              tolerances=[1e-2, 1e-6, 1e-10, 1e-14] if quick
                                              else None, repeat=2 if quick else 3)
@@ -150,25 +153,33 @@ def run(out, quick=False, log=print):
     wp_table = make_table(rows, {**work_precision.UNITS}, provenance(None, machine=machine))
     write_csv(wp_table, out / "bench_measurements.csv")
 
-    log("3/6 hat curve: thermal vs athermal, cost per point ...")
+    log("3/7 hat curve: thermal vs athermal, cost per point ...")
     hat_rows = dna.hat_cost(sizes=(100, 10_000, 1_000_000) if quick else
                             (100, 1_000, 10_000, 100_000, 1_000_000))
     hat = make_table(hat_rows, {"variant": "", "points": "", "time": "s", "time_per_point": "s",
                                 "points_per_second": "1/s"}, provenance(None, machine=machine))
     write_csv(hat, out / "hat_curve_cost.csv")
 
-    log("4/6 unit boundary ...")
+    log("4/7 unit boundary ...")
     ub = unit_boundary.run(sizes=(1, 10_000) if quick else unit_boundary.SIZES)
     write_csv(ub, out / "unit_boundary.csv")
 
     _charts(wp, hat, ub, out)
 
-    log("5/6 stability map ...")
+    log("5/7 stability map ...")
     smap = stability.run(quick=quick)
     write_csv(smap, out / "stability_map.csv")
     stability.plot(smap, out / "stability_map.png")
 
-    log("6/6 headline targets ...")
+    log("6/7 the model family: cost against difference from the reference ...")
+    fam = make_table(family.family_precision(turns_points=101 if quick else 401,
+                                             repeat=1 if quick else 3, log=log),
+                     family.UNITS, provenance(None, machine=machine, reference=family.REFERENCE,
+                                              forces_pN=list(family.FORCES)))
+    write_csv(fam, out / "family_precision.csv")
+    family.plot(fam, out / "family_precision.png")
+
+    log("7/7 headline targets ...")
     head = _headline_step(out, quick, log, machine, _legacy_rows(wp, hat, ub, eq1000))
     log(f"done in {time.perf_counter() - t_start:.1f} s; outputs in {out}")
     return head

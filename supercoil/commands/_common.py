@@ -7,13 +7,21 @@
   (a default step) or ``a,b,c``, with an error message that names the flag.
 * :func:`plain_warnings`: run a computation, collect its warnings and return them
   once each, as plain text (no Python warning text on the terminal).
+* :data:`ARGUMENT_FLAGS`, :func:`flag_text`, :func:`error_text`: the one table from a
+  library argument name to the command-line flag that sets it, and the messages built
+  from it (an exception's ``argument`` attribute names the argument; issue 21 item 4).
+* :func:`check_out_folder`: ``--out`` checked before any computation.
+* :func:`source_checkout`: the source checkout for ``supercoil docs`` (the working
+  folder, else the checkout the package is in).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -88,3 +96,124 @@ def plain_warnings(func, *args, **kwargs):
         result = func(*args, **kwargs)
     messages = list(dict.fromkeys(str(w.message) for w in caught))
     return result, messages
+
+
+#: library argument name -> the command-line flag that sets it (issue 21 item 4). The
+#: commands name the flag with this table instead of rewriting messages: an exception
+#: whose ``argument`` attribute is a key gets the flag in front of its message, and a
+#: Python keyword hint in a message (``check_settled=False``, ``calibration=``) becomes
+#: the flag (:func:`flag_text`). Flags starting ``--no-`` set the argument to False.
+#: tests/cli/test_cli_errors.py checks that every flag is an option of a command.
+ARGUMENT_FLAGS = {
+    # supercoil hat (hat_curve, buckling_turns, DNA.replace)
+    "force": "--force",
+    "turns": "--turns",
+    "length": "--length",
+    "short_tail_length": "--short-tail",
+    "thermal": "--athermal",
+    "model": "--model",
+    "interaction": "--interaction",
+    "end_loop": "--end-loop",
+    # supercoil fit (fit_hat_curves, fit_many, compare_models, read_tweezers_csv)
+    "vary": "--vary",
+    "fixed": "--fix",
+    "start": "--start",
+    "bounds": "--bound",
+    "sigma": "--sigma",
+    "fit_turns_offset": "--no-turns-offset",
+    "fit_extension_offset": "--no-extension-offset",
+    "drop_incomplete": "--drop-incomplete",
+    "executor": "--jobs",
+    # supercoil curves (read_magscope, read_calisto, find_plateaus, rotation_curves)
+    "settle": "--settle",
+    "calibration": "--calibration",
+    "reference_beads": "--reference",
+    "reference": "--reference",
+    "errors": "--errors",
+    "check_settled": "--no-check-settled",
+    "rotation_log": "--rotation-log",
+    "height_log": "--height-log",
+    "motor_path": "--motor",
+}
+
+#: a Python keyword hint in a message: ``name=`` and what follows up to a space, comma,
+#: parenthesis or the end (``check_settled=False``, ``calibration=``)
+_KEYWORD_HINT = re.compile(r"(?<![\w-])(?P<name>[a-z_][a-z0-9_]*)=(?P<value>[^\s,;()]*)")
+
+
+def flag_text(message: str) -> str:
+    """``message`` with its Python keyword hints (``name=value``) written as flags.
+
+    Only names in :data:`ARGUMENT_FLAGS` change: ``check_settled=False`` becomes
+    ``--no-check-settled``, ``calibration=`` becomes ``--calibration``, ``sigma=5nm``
+    becomes ``--sigma 5nm``.
+    """
+
+    def replace(m):
+        flag = ARGUMENT_FLAGS.get(m["name"])
+        if flag is None:
+            return m[0]
+        if flag.startswith("--no-") or not m["value"]:
+            return flag
+        return f"{flag} {m['value']}"
+
+    return _KEYWORD_HINT.sub(replace, message)
+
+
+def argument_flags(exc) -> list[str]:
+    """The flags of the argument(s) ``exc`` names (its ``argument`` attribute), in order."""
+    names = getattr(exc, "argument", None)
+    names = (names,) if isinstance(names, str) else tuple(names or ())
+    return list(dict.fromkeys(ARGUMENT_FLAGS[n] for n in names if n in ARGUMENT_FLAGS))
+
+
+def error_text(command: str, exc) -> str:
+    """``supercoil COMMAND: error: FLAG: message``: an exception in the command's terms.
+
+    The flag comes from the exception's ``argument`` (through :data:`ARGUMENT_FLAGS`;
+    left out when the message already names it); keyword hints become flags.
+    """
+    text = flag_text(str(exc))
+    flags = [f for f in argument_flags(exc) if f not in text]
+    prefix = f"{'/'.join(flags)}: " if flags else ""
+    return f"supercoil {command}: error: {prefix}{text}"
+
+
+def check_out_folder(out, flag: str = "--out"):
+    """``None``, or a message saying why ``out`` cannot be the output folder.
+
+    Checked before a command computes anything (issue 20 item 12): ``out`` must be a
+    folder or not exist yet, and the nearest existing folder above it must be writable.
+    """
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        return (f"{flag} {out}: is a file, not a folder (give a folder; it is created "
+                "if missing)")
+    parent = path
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if parent.exists() and not parent.is_dir():
+        return f"{flag} {out}: {parent} is a file, so the folder cannot be created"
+    if not path.exists() and not os.access(parent, os.W_OK | os.X_OK):
+        return f"{flag} {out}: cannot create a folder in {parent} (no write permission)"
+    return None
+
+
+def is_source_checkout(root: Path, needs=("README.md", "examples", "docs")) -> bool:
+    """Whether ``root`` holds ``needs`` (files or folders) of the repository."""
+    return all((Path(root) / name).exists() for name in needs)
+
+
+def source_checkout(given=None, needs=("README.md", "examples", "docs")):
+    """The source checkout for ``supercoil docs``: ``given``, else a default, else None.
+
+    The default is the working folder when it is a checkout (a user who installed the
+    package with ``pip install .`` and runs the command in the repository), else the
+    checkout the package itself is in (an editable install); ``None`` if neither is.
+    """
+    if given is not None:
+        return Path(given)
+    for root in (Path.cwd(), Path(__file__).resolve().parents[2]):
+        if is_source_checkout(root, needs):
+            return root
+    return None

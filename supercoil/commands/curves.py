@@ -33,14 +33,20 @@ __all__ = ["add_parser", "register", "run"]
 
 
 def _time(text):
+    """``--settle``: a time with its unit, finite and >= 0 (argparse exits 2 otherwise)."""
+    import math
+
     from ..units import U, magnitude, ureg
 
     try:
         q = ureg.Quantity(text)
-        magnitude(q, U.s, "settle")
+        seconds = magnitude(q, U.s, "settle")
     except Exception as exc:  # pint parse or dimensionality error
         raise argparse.ArgumentTypeError(f"cannot read --settle {text!r} as a time (e.g. 1s): "
                                          f"{exc}") from None
+    if not (isinstance(seconds, float | int) and math.isfinite(seconds) and seconds >= 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: the settling time must be one "
+                                         "finite time >= 0 (e.g. 1s)")
     return q
 
 
@@ -68,9 +74,12 @@ def add_parser(sub):
                    help="MagScope: motor log of the rotation in turns (default ZaberNmsMotor.txt)")
     p.add_argument("--height-log", default="ZaberLsqMotor.txt",
                    help="MagScope: motor log of the height in mm (default ZaberLsqMotor.txt)")
-    p.add_argument("--errors", choices=("plateau", "pooled"), default="plateau",
-                   help="sigma of each plateau mean: its own blocking error (default), or the "
-                   "naive error times the inefficiency pooled per bead and magnet height")
+    p.add_argument("--errors", choices=("pooled", "plateau"), default="pooled",
+                   help="sigma of each plateau mean: its standard deviation with the "
+                   "inefficiency pooled per bead and magnet height (default), or its own "
+                   "blocking error")
+    p.add_argument("--no-check-settled", action="store_true",
+                   help="keep plateaus whose two halves differ (not settled) instead of failing")
     p.add_argument("--out", default="curves_out", help="output folder (default: curves_out)")
     p.add_argument("--no-plot", action="store_true", help="do not write the figure")
     p.set_defaults(func=run)
@@ -111,21 +120,35 @@ def _read(args):
                                reference_beads=args.reference)
 
 
+def _calibration(path):
+    """The ``--calibration`` table (None without one); its errors name the flag."""
+    from ..exceptions import DataError, SupercoilError
+    from ..tables import read_csv
+
+    if path is None:
+        return None
+    try:
+        return read_csv(path)
+    except SupercoilError as exc:
+        raise DataError(str(exc), argument="calibration") from exc
+
+
 def run(args) -> int:
     from pathlib import Path
 
     from .. import traces
-    from ..tables import read_csv, write_csv
+    from ..tables import write_csv
 
     out = Path(args.out)
     settle = args.settle if not isinstance(args.settle, str) else _time(args.settle)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         trace = _read(args)
-        calibration = read_csv(args.calibration) if args.calibration else None
+        calibration = _calibration(args.calibration)
         plateaus = traces.find_plateaus(trace, settle)
         curves = traces.rotation_curves(trace, settle, calibration=calibration,
-                                        errors=args.errors)
+                                        errors=args.errors,
+                                        check_settled=not args.no_check_settled)
     for w in caught:
         print(f"supercoil curves: warning: {w.message}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)

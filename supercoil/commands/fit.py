@@ -42,12 +42,27 @@ def _assignment(text):
 
 
 def _parse_quantity(text, what):
+    """One finite number with its unit; ArgumentTypeError naming ``what`` (the flag) else.
+
+    pint reads ``[1,2]nm`` as 12 nm and ``nan`` as a number: both are refused here
+    (issue 20 item 12: a bad ``--fix`` value exits 2 naming the flag, no traceback).
+    """
+    import math
+
     from supercoil.units import ureg
 
+    if any(c in text for c in "[],;"):
+        raise argparse.ArgumentTypeError(f"cannot read {what} {text!r}: give one number with "
+                                         "its unit, e.g. 2nm")
     try:
-        return ureg.Quantity(text)
+        q = ureg.Quantity(text)
     except Exception as exc:  # pint raises several parser errors
         raise argparse.ArgumentTypeError(f"cannot read {what} {text!r}: {exc}") from None
+    m = q.magnitude
+    if not (isinstance(m, int | float) and math.isfinite(m)):
+        raise argparse.ArgumentTypeError(f"cannot read {what} {text!r}: the value must be "
+                                         "one finite real number (with its unit)")
+    return q
 
 
 #: library wording -> command-line wording, for error and warning messages
@@ -73,21 +88,30 @@ _CLI_PATTERNS = (
 
 
 def _cli_text(message):
-    """A library message in the command's terms: flags instead of keyword arguments."""
+    """A library message in the command's terms: flags instead of keyword arguments.
+
+    Keyword hints (``name=value``) go through the one table of the commands,
+    :data:`supercoil.commands._common.ARGUMENT_FLAGS`; the wordings above are the
+    fitting messages that name an argument in prose (they carry no ``argument``
+    attribute yet).
+    """
     import re
+
+    from supercoil.commands._common import flag_text
 
     for old, new in _CLI_WORDS:
         message = message.replace(old, new)
     for pattern, new in _CLI_PATTERNS:
         message = re.sub(pattern, new, message)
-    return message
+    return flag_text(message)
 
 
 def register(sub):
     p = sub.add_parser(
         "fit",
         help="fit hat curves to magnetic-tweezers rotation curves (CSV)",
-        description="Fit a DNA hat-curve model (docs/theory/fitting.md) to extension-versus-turns "
+        description="Fit a DNA hat-curve model (documentation: theory page Fitting) to "
+        "extension-versus-turns "
         "data at several forces: shared physical parameters, per-molecule turns and extension "
         "offsets, least squares with uncertainties. Repeat --model to compare models (AIC, "
         "BIC).",
@@ -120,7 +144,8 @@ def register(sub):
     p.add_argument("--interaction", default="hard-core", metavar="NAME",
                    help="plectoneme interaction (default hard-core)")
     p.add_argument("--end-loop", action="store_true",
-                   help="add the plectoneme end loop to every --model (docs/theory/end-loop.md; "
+                   help="add the plectoneme end loop to every --model (documentation: theory page "
+                   "The plectoneme end loop; "
                    "models free-energy and marko2007)")
     p.add_argument("--drop-incomplete", action="store_true",
                    help="drop rows with empty cells (listed in a warning) instead of failing")
@@ -320,7 +345,7 @@ def _run_many(args, data, dna, fixed, bounds, start, options):
 
     n = data["molecule"].astype(str).nunique()
     # a tqdm bar on a terminal, one line per molecule in a log (issue 15)
-    bar = Progress(False if args.no_progress else None, n, prefix="supercoil fit: ")
+    bar = Progress(False if args.no_progress else "log", n, prefix="supercoil fit: ")
     kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start,
                   progress=lambda done, total, molecule: bar.update(molecule), **options)
     try:

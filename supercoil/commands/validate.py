@@ -8,7 +8,8 @@ def register(sub):
         "validate", help="compare the DNA models with published measurements",
         description="Evaluate li-zhao (seed set, hard core), free-energy (150 mM set, screened) "
         "and marko2007 (150 mM set) at the conditions of every shipped published value "
-        "(docs/theory/validation.md); write validation.csv and validation.png.")
+        "(documentation: theory page Validation against published measurements); write "
+        "validation.csv and validation.png.")
     p.add_argument("--out", default="results", help="output folder (default: results)")
     p.set_defaults(func=run)
 

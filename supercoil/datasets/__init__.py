@@ -11,6 +11,12 @@
 (``supercoil fit PATH ...``). Every data set is synthetic and documents how it
 was made in its ``#`` provenance lines (true parameters, offsets, noise, seed);
 :mod:`supercoil.datasets.make` regenerates it. See docs/tutorials/fitting.md.
+
+Published measurements (:mod:`supercoil.datasets.published`):
+``read_published_curves(path)`` reads the user's copy of a published source-data
+file (not shipped: its license) into the same table;
+``load_published_summary()`` gives the small per-force summary numbers shipped
+in ``published.csv``, cited on each line.
 """
 
 from __future__ import annotations
@@ -20,7 +26,11 @@ from pathlib import Path
 
 from supercoil.exceptions import DataError
 
-__all__ = ["available_datasets", "dataset_path", "load_dataset"]
+__all__ = ["available_datasets", "dataset_path", "load_dataset", "load_published_summary",
+           "read_published_curves"]
+
+#: shipped CSV files that are not rotation-curve data sets (summary numbers)
+_SUMMARIES = ("published.csv",)
 
 
 def _folder():
@@ -29,7 +39,8 @@ def _folder():
 
 def available_datasets() -> list[str]:
     """Names of the shipped data sets (sorted)."""
-    return sorted(p.name[:-4] for p in _folder().iterdir() if p.name.endswith(".csv"))
+    return sorted(p.name[:-4] for p in _folder().iterdir()
+                  if p.name.endswith(".csv") and p.name not in _SUMMARIES)
 
 
 def dataset_path(name) -> Path:
@@ -63,3 +74,12 @@ def load_dataset(name):
     from supercoil.dna.tweezers import read_tweezers_csv
 
     return read_tweezers_csv(dataset_path(name))
+
+
+def __getattr__(name):
+    """The readers of published data, imported on first use."""
+    if name in ("read_published_curves", "load_published_summary"):
+        from supercoil.datasets import published
+
+        return getattr(published, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -70,8 +70,9 @@ def resolve(dna, force, thermal, model, interaction):
                          f"interaction (got interaction={interaction!r})")
     else:
         inter = get_interaction(interaction)
-    inter.check(si)
-    return si, f, thermal, m, _v.StateRecorder(inter)
+    rec = _v.StateRecorder(inter)
+    (rec if m.uses_interaction else inter).check(si)  # the recorder adds the shared scales
+    return si, f, thermal, m, rec
 
 
 def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION):
@@ -92,7 +93,7 @@ def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DE
         radius) as :func:`plectoneme_equilibrium` gives them.
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    b = m.buckling(f, si, thermal, inter)
+    b = _buckling(m, f, si, thermal, inter)
     _v.check_finite_output(m, f, {"buckling turns": b.turns}, allow_inf=True)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(b.turns, U.turn)
@@ -120,7 +121,7 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     with np.errstate(invalid="ignore"):  # an undefined slope is raised as ValidityError below
-        b = m.buckling(f, si, thermal, inter)
+        b = _buckling(m, f, si, thermal, inter)
         msgs = _v.force_messages(f) + inter.messages(si)
         if thermal and hasattr(m, "slope_validity"):
             msgs += m.slope_validity(f, b.torque, si)
@@ -146,6 +147,8 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
                              f"got {short_tail_length}")
     F = _repeated(f, n.size)
     N = _tiled(n, f.size, turns)
+    if N.size == 0:  # no force or no turns: an empty table, no model called
+        return si, F, N, _no_points(m, thermal), m, inter.interaction, thermal, short
     hp = m.points(N, F, si, thermal, inter, short)
     if _v.summary_of(hp) is None:  # the kernel's summary says finite: no second pass
         _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
@@ -154,6 +157,29 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
             + m.validity(N, F, hp, si, thermal))
     _v.warn(msgs, stacklevel=stacklevel + 1)
     return si, F, N, hp, m, inter.interaction, thermal, short
+
+
+def _buckling(m, f, si, thermal, inter):
+    """``m.buckling``, or empty arrays for no force (the models reduce over the forces)."""
+    if f.size == 0:
+        from supercoil.dna.models.base import Buckling
+
+        return Buckling(np.empty(0), np.empty(0), np.empty(0))
+    return m.buckling(f, si, thermal, inter)
+
+
+def _no_points(m, thermal):
+    """The :class:`~supercoil.core.dna.hat.HatPoints` of no point (empty force or turns).
+
+    One path for every model: the models reduce over their inputs (min, max,
+    the first force) and would fail on zero-size arrays with numpy's
+    messages; an empty input gives an empty result instead, as in 0.1.
+    """
+    e = np.empty(0)
+    return _hc.HatPoints(extension=e, torque=e.copy(), plectoneme_length=e.copy(),
+                         phase=np.empty(0, np.int8), short_tail=np.empty(0, bool),
+                         zeta=e.copy(),
+                         free_energy=np.empty(0) if m.has_free_energy(thermal) else None)
 
 
 def _repeated(f, size):
@@ -192,13 +218,17 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
         For models without one free energy (the thermal ``"li-zhao"``
         construction).
     ValueError, ValidityError
-        Turns not finite or empty; ``|N| > L / h`` (see :func:`hat_curve`).
+        Turns not finite; ``|N| > L / h`` (see :func:`hat_curve`). An
+        empty force or turns array gives an empty result.
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     n = _v.checked_turns(turns, si)
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
-    g = m.free_energy(N, F, si, thermal, inter)
+    if N.size == 0 and m.has_free_energy(thermal):
+        g = np.empty(0)  # no point: no model call (the models reduce over their inputs)
+    else:
+        g = m.free_energy(N, F, si, thermal, inter)
     _v.check_finite_output(m, F, {"free energy": g}, N)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(np.asarray(g) * 1e21, U.pN_nm)
@@ -252,7 +282,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
         real numbers (text, None, complex), a list mixing quantities and
         plain numbers.
     ValueError
-        Turns or force not finite; turns empty or not 1-D.
+        Turns or force not finite; turns not 1-D. (An empty force or turns
+        array gives a table of no rows with the same columns and units.)
     NoEquilibriumError
         Naming the force, where no plectoneme equilibrium exists.
     ValidityError
@@ -288,7 +319,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     # column in place (no second copy: peak memory ~1.3x the table, issue 14).
     own = _Owned(N)
     columns = {
-        "force": np.full(F.size, F[0] * 1e12) if F.strides == (0,) else own.scaled(F, 1e12),
+        "force": (np.full(F.size, F[0] * 1e12) if F.strides == (0,) and F.size
+                  else own.scaled(F, 1e12)),
         "turns": N,
         "extension": own.scaled(hp.extension, 1e9),
         "phase": pd.Categorical.from_codes(hp.phase, dtype=_PHASE_DTYPE),

@@ -33,6 +33,20 @@ class Registry:
         self._classes[name] = cls
         return cls
 
+    def unregister(self, name):
+        """Remove the class registered under ``name`` (returns it; for tests and plug-ins).
+
+        Raises
+        ------
+        ModelError
+            If nothing is registered under ``name``.
+        """
+        try:
+            return self._classes.pop(name)
+        except KeyError:
+            raise ModelError(f"no {self.kind} named {name!r} is registered; registered: "
+                             f"{', '.join(self.names())}") from None
+
     def get(self, spec, argname, **values):
         """An instance from a registered name or an instance (``values`` override parameters)."""
         if isinstance(spec, self.base):

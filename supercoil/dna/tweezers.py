@@ -32,7 +32,7 @@ file line and the column. No row is ever dropped silently: with
 The result is a DataFrame in the package's table convention: plain float
 magnitudes in the units of the file, ``attrs["units"]`` and
 ``attrs["provenance"]`` (which also records the source file and the file line
-of every row, ``attrs["lines"]``).
+of every row, ``attrs["lines"]``, as runs of consecutive lines).
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ import pint
 
 from supercoil._checks import check_flag
 from supercoil.exceptions import DataError, DataWarning
-from supercoil.tables import header_hint, read_csv_source
+from supercoil.tables import expand_line_runs, header_hint, is_line_runs, line_runs, read_csv_source
 from supercoil.units import U, ureg
 
 __all__ = [
@@ -108,9 +108,10 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
     df : pandas.DataFrame
         Columns ``force``, ``turns``, ``extension`` (optional ``molecule``,
         ``sigma``, ``torque``, ``torque_sigma``) and ``df.attrs["units"]``.
-    lines : sequence of int, optional
-        The file line of every row (for error messages); without it rows are
-        named by their DataFrame index.
+    lines : sequence of int, or runs ``[[first, last], ...]``, optional
+        The file line of every row (for error messages), as a sequence or as
+        ``attrs["lines"]`` holds it (:func:`supercoil.tables.line_runs`);
+        without it rows are named by their DataFrame index.
     source : str
         What to call the table in messages (a file name).
 
@@ -127,6 +128,8 @@ def check_tweezers_frame(df, lines=None, source="data", *, _copy=True) -> pd.Dat
     units = df.attrs.get("units")
     hline = df.attrs.get("header_line")
     header = f"{source}, line {hline} (header)" if hline else f"{source}, header"
+    if lines is not None and is_line_runs(lines):
+        lines = expand_line_runs(lines)
     if lines is not None and len(lines) != len(df):
         lines = None
     if units is None:
@@ -289,8 +292,10 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     pandas.DataFrame
         The table convention: float magnitudes in the file's units,
         ``attrs["units"]``, ``attrs["provenance"]`` (plus ``"source"``, the
-        path) and ``attrs["lines"]``, the file line of every row kept (an int64
-        array).
+        path) and ``attrs["lines"]``, the file lines of the rows kept as runs
+        ``[[first, last], ...]`` of consecutive lines (plain ints, so that
+        ``pd.concat`` and copies work; :func:`supercoil.tables.row_lines`
+        gives one line per row).
 
     Raises
     ------
@@ -344,5 +349,7 @@ def read_tweezers_csv(path, drop_incomplete=False) -> pd.DataFrame:
     out.attrs["provenance"] = dict(out.attrs.get("provenance", {}), source=source)
     out.attrs.pop("header_line", None)
     if lines is not None:
-        out.attrs["lines"] = lines  # int64 array: pandas deep-copies attrs on every operation
+        # runs of plain ints: pandas deep-copies and compares attrs (concat), so no array and
+        # no per-row list (one deep copy per row on every column access)
+        out.attrs["lines"] = line_runs(lines)
     return out

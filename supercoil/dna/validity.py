@@ -16,7 +16,7 @@ import warnings
 
 import numpy as np
 
-from supercoil._checks import check_material
+from supercoil._checks import check_material, check_scale
 from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
 from supercoil.exceptions import ValidityWarning
@@ -28,6 +28,7 @@ __all__ = [
     "StateRecorder",
     "check_dna",
     "check_finite_output",
+    "check_hard_core_radius",
     "checked_forces",
     "checked_turns",
     "denaturation_messages",
@@ -79,7 +80,7 @@ HELICAL_REPEAT = 3.57e-9
 
 
 def checked_turns(turns, dna):
-    """Turns N (1-D float array) for a DNA function: real, finite, not empty, |sigma| <= 1.
+    """Turns N (1-D float array) for a DNA function: real, finite, |sigma| <= 1 (may be empty).
 
     One check for every DNA function taking turns (:func:`~supercoil.units.as_turns`
     reads plain numbers as turns and converts angle units).
@@ -89,7 +90,8 @@ def checked_turns(turns, dna):
     TypeError
         Not numbers (text, None, complex).
     ValueError
-        Not 1-D, empty, NaN or infinite.
+        Not 1-D, NaN or infinite. An empty array is returned as it is (the
+        callers give an empty result).
     ValidityError
         ``|N| > Lk_0 = L / h`` (supercoiling density |sigma| > 1, h = 3.57 nm): more
         turns than the molecule has helical turns, where no model applies (and
@@ -101,7 +103,7 @@ def checked_turns(turns, dna):
     if n.ndim != 1:
         raise ValueError(f"turns must be a scalar or 1-D, got shape {n.shape}")
     if n.size == 0:
-        raise ValueError("turns is empty: give at least one number of turns")
+        return n.astype(float)
     lo, hi = n.min(), n.max()  # two reductions, no temporaries: NaN propagates, inf shows
     if not (np.isfinite(lo) and np.isfinite(hi)):
         raise ValueError(f"turns must be finite, got {n[~np.isfinite(n)][0]!r}")
@@ -261,6 +263,29 @@ def _range(points, name):
     return x.min(), x.max()
 
 
+#: largest reduced stiffness A / r0 of the hard-core plectoneme (a numerical limit: the
+#: solver works in units of r0 and follows the power law of R/r0 in b to b ~ 1e34;
+#: measured: its R loses its digits near b ~ 5e37 and it finds no branch above ~4e40)
+MAX_REDUCED_STIFFNESS = 1e30
+
+
+def check_hard_core_radius(dna, radius=None):
+    """ValidityError naming the hard-core radius if ``A / r0`` is beyond the solvable range.
+
+    The hard-core plectoneme is solved in units of r0 (``b = B/(kT r0) = A/r0``,
+    docs/theory/plectoneme.md); a radius of 1e-300 nm underflowed ``kT r0`` to 0
+    (ZeroDivisionError). ``radius`` (m) defaults to the DNA's own.
+    """
+    r0 = dna.radius if radius is None else radius
+    with np.errstate(over="ignore", divide="ignore"):
+        b = dna.bending_persistence / r0
+    check_scale(b, f"the reduced stiffness A/r0 (hard-core radius r0 = DNA.radius = "
+                f"{r0 * 1e9:.6g} nm, "
+                f"A = {dna.bending_persistence * 1e9:.6g} nm)", hi=MAX_REDUCED_STIFFNESS,
+                why="the plectoneme solver works in units of r0 and loses its precision "
+                    "beyond; give a hard-core radius of the order of the DNA radius (~1 nm)")
+
+
 class StateRecorder:
     """Wraps an interaction and keeps the plectoneme states a model asked for.
 
@@ -275,6 +300,12 @@ class StateRecorder:
 
     def __getattr__(self, name):
         return getattr(self.interaction, name)
+
+    def check(self, dna):
+        """The interaction's own check; the hard-core scale where it uses ``dna.radius``."""
+        if self.interaction.values.get("hard_core_radius") is None:
+            check_hard_core_radius(dna)
+        self.interaction.check(dna)
 
     def equilibrium(self, tension, dna):
         st = self.interaction.equilibrium(tension, dna)

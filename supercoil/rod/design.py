@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil._checks import check_callable, profile_values
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import design as _dh
 from supercoil.rod.material import check_rod
@@ -110,9 +111,11 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
         If P(s) <= 2 pi r somewhere (alpha >= pi/4), or P is not positive/finite.
     ValueError
         slack_max outside (0, L); n_points < 10; a pitch_derivative value that
-        is NaN or infinite (the message names the s); cos2a_min outside (0, 1).
+        is NaN or infinite (the message names the s); cos2a_min outside (0, 1);
+        pitch(s) or pitch_derivative(s) returning neither a scalar nor one
+        value per s (the message names the shape expected).
     TypeError
-        n_points not an integer.
+        n_points not an integer; pitch (or pitch_derivative) not callable.
 
     Warns
     -----
@@ -138,17 +141,22 @@ def design_twist_schedule(rod, pitch, *, slack_max=None, n_points=2001, pitch_de
     s_end = 0.5 * S_end
     s = np.linspace(0.0, s_end, int(n_points))
 
+    check_callable(pitch, "pitch", "pitch(s) -> Quantity [length]")
+    if pitch_derivative is not None:
+        check_callable(pitch_derivative, "pitch_derivative",
+                       "pitch_derivative(s) -> dimensionless Quantity")
+
     def P_si(x):
         x = np.asarray(x, float)
         p = magnitude(pitch(quantity(x, U.m)), U.m, "pitch(s)")
-        return np.broadcast_to(np.asarray(p, float), x.shape).astype(float)
+        return profile_values(p, x.shape, "pitch(s)").astype(float)
 
     P = P_si(s)
     if pitch_derivative is None:
         dP = _dh.derivative(P_si, s, 1e-4 * s_end, 0.0, s_end)
     else:
         d = magnitude(pitch_derivative(quantity(s, U.m)), U.dimensionless, "pitch_derivative(s)")
-        dP = np.broadcast_to(np.asarray(d, float), s.shape)
+        dP = profile_values(d, s.shape, "pitch_derivative(s)")
         if not np.all(np.isfinite(dP)):
             i = int(np.flatnonzero(~np.isfinite(dP))[0])
             raise ValueError(f"pitch_derivative(s) must be finite, got {float(dP[i])!r} at "

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from supercoil._checks import profile_values
 from supercoil.core.rod import contact as _sc
 from supercoil.core.rod import rough as _rh
 from supercoil.exceptions import DataError, ValidityError
@@ -196,7 +197,7 @@ def _callable_rate(twist_rate, sign):
     def kfun(S):
         S = np.asarray(S, float)
         k = magnitude(twist_rate(quantity(S, U.m)), U.per_m, "twist_rate(slack)")
-        k = np.broadcast_to(np.asarray(k, float), S.shape)
+        k = profile_values(k, S.shape, "twist_rate(slack)")
         if not np.all(np.isfinite(k)):
             i = np.flatnonzero(~np.isfinite(k).reshape(-1))[0]
             raise ValidityError(

@@ -32,11 +32,11 @@ frames outside the motor record are dropped, with a warning).
 from __future__ import annotations
 
 import io
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+from .._csvfile import check_path, read_text
 from ..exceptions import DataError
 from ..units import ureg
 from .trace import build_trace, check_increasing, open_hdf5
@@ -62,11 +62,7 @@ def _interp(t_log, v, t, where):
 
 
 def _read_text(path, min_cols, what):
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise DataError(f"no such CALISTO {what} file: {path}") from None
+    path, text = read_text(path, f"CALISTO {what} file")
     # comment lines are removed here, not by pandas: its comment="#" would cut the NaN
     # token -1.#IND000 in the middle of a line
     kept = [(i, ln) for i, ln in enumerate(text.splitlines(), start=1)
@@ -196,7 +192,9 @@ def read_calisto(path, motor_path=None, *, time_unit="s", xy_unit="nm", z_unit="
     ImportError
         HDF5 without h5py (``pip install 'supercoil[hdf5]'``).
     """
-    path = Path(path)
+    path = check_path(path, "path")
+    if motor_path is not None:
+        motor_path = check_path(motor_path, "motor_path")
     f_t = _factor(time_unit, "s", "time_unit")
     f_mt = _factor(motor_time_unit, "s", "motor_time_unit")
     f_xy = _factor(xy_unit, "nm", "xy_unit")

@@ -25,7 +25,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["BlockingResult", "blocking_error", "blocking_levels"]
+__all__ = ["BlockingResult", "blocking_error", "blocking_levels", "error_from_inefficiency",
+           "pooled_inefficiency"]
 
 
 class BlockingResult(NamedTuple):
@@ -136,3 +137,77 @@ def blocking_error(x) -> BlockingResult:
         converged = False
     err = float(se[k])
     return BlockingResult(mean, err, naive, int(sizes[k]), (err / naive) ** 2, converged)
+
+
+def pooled_inefficiency(series, c=5.0):
+    """Statistical inefficiency shared by several short series (plateaus of one bead and height).
+
+    The autocovariance of every series about its own mean is summed lag by lag
+    over the series (``sum_i sum_j d_ij d_i(j+t) / sum_i (n_i - t)``), and the
+    inefficiency ``g(M) = 1 + 2 sum_(t=1..M) rho(t)`` is summed up to the
+    window ``M`` of Sokal's automatic windowing: the smallest ``M >= c g(M)``
+    (A. D. Sokal, "Monte Carlo methods in statistical mechanics", NATO ASI
+    Series B 361, 131 (1997); ``c = 5`` as emcee's ``integrated_time``). The
+    bias of subtracting each series' own mean (every autocovariance is low by
+    the variance of that mean, ``sigma**2 g / n``) is removed to first order:
+    ``g = g_hat / (1 - (2 M + 1) / n + g_hat / n)`` with ``n`` the series'
+    mean length (docs/theory/recordings.md#error).
+
+    Parameters
+    ----------
+    series : sequence of 1-D arrays
+        Finite values, each at least 4 long.
+    c : float
+        Window factor.
+
+    Returns
+    -------
+    g : float
+        The inefficiency (>= 1/n); the error of a series' mean is
+        ``std(ddof=1) / sqrt(n) * sqrt(g (n - 1) / (n - g))``
+        (:func:`error_from_inefficiency`).
+    window : int
+        ``M``.
+    converged : bool
+        False if no window up to a quarter of the shortest series met the
+        criterion (``g`` is then the value at that largest window).
+    """
+    xs = [np.asarray(s, dtype=float) for s in series]
+    if not xs or any(s.ndim != 1 or s.size < 4 for s in xs):
+        raise ValueError("pooled_inefficiency needs series of at least 4 values")
+    m_max = max(1, min(s.size for s in xs) // 4)
+    acov = np.zeros(m_max + 1)
+    count = np.zeros(m_max + 1)
+    for s in xs:
+        d = s - s.mean()
+        nfft = 1 << int(2 * s.size - 1).bit_length()
+        f = np.fft.rfft(d, nfft)
+        full = np.fft.irfft(f * np.conj(f), nfft)[: m_max + 1]
+        acov += full
+        count += s.size - np.arange(m_max + 1)
+    acov /= count
+    if acov[0] <= 0:
+        return 1.0, 0, True
+    rho = acov / acov[0]
+    g_of_m = 1.0 + 2.0 * np.cumsum(rho[1:])
+    m = np.arange(1, m_max + 1)
+    ok = np.flatnonzero(m >= c * g_of_m)
+    converged = ok.size > 0
+    k = int(ok[0]) if converged else m_max - 1
+    window, g_hat = int(m[k]), float(g_of_m[k])
+    n = float(np.mean([s.size for s in xs]))
+    g = g_hat / (1.0 - (2 * window + 1) / n + g_hat / n)
+    return max(g, 1.0 / n), window, converged
+
+
+def error_from_inefficiency(x, g):
+    """Standard error of the mean of ``x`` given its statistical inefficiency ``g``.
+
+    ``std(ddof=1)`` of correlated frames is low by ``(n - g) / (n - 1)`` in
+    variance, so the error is ``std / sqrt(n) * sqrt(g (n - 1) / (n - g))``.
+    """
+    x = np.asarray(x, dtype=float)
+    n = x.size
+    naive = float(np.std(x, ddof=1) / np.sqrt(n))
+    g = min(float(g), 0.5 * n)  # (n - g) stays positive
+    return naive * np.sqrt(g * (n - 1) / (n - g)), naive

@@ -39,6 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._csvfile import check_path, read_text
 from ..exceptions import DataError
 from .trace import build_trace, check_increasing, hold_previous, open_hdf5
 
@@ -56,12 +57,11 @@ def read_motor_log(path, column, what="value"):
         No such file, no data rows, a non-numeric field or too few columns
         (names the line), or time going backwards (names the line).
     """
-    path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise DataError(f"no such motor log: {path} (expected the MagScope hardware log "
-                        f"holding the magnet {what})") from None
+        path, text = read_text(path, "motor log")
+    except DataError as exc:
+        raise DataError(f"{exc} (expected the MagScope hardware log holding the magnet "
+                        f"{what})") from None
     times, values, lines = [], [], []
     for num, line in enumerate(text.splitlines(), start=1):
         body = line.strip()
@@ -126,8 +126,8 @@ def _read_tracking(path):
 def _tracking_files(path):
     """The tracking file(s): one file, a list of files, or all of a folder's."""
     if isinstance(path, list | tuple):
-        paths = [Path(p) for p in path]
-    elif Path(path).is_dir():
+        paths = [check_path(p, "path") for p in path]
+    elif check_path(path, "path").is_dir():
         paths = sorted(Path(path).glob("Tracking Data *.h5"))
         if not paths:
             raise DataError(f"{path}: no 'Tracking Data <timestamp>.h5' file in this folder")

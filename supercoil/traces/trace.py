@@ -48,6 +48,12 @@ def require_h5py(path):
 
 def open_hdf5(path, kind):
     """The open h5py File of a recording; DataError naming ``path`` if it is missing or not HDF5."""
+    from .._csvfile import check_path
+
+    path = check_path(path, "path")
+    if path.is_dir():
+        raise DataError(f"cannot read {path}: it is a directory, not a {kind}; give the "
+                        "file's path")
     h5py = require_h5py(path)
     try:
         return h5py.File(path, "r")

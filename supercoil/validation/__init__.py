@@ -11,6 +11,7 @@ relative error per row; :func:`plot_validation` draws them.
 
 from __future__ import annotations
 
+import contextlib
 from importlib import resources
 
 import numpy as np
@@ -27,6 +28,12 @@ DEFAULT_CONFIGS = (
 #: where a row gives no force (or zero force, where the models hold no plectoneme),
 #: the models are evaluated at this force (pN); the note of the row says so
 FALLBACK_FORCE_PN = {"plectoneme_radius": 0.2, "extension_jump_ratio": 2.0}
+#: quantities that depend on the contour length (the others are per length or per turn
+#: of a long molecule); a row of one of these that states no length is not compared: its
+#: prediction is bracketed over BRACKET_LENGTHS_UM instead (issue 20 item 16)
+LENGTH_DEPENDENT = ("buckling_turns", "extension_jump_ratio")
+#: the contour lengths of the bundled sets (dna: 750 nm; dna_150mM_nacl: 5.03 um)
+BRACKET_LENGTHS_UM = (0.75, 5.03)
 _FRACTION_OF_BUCKLING = 0.3  # C_eff from the stretched-phase torque at 0.3 N_b
 
 
@@ -66,7 +73,7 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
     if quantity == "plectoneme_radius":
         if not m.uses_interaction:
             return np.nan, "the model has no plectoneme geometry"
-        return float(inter.equilibrium(f, si).radius[0]) * 1e9, ""
+        return _radius(m, f, si, inter)
     b = m.buckling(f, si, True, inter)
     if quantity == "buckling_torque":
         return float(b.torque[0]) * 1e21, ""
@@ -92,6 +99,80 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
     return np.nan, f"no prediction for {quantity}"
 
 
+def _radius(m, f, si, inter):
+    """The plectoneme radius (nm) at the tension the model puts on the plectoneme, and a note.
+
+    li-zhao (the paper's construction) holds the plectoneme at the full force F; the
+    free-energy model at the tail's effective tension ``T_eff = F - (kT^2/B) sqrt(Q*)``
+    of its coexistence (docs/theory/free-energy.md#coexistence). Where that model has no
+    coexistence (e.g. 10 mM, 0.2 pN: the tail's bracket closes) there is no radius: NaN
+    and the note says why.
+    """
+    from supercoil.core.dna import free_energy as _fe
+    from supercoil.dna.models.free_energy import FreeEnergy
+    from supercoil.exceptions import SupercoilError
+
+    if not isinstance(m, FreeEnergy):
+        return float(inter.equilibrium(f, si).radius[0]) * 1e9, "plectoneme at the force F"
+    try:
+        co = _fe.coexistence(f, si.length, si.bending_rigidity, si.torsional_rigidity,
+                             si.kT, lambda T: inter.equilibrium(T, si), True)
+    except SupercoilError as exc:
+        salt = getattr(si, "salt", None)  # mol/m^3 = mM
+        salt = f", {salt:g} mM" if salt is not None else ""
+        return np.nan, (f"no radius: the model has no tail-plectoneme coexistence at "
+                        f"{float(f[0]) * 1e12:g} pN{salt} ({type(exc).__name__}: {exc})")[:300]
+    pull = float(co.pull[0])
+    radius = float(inter.equilibrium(co.pull, si).radius[0]) * 1e9
+    return radius, f"plectoneme at the tail's effective tension T_eff = {pull * 1e12:.4g} pN"
+
+
+def _conditions(row, set_name, model, interaction):
+    """Notes on the row's conditions the evaluation cannot take from the source."""
+    import supercoil as sc
+
+    dna = sc.load_parameters(set_name)
+    uses_salt = interaction == "screened" and dna.salt is not None
+    notes = []
+    if np.isfinite(row["salt"]) and not uses_salt:
+        notes.append(f"the row's {row['salt']:g} mM is no condition of {model}"
+                     f"{' with ' + interaction if interaction else ''} (it takes no salt)")
+    elif not np.isfinite(row["salt"]) and uses_salt:
+        notes.append(f"the source states no salt: the set's {dna.salt.m_as('mM'):g} mM")
+    return notes
+
+
+def _bracket(q, force, set_name, row, model, interaction):
+    """``(low, high, note)``: a length-dependent prediction at BRACKET_LENGTHS_UM."""
+    import supercoil as sc
+    from supercoil.exceptions import SupercoilError
+
+    values = []
+    for length in BRACKET_LENGTHS_UM:
+        dna = _molecule(set_name, row).replace(length=length * sc.ureg.um)
+        try:
+            with _quiet():
+                values.append(_predict(q, force, dna, model, interaction, row["unit"])[0])
+        except SupercoilError:
+            values.append(np.nan)
+    text = " to ".join(f"{v:.3g} at {L:g} um" for v, L in
+                       zip(values, BRACKET_LENGTHS_UM, strict=True))
+    return values[0], values[1], (f"the source states no DNA length and {q} depends on it: "
+                                  f"{text} (the bundled sets' lengths); not compared")
+
+
+@contextlib.contextmanager
+def _quiet():
+    """SupercoilWarnings ignored (the bracket's evaluations; the row's own are recorded)."""
+    import warnings
+
+    from supercoil.exceptions import SupercoilWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SupercoilWarning)
+        yield
+
+
 def validate(configs=DEFAULT_CONFIGS, published=None):
     """Each model's prediction of every published row, with the relative error.
 
@@ -108,8 +189,14 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
         One row per (published row, config): ``quantity``, ``force`` [pN],
         ``salt`` [mM], ``measured``, ``uncertainty``, ``unit``, ``model``,
         ``parameter_set``, ``interaction``, ``predicted``, ``relative_error``
-        (``predicted / measured - 1``), ``source``, ``read_from``, ``note``.
-        Rows the model cannot predict have NaN and say why in ``note``.
+        (``predicted / measured - 1``), ``predicted_low``, ``predicted_high``,
+        ``source``, ``read_from``, ``note``. Rows the model cannot predict have NaN
+        and say why in ``note``. A row compares only at the conditions its source
+        states: a length-dependent quantity (:data:`LENGTH_DEPENDENT`) of a row without
+        a length has no ``predicted`` and gives the prediction at the bundled sets'
+        lengths (:data:`BRACKET_LENGTHS_UM`) in ``predicted_low``/``predicted_high``;
+        a salt the source does not state, or one the model does not take, is said in
+        ``note``.
     """
     import warnings
 
@@ -119,7 +206,8 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
     pub = load_published() if published is None else published
     cols = {k: [] for k in ("quantity", "force", "salt", "measured", "uncertainty", "unit",
                             "model", "parameter_set", "interaction", "predicted",
-                            "relative_error", "source", "read_from", "note")}
+                            "relative_error", "predicted_low", "predicted_high", "source",
+                            "read_from", "note")}
     for _, row in pub.iterrows():
         q = row["quantity"]
         force = row["force"]
@@ -138,12 +226,21 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
                     note += "; warned: " + str(rec[0].message)[:120]
             except SupercoilError as exc:
                 pred, note = np.nan, f"{type(exc).__name__}: {exc}"[:200]
+            low = high = np.nan
+            notes = _conditions(row, set_name, model, interaction)
+            if q in LENGTH_DEPENDENT and not np.isfinite(row["dna_length"]) and np.isfinite(pred):
+                # the source lacks a condition the prediction depends on: no comparison,
+                # the prediction's range over the bundled lengths instead
+                low, high, why = _bracket(q, force, set_name, row, model, interaction)
+                pred, note = np.nan, "; ".join(x for x in (note, why) if x)
+            note = "; ".join(x for x in (note, *notes) if x)
             measured = float(row["value"])
             for k, v in (("quantity", q), ("force", force), ("salt", row["salt"]),
                          ("measured", measured), ("uncertainty", row["uncertainty"]),
                          ("unit", row["unit"]), ("model", model), ("parameter_set", set_name),
                          ("interaction", interaction or ""), ("predicted", pred),
                          ("relative_error", pred / measured - 1.0),
+                         ("predicted_low", low), ("predicted_high", high),
                          ("source", row["source"]), ("read_from", row["read_from"]),
                          ("note", (note0 + note).strip("; "))):
                 cols[k].append(v)
@@ -167,8 +264,11 @@ def plot_validation(table, path=None):
         ax.errorbar(np.arange(len(meas)), meas["measured"], yerr=meas["uncertainty"].fillna(0),
                     fmt="k_", ms=14, capsize=3, label="measured")
         for j, (model, g) in enumerate(t.groupby("model", sort=False)):
-            ax.plot(np.arange(len(g)) + 0.1 * (j + 1), g["predicted"], markers[model],
-                    label=model)
+            x = np.arange(len(g)) + 0.1 * (j + 1)
+            line, = ax.plot(x, g["predicted"], markers[model], label=model)
+            # rows whose source lacks a condition: the prediction's range, not a point
+            ax.vlines(x, g["predicted_low"], g["predicted_high"], color=line.get_color(),
+                      lw=2, alpha=0.6)
         labels = [f"{f:g} pN" + (f", {s:g} mM" if np.isfinite(s) else "")
                   for f, s in zip(meas["force"], meas["salt"], strict=True)]
         ax.set_xticks(np.arange(len(meas)), labels, rotation=30, fontsize=7)

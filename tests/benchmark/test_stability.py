@@ -10,17 +10,20 @@ denaturation warning, ...) are not repeated here.
 
 import re
 import warnings
+from typing import ClassVar
 
 import numpy as np
 import pytest
 
 import supercoil as sc
 from supercoil.benchmark import stability
-from supercoil.benchmark.stability import maps_rod
+from supercoil.benchmark.stability import maps_family, maps_rod
 from supercoil.core.dna import moroz_nelson as mn
 from supercoil.core.dna import plectoneme as pl
 from supercoil.core.rod import contact as sco
 from supercoil.core.rod import rough as rh
+from supercoil.dna.models import Buckling, DNAModel, HatPoints, unregister_model
+from supercoil.dna.parameters import ModelParameter
 
 u = sc.ureg
 
@@ -46,7 +49,8 @@ def test_coarse_map_spans_every_solver_into_its_failure_regions(coarse):
         "smooth_helix", "rough_helix closed_form", "rough_helix ode (k = 0 rad/m)",
         "rough_helix ode (k = 100 rad/m)", "rough_helix ode (k = -100 rad/m)",
         "design_twist_schedule", "twist_spinning", "plectoneme_equilibrium",
-        "extension_factor", "hat_curve thermal", "hat_curve athermal"}
+        "extension_factor", "hat_curve thermal", "hat_curve athermal",
+        *(f"hat_curve {k.removeprefix('family ')}" for k, _, _ in maps_family.cases())}
     # every map reaches a working region and a failure region
     assert (counts["ok"] > 0).all() and (counts["named error"] > 0).all()
     # the outcome is one of the four categories, named errors carry their class
@@ -366,3 +370,74 @@ def test_short_molecule_is_flagged_everywhere(dna):
     long = sc.hat_curve(dna.replace(length=5 * u.um), 1 * u.pN, np.linspace(0, 40, 41))
     ok = ~long["short_tail"]
     assert ok.all() and long["extension"].between(0, 5000).all()
+
+
+# ------------------------------------------------------------------ the model family
+
+
+class _Parabola(DNAModel):
+    """A plug-in with one free energy G = L(-F (1 - k (A om)^2) + C om^2 / 2); ``torque_error``
+    scales its reported torque away from dG/dN / 2 pi (a model that breaks Maxwell)."""
+
+    name = "stability-parabola"
+    summary = "test plug-in for the family map"
+    uses_interaction = False
+    parameters: ClassVar[dict] = {
+        "torque_error": ModelParameter("torque_error", "", 0.0, -1.0, 1.0,
+                                       "relative error of the reported torque", "test"),
+    }
+
+    def has_free_energy(self, thermal):
+        return True
+
+    def buckling(self, force, dna, thermal, interaction):
+        inf = np.full(np.shape(force), np.inf)
+        return Buckling(inf, inf, np.zeros(np.shape(force)))
+
+    def _state(self, turns, force, dna):
+        om = 2 * np.pi * np.asarray(turns, float) / dna.length
+        a, k = dna.bending_persistence, 0.05
+        G = dna.length * (-force * (1 - k * (a * om) ** 2) + 0.5 * dna.torsional_rigidity * om**2)
+        z = dna.length * (1 - k * (a * om) ** 2)
+        M = (2 * force * k * a**2 * om + dna.torsional_rigidity * om)
+        return G, np.clip(z, 0, None), M * (1 + self.values["torque_error"])
+
+    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+        G, z, M = self._state(turns, np.asarray(force, float), dna)
+        zeros = np.zeros(np.shape(turns))
+        return HatPoints(z, M, zeros, zeros.astype(np.int8), zeros.astype(bool),
+                         z / dna.length, G)
+
+    def free_energy(self, turns, force, dna, thermal, interaction):
+        return self._state(turns, np.asarray(force, float), dna)[0]
+
+
+@pytest.fixture
+def parabola_registered():
+    sc.register_model(_Parabola, replace=True)
+    yield
+    unregister_model(_Parabola.name)
+
+
+def test_family_maps_are_generated_from_the_registry(parabola_registered):
+    keys = [k for k, _, _ in maps_family.cases()]
+    assert "family stability-parabola" in keys
+    assert {"family li-zhao/hard-core", "family li-zhao/screened", "family marko2007"} <= set(keys)
+    assert "family stability-parabola" in [k for k, _ in stability.map_builders()]
+
+
+def test_family_map_catches_a_model_that_breaks_maxwell(parabola_registered):
+    dna = sc.load_parameters("dna_150mM_nacl").replace(length=500 * u.nm)
+    good = maps_family.family_map(dna, _Parabola(), None, quick=True)[3]
+    bad = maps_family.family_map(dna, _Parabola(torque_error=1e-3), None, quick=True)[3]
+    outcomes = [o for o, _ in good.ravel()]
+    assert "WRONG" not in outcomes and {"ok", "flagged"} & set(outcomes)
+    details = [d for o, d in bad.ravel() if o == "WRONG"]
+    assert details and all("torque differs from dG/dN / 2 pi" in d for d in details)
+
+
+def test_family_map_classifies_a_slow_cell_as_a_hang(monkeypatch):
+    monkeypatch.setattr(maps_family, "HANG_SECONDS", 0.0)
+    dna = sc.load_parameters("dna_150mM_nacl")
+    out = maps_family.family_map(dna, "marko2007", None, quick=True)[3]
+    assert any(o == "WRONG" and d.startswith("hang:") for o, d in out.ravel())

@@ -394,3 +394,20 @@ def test_validity_shortcut_agrees_with_the_messages(block):
         full = fem._messages(F, Q, np.asarray(p.phase) != fe.FULLY_COILED, str)  # all masks
         assert quiet == (full == [])
         assert quiet == (force >= 0.5e-12)
+
+
+def test_no_tail_bracket_at_zero_torque_is_a_named_error():
+    """Below F = kT^2 / (32 B) even the untwisted tail has no Moroz-Nelson free energy: a
+    ValidityError naming the bracket (it was a numpy RuntimeWarning from sqrt, found by the
+    family stability map at A = 10 nm, 0.01 pN)."""
+    import warnings
+
+    import supercoil as sc
+    from supercoil.exceptions import ValidityError
+
+    u = sc.ureg
+    dna = sc.load_parameters("dna_150mM_nacl").replace(bending_persistence=10 * u.nm)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValidityError, match=r"force 0.01 pN, torque 0 pN nm: its bracket"):
+            sc.hat_curve(dna, 0.01 * u.pN, [0.0, 5.0], model="free-energy")

@@ -416,3 +416,54 @@ def test_immutable_and_picklable():
     assert inter.replace(charge_fraction=1.0) == Screened()
     with pytest.raises(AttributeError):
         inter.values = {}
+
+
+@pytest.mark.parametrize("name", ["hard-core", "screened"])
+def test_equilibrium_does_not_depend_on_the_twist_rigidity_or_the_length(name):
+    """(GE2) contains no C: tilt, radius and torque at a tension are independent of C and
+    L; omega = M/C. This is what makes ``Interaction.cache_key`` C-free for every
+    interaction (the fit's equilibrium cache)."""
+    import supercoil as sc
+    from supercoil.dna.interactions import get_interaction
+
+    u = sc.ureg
+    inter = get_interaction(name)
+    a = sc.load_parameters("dna_150mM_nacl")
+    b = a.replace(twist_persistence=a.twist_persistence * 1.3, length=2 * a.length)
+    T = np.array([0.4e-12, 1.5e-12, 4e-12])
+    sa, sb = inter.equilibrium(T, a.si), inter.equilibrium(T, b.si)
+    for f in ("alpha", "radius", "torque", "torsion", "interaction_energy"):
+        np.testing.assert_allclose(getattr(sb, f), getattr(sa, f), rtol=1e-12, err_msg=f)
+    np.testing.assert_allclose(sb.omega * b.si.torsional_rigidity, sa.torque, rtol=1e-12)
+    assert inter.cache_key(a.si) == inter.cache_key(b.si)
+    assert inter.cache_key(a.replace(salt=10 * u.mM).si) != inter.cache_key(a.si) \
+        or name == "hard-core"
+    assert inter.cache_key(a.replace(bending_persistence=40 * u.nm).si) != inter.cache_key(a.si)
+
+
+def test_a_fit_varying_twist_stiffness_and_length_reuses_the_screened_equilibria(monkeypatch):
+    """Jacobian columns in C_t and L need no new screened equilibrium (cache_key is C-free)."""
+    import warnings
+
+    import supercoil as sc
+    from supercoil.dna.interactions.screened import Screened
+
+    u = sc.ureg
+    dna = sc.load_parameters("dna_150mM_nacl")
+    data = sc.simulate_rotation_curves(dna, [0.6, 1.5] * u.pN, noise=3 * u.nm, seed=2,
+                                       model="free-energy", interaction="screened",
+                                       points_per_force=40)
+    calls = []
+    real = Screened.equilibrium
+
+    def counted(self, tension, d):
+        calls.append((d.twist_persistence, d.length))
+        return real(self, tension, d)
+
+    monkeypatch.setattr(Screened, "equilibrium", counted)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sc.fit_hat_curves(data, dna, vary=["twist_persistence", "length"], model="free-energy",
+                          interaction="screened")
+    # every solve at the first molecule's C and L: varying them reuses the tables
+    assert calls and len(set(calls)) == 1

@@ -17,6 +17,7 @@ from supercoil.exceptions import (
     NoEquilibriumError,
     ValidityWarning,
 )
+from supercoil.tables import row_lines
 
 
 def test_recovers_non_default_parameters_within_reported_errors(result, true_dna, base):
@@ -255,6 +256,6 @@ def test_fit_names_file_lines_of_a_read_table(data, base, tmp_path):
     path = sc.write_csv(data, tmp_path / "d.csv")
     df = sc.read_tweezers_csv(path)
     df.loc[4, "turns"] = np.nan  # edited after reading
-    line = df.attrs["lines"][4]
+    line = row_lines(df)[4]
     with pytest.raises(DataError, match=rf"line {line}, column 'turns'"):
         sc.fit_hat_curves(df, base)

@@ -45,13 +45,11 @@ class ToyRod(DNAModel):
 def _toy_registered():
     """The toy is registered for this module's tests only: the registry is global, and
     other tests (the README's model list) check it holds the package's own models."""
-    from supercoil.dna import models
+    from supercoil.dna.models import unregister_model
 
-    before = dict(models._REGISTRY._classes)
     sc.register_model(ToyRod, replace=True)
     yield
-    models._REGISTRY._classes.clear()
-    models._REGISTRY._classes.update(before)
+    unregister_model(ToyRod.name)
 
 WIDTH = 3.0  # true width of the toy data, turns
 FORCES = [0.3, 0.5, 0.7]  # pN

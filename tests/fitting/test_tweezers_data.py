@@ -9,6 +9,7 @@ import pytest
 import supercoil as sc
 from supercoil.dna.tweezers import check_tweezers_frame
 from supercoil.exceptions import DataError, DataWarning
+from supercoil.tables import row_lines
 
 GOOD = """\
 # instrument: "MT-1"
@@ -35,7 +36,7 @@ def test_reads_the_table_convention_with_file_lines(tmp_path):
     assert df.attrs["provenance"]["instrument"] == "MT-1"
     assert df.attrs["provenance"]["source"].endswith("data.csv")
     # the blank line 5 is skipped; the rows keep their file lines
-    assert df.attrs["lines"].tolist() == [3, 4, 6, 7]
+    assert row_lines(df).tolist() == [3, 4, 6, 7]
     np.testing.assert_allclose(df["extension"], [0.61, 0.62, 0.61, 0.55])
     assert df["force"].dtype == float and df["turns"].dtype == float
     assert list(df["molecule"]) == ["a", "a", "a", "b"]
@@ -109,7 +110,7 @@ def test_drop_incomplete_warns_with_count_and_lines(tmp_path):
     with pytest.warns(DataWarning, match=r"dropped 2 incomplete row\(s\).*line\(s\) 3, 5"):
         df = sc.read_tweezers_csv(write(tmp_path, text), drop_incomplete=True)
     assert list(df["turns"]) == [1.0, 3.0, 5.0]
-    assert df.attrs["lines"].tolist() == [2, 4, 6]
+    assert row_lines(df).tolist() == [2, 4, 6]
 
 
 def test_drop_incomplete_does_not_hide_bad_cells(tmp_path):

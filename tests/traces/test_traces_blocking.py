@@ -94,3 +94,31 @@ def test_quantity_in_quantity_out():
     assert q.error.m_as("nm") == pytest.approx(r.error, rel=1e-12)
     assert q.mean.to("um").m == pytest.approx(r.mean * 1e-3, rel=1e-12)
     assert q.block_size == r.block_size
+
+
+def test_pooled_inefficiency_of_short_ar1_series_is_unbiased():
+    """20 AR(1) series of 240 frames (phi = 0.43, as 20 ms at 60 Hz): g = (1 + phi)/(1 - phi)
+    within 3 % on average over 50 draws (measured +0.2 %; without the plateau-mean bias
+    correction -9 %),
+    and the error of a mean from it matches the exact one."""
+    from supercoil.traces.errors import error_from_inefficiency, pooled_inefficiency
+
+    phi, n = 0.43, 240
+    rng = np.random.default_rng(7)
+    exact_g = (1 + phi) / (1 - phi)
+    gs = []
+    for _ in range(50):
+        e = rng.normal(size=(20, n))
+        x = np.empty_like(e)
+        x[:, 0] = e[:, 0] / np.sqrt(1 - phi**2)
+        for i in range(1, n):
+            x[:, i] = phi * x[:, i - 1] + e[:, i]
+        g, window, ok = pooled_inefficiency(list(x))
+        assert ok and 3 <= window <= 30
+        gs.append(g)
+    assert abs(np.mean(gs) / exact_g - 1) < 0.03
+    k = np.arange(1, n)
+    var_exact = (1 + 2 * np.sum((1 - k / n) * phi**k)) / n / (1 - phi**2)
+    err, naive = error_from_inefficiency(x[0], np.mean(gs))
+    assert err > naive
+    assert abs(err**2 / var_exact - 1) < 0.35  # one series' own variance scatters ~10 %

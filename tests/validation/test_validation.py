@@ -49,3 +49,83 @@ def test_validate_command_writes_table_and_figure(tmp_path, capsys):
     assert {"model", "predicted", "relative_error", "source"} <= set(df.columns)
     assert (tmp_path / "validation.png").stat().st_size > 10_000
     assert "effective_twist_persistence" in capsys.readouterr().out
+
+
+@pytest.fixture(scope="module")
+def default_table():
+    return validate()
+
+
+def _rows(table, quantity, model, salt=None):
+    t = table[(table["quantity"] == quantity) & (table["model"] == model)]
+    return t if salt is None else t[t["salt"] == salt]
+
+
+def test_free_energy_radius_is_taken_at_the_tails_effective_tension(default_table):
+    """Issue 20 item 16: the radius was the interaction's at F. The model's plectoneme
+    coexists at T_eff < F: there the interaction's torque is the coexistence torque M*."""
+    from scipy.optimize import brentq
+
+    u = sc.ureg
+    row = _rows(default_table, "plectoneme_radius", "free-energy", 100.0).iloc[0]
+    dna = sc.load_parameters("dna_150mM_nacl").replace(salt=100 * u.mM)
+    force = row["force"] * u.pN
+    # the coexistence torque M*: the torque of the hat curve in its plectoneme phase
+    hat = sc.hat_curve(dna, force, [30], model="free-energy", interaction="screened")
+    assert hat["phase"].iloc[0] == "plectoneme"
+    m_star = float(hat["torque"].iloc[0])
+
+    def torque_gap(t_pn):
+        eq = sc.plectoneme_equilibrium(dna, t_pn * u.pN, interaction="screened")
+        return float(eq.torque.m_as("pN nm")) - m_star
+
+    t_eff = brentq(torque_gap, 0.01, row["force"], xtol=1e-12)
+    radius = sc.plectoneme_equilibrium(dna, t_eff * u.pN, interaction="screened").radius
+    assert row["predicted"] == pytest.approx(float(radius.m_as("nm")), rel=1e-6)
+    at_f = sc.plectoneme_equilibrium(dna, force, interaction="screened").radius.m_as("nm")
+    assert row["predicted"] > float(at_f)  # lower tension, wider plectoneme
+    assert "effective tension" in row["note"]
+
+
+def test_no_radius_where_the_free_energy_model_has_no_coexistence(default_table):
+    """At 10 mM and 0.2 pN the model has no coexistence, yet 8.44 nm was reported."""
+    row = _rows(default_table, "plectoneme_radius", "free-energy", 10.0).iloc[0]
+    assert np.isnan(row["predicted"]) and np.isnan(row["relative_error"])
+    assert "no radius" in row["note"] and "coexistence" in row["note"]
+    assert "10 mM" in row["note"]
+
+
+def test_jump_ratio_without_a_stated_length_is_bracketed_not_compared(default_table):
+    """Forth 2008 states no DNA length; the ratio grows with it (1.96 at 0.75 um, 4.74 at
+    5.03 um), and the 150 mM set's 5.03 um was used as if it were the row's."""
+    from supercoil.validation import BRACKET_LENGTHS_UM
+
+    published = load_published()
+    forth = published[published["quantity"] == "extension_jump_ratio"]
+    assert not np.isfinite(forth["dna_length"]).any()  # the source states none
+    for model in ("free-energy", "marko2007"):
+        row = _rows(default_table, "extension_jump_ratio", model).iloc[0]
+        assert np.isnan(row["predicted"]) and np.isnan(row["relative_error"])
+        assert row["predicted_low"] < row["predicted_high"]
+        assert "states no DNA length" in row["note"] and "not compared" in row["note"]
+    # the bracket's ends are the predictions at those lengths
+    short = validate(configs=(("free-energy", "dna_150mM_nacl", "screened"),),
+                     published=forth.assign(dna_length=BRACKET_LENGTHS_UM[0]))
+    row = _rows(default_table, "extension_jump_ratio", "free-energy").iloc[0]
+    assert short["predicted"].iloc[0] == pytest.approx(row["predicted_low"], rel=1e-12)
+    assert np.isnan(short["predicted_low"].iloc[0])  # a stated length: compared, no bracket
+
+
+def test_rows_say_which_of_their_conditions_the_model_does_not_take(default_table):
+    li = _rows(default_table, "effective_twist_persistence", "li-zhao", 20.0).iloc[0]
+    assert "20 mM is no condition of li-zhao" in li["note"]
+    fe = _rows(default_table, "effective_twist_persistence", "free-energy")
+    no_salt = fe[~np.isfinite(fe["salt"])]
+    assert len(no_salt) and no_salt["note"].str.contains("states no salt").all()
+    # every row's source conditions are those the published table records
+    published = load_published()
+    per_row = default_table.iloc[:: len(DEFAULT_CONFIGS)].reset_index(drop=True)
+    np.testing.assert_array_equal(per_row["salt"], published["salt"])
+    stated = np.isfinite(published["force"]) & (published["force"] > 0)
+    np.testing.assert_array_equal(per_row["force"][stated], published["force"][stated])
+    assert per_row["note"][~stated].str.contains("evaluated at").all()

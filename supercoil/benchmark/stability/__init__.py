@@ -84,6 +84,8 @@ from supercoil.benchmark.stability.classify import (
     verdict,
 )
 from supercoil.benchmark.stability.maps_dna import extension_map, hat_map, plectoneme_map
+from supercoil.benchmark.stability.maps_family import cases as family_cases
+from supercoil.benchmark.stability.maps_family import family_map
 from supercoil.benchmark.stability.maps_rod import (
     design_map,
     rough_map,
@@ -94,7 +96,8 @@ from supercoil.benchmark.stability.maps_rod import (
 from supercoil.benchmark.stability.plot import plot
 
 __all__ = ["CATEGORIES", "COLORS", "MAPS", "ROUGH_TOL_S", "ROUGH_TOL_Y", "Axis", "call",
-           "finite_problems", "plot", "regions", "rough_reference", "run", "summary", "verdict"]
+           "finite_problems", "map_builders", "plot", "regions", "rough_reference", "run",
+           "summary", "verdict"]
 
 #: the maps, in plotting order: (key, builder(rod, dna, quick))
 MAPS = (
@@ -112,6 +115,13 @@ MAPS = (
 )
 
 
+def map_builders():
+    """:data:`MAPS` and one map per registered DNA model and interaction (read now)."""
+    family = tuple((key, lambda rod, dna, q, n=name, i=inter: family_map(dna, n, i, q))
+                   for key, name, inter in family_cases())
+    return MAPS + family
+
+
 def run(quick=False, rod=None, dna=None, only=None):
     """Evaluate every solver over its grid and classify every cell.
 
@@ -122,7 +132,8 @@ def run(quick=False, rod=None, dna=None, only=None):
     rod, dna : ElasticRod, DNA, optional
         Default: the parameter sets ``silicone_rubber_rod`` and ``dna``.
     only : iterable of str, optional
-        Keys of :data:`MAPS` to run (default all).
+        Keys of :func:`map_builders` to run (default all: :data:`MAPS` and the family maps of
+        every registered model and interaction, ``"family <model>[/<interaction>]"``).
 
     Returns
     -------
@@ -157,7 +168,7 @@ def _run(quick, rod, dna, only):
     rod = rod or sc.load_parameters("silicone_rubber_rod")
     dna = dna or sc.load_parameters("dna")
     maps, timings = [], {}
-    for key, build in MAPS:
+    for key, build in map_builders():
         if only is not None and key not in only:
             continue
         t0 = time.perf_counter()

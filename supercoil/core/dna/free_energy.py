@@ -205,7 +205,9 @@ def _pull(force, B, C, kT, equilibrium):
     instead of a fourth equilibrium call: 3 calls per force instead of 4.
     """
     s = kT * kT / B
-    T = force - s * np.sqrt(tail_bracket(force, 0.0, B, kT))  # M = 0 estimate
+    Q0 = tail_bracket(force, 0.0, B, kT)
+    _check_bracket(Q0, force, np.zeros_like(force))  # F <= kT^2/(32 B): no tail at all
+    T = force - s * np.sqrt(Q0)  # M = 0 estimate
     prev = None
     for _ in range(_PULL_MAXITER):
         if np.any(T <= 0.0):

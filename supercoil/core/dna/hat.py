@@ -44,7 +44,15 @@ import numpy as np
 from supercoil.core.dna import hat_block as _blk
 from supercoil.core.dna import hat_fast as _fast
 from supercoil.core.dna import moroz_nelson as _mn
-from supercoil.core.dna.hat_block import FULLY_COILED, PLECTONEME, STRETCHED
+from supercoil.core.dna.interface import (
+    DENATURATION_FORCE,
+    FULLY_COILED,
+    OVERSTRETCHING_FORCE,
+    PLECTONEME,
+    STRETCHED,
+    HatPoints,
+    PointSummary,
+)
 from supercoil.core.dna.plectoneme import EQUILIBRIUM_RTOL, equilibrium
 from supercoil.exceptions import ValidityError
 
@@ -67,44 +75,7 @@ __all__ = [
 
 #: default short-tail threshold in bending persistence lengths A = B/kT
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
-#: above this force (N) negative supercoiling denatures real DNA [Salerno 2012]
-DENATURATION_FORCE = 0.8e-12
-#: above this force (N) B-DNA overstretches (Smith, Cui & Bustamante, Science 271,
-#: 795 (1996); Cluzel et al., Science 271, 792 (1996)); the model is inextensible
-OVERSTRETCHING_FORCE = 65e-12
 _TWO_PI = 2.0 * np.pi
-
-
-class HatPoints(NamedTuple):
-    """Hat-curve points, same-shape SI arrays."""
-
-    extension: np.ndarray  # m
-    torque: np.ndarray  # N m, sign of N
-    plectoneme_length: np.ndarray  # S, m (L when fully coiled)
-    phase: np.ndarray  # int8: 0 stretched, 1 plectoneme, 2 fully coiled
-    short_tail: np.ndarray  # bool: tail L - S shorter than short_tail_length
-    zeta: np.ndarray  # Moroz-Nelson extension factor (1 athermal, 0 fully coiled)
-    free_energy: np.ndarray | None = None  # G(N, F) in J, for models that have one
-    bracket: np.ndarray | None = None  # li-zhao thermal: Moroz-Nelson bracket Q per point
-    summary: PointSummary | None = None  # reductions the kernel computed block by block
-
-
-class PointSummary(NamedTuple):
-    """Reductions over all points of :func:`hat_curve_points`, taken block by block.
-
-    Computed while each block is in the CPU cache, so that the public layer's
-    checks (docs/theory/limits.md) reuse them instead of passing over the
-    arrays again (about a dozen passes, 4 ms at 1e6 points). The ranges hold
-    only if ``finite``.
-    """
-
-    finite: bool  # extension and torque finite everywhere
-    extension_min: float  # m
-    extension_max: float  # m
-    torque_min: float  # N m, signed
-    torque_max: float  # N m, signed
-    bracket_min: float  # thermal: min of Q over all points (NaN athermal)
-    zeta_over_long_tail: bool  # zeta > 1 at a point not flagged short_tail
 
 
 def _combined(blocks):

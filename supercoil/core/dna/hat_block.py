@@ -15,11 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
 __all__ = ["FULLY_COILED", "PLECTONEME", "STRETCHED", "UNIFORM", "block_summary", "fill_block",
            "fill_coiled", "fill_plectoneme", "fill_stretched", "one_phase"]
 
-STRETCHED, PLECTONEME, FULLY_COILED = 0, 1, 2
 
 
 def block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=None,

@@ -33,6 +33,7 @@ from typing import NamedTuple
 import numpy as np
 
 from supercoil.core.blocks import points_in_blocks
+from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 from supercoil.exceptions import ValidityError
 
 from . import end_loop as _loop
@@ -51,7 +52,6 @@ __all__ = [
     "wlc_free_energy_gain",
 ]
 
-STRETCHED, PLECTONEME, FULLY_COILED = 0, 1, 2
 _TWO_PI = 2.0 * np.pi
 
 

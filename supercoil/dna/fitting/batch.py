@@ -251,9 +251,10 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         and the tasks with ``pure=False``; any other executor one molecule per
         ``submit``. Each chunk is submitted as soon as it is built; results
         and progress are per molecule. None: serial.
-    progress : None, bool or callable
-        None (default): a :mod:`tqdm` bar on stderr when stderr is a terminal,
-        else one line per finished molecule (``molecule m3 done (3/20)``);
+    progress : None, bool, "log" or callable
+        None (default): a :mod:`tqdm.auto` bar on stderr when stderr is a
+        terminal or a notebook's output, else silent; ``"log"``: also one line
+        per finished molecule off a terminal (``molecule m3 done (3/20)``);
         False: silent; True: always the bar (tqdm installed); a callable:
         ``progress(done, total, molecule)`` after each molecule finishes.
 

@@ -42,7 +42,7 @@ from supercoil.dna.models import get_model
 from supercoil.exceptions import SupercoilError
 from supercoil.tables import make_table, provenance
 
-__all__ = ["compare_models", "information_criteria"]
+__all__ = ["compare_models", "information_criteria", "model_labels"]
 
 
 def information_criteria(chi2, ndata, nvarys):
@@ -114,7 +114,7 @@ def _assemble(rows, units):
 def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None, *,
                    sigma=None, fit_turns_offset=True, fit_extension_offset=True, thermal=True,
                    interaction=DEFAULT_INTERACTION, max_nfev=None, tol=1e-10,
-                   return_results=False):
+                   return_results=False, start=None):
     """Fit several DNA models to the same data; a table ranked by AIC.
 
     Parameters
@@ -126,13 +126,21 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         A sequence: the DNA fields fitted for every model, each model's own
         parameters (``model.parameters``) varied as well. A dict: exactly the
         parameters varied per model (DNA fields and model parameters; a model
-        missing from it gets the default ``("twist_persistence", "radius")``).
+        missing from it gets the default ``("twist_persistence", "radius")``);
+        a key is a row's label or a model name.
     models : sequence of str or DNAModel
-        The models (registered names or instances), at least one.
+        The models (registered names or instances), at least one, each once.
+        A row's ``model`` label (and the key of its result) is the model's
+        name, followed by the options and parameters that differ from the
+        defaults: ``"marko2007(end_loop=True)"`` (:func:`model_labels`).
     interaction : str or Interaction
         For the models with a plectoneme helix (others take none).
     return_results : bool
-        Also return the :class:`FitResult` of each model (dict by model name).
+        Also return the :class:`FitResult` of each model (dict by row label).
+    start : dict of str -> Quantity, optional
+        Start values as for :func:`fit_hat_curves` (the same for every model;
+        e.g. ``{"turns_offset": 0.0}`` for one-sided curves, where the guess
+        from the centre of symmetry fails).
 
     Returns
     -------
@@ -148,9 +156,15 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         ``warnings``. ``attrs["units"]`` and ``attrs["provenance"]``; the
         definitions are those of lmfit (module docstring).
 
+    Raises
+    ------
+    ValueError
+        No model, or the same model (class, options and parameter values)
+        given twice.
+
     Warns
     -----
-    The warnings of each fit, prefixed by the model name.
+    The warnings of each fit, prefixed by the row label.
     """
     return_results = check_flag(return_results, "return_results")
     models = list(models) if not isinstance(models, str) else [models]
@@ -158,11 +172,12 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         raise ValueError("compare_models needs at least one model")
     kw = dict(fixed=fixed, bounds=bounds, sigma=sigma, fit_turns_offset=fit_turns_offset,
               fit_extension_offset=fit_extension_offset, thermal=thermal,
-              interaction=interaction, max_nfev=max_nfev, tol=tol)
+              interaction=interaction, max_nfev=max_nfev, tol=tol, start=start)
     rows, units, results = [], {}, {}
-    for spec in models:
-        label = get_model(spec).name
-        names = vary.get(label, DEFAULT_VARY) if isinstance(vary, dict) else vary
+    for spec, label in zip(models, model_labels(models), strict=True):
+        name = get_model(spec).name
+        names = (vary.get(label, vary.get(name, DEFAULT_VARY)) if isinstance(vary, dict)
+                 else vary)
         names = [names] if isinstance(names, str) else list(names)
         result, error = None, ""
         try:
@@ -186,6 +201,43 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
                       criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
     table = make_table(cols, all_units, prov)
     return (table, results) if return_results else table
+
+
+def model_labels(models):
+    """One distinct label per model: its name, with its non-default options and parameters.
+
+    ``["marko2007", Marko2007(end_loop=True)]`` gives ``["marko2007",
+    "marko2007(end_loop=True)"]``: the rows of :func:`compare_models` and the
+    keys of its results stay apart (on main both were ``"marko2007"`` and the
+    dict kept one of the two results).
+
+    Raises
+    ------
+    ValueError
+        Two entries are the same model (same class, options and parameter
+        values): the fit would be repeated under one label.
+    """
+    resolved = [get_model(spec) for spec in models]
+    labels = []
+    for i, m in enumerate(resolved):
+        for j in range(i):
+            if resolved[j] == m:
+                raise ValueError(f"models[{j}] and models[{i}] are the same model ({m.name!r}"
+                                 f"{_details(m, '.6g') or ''}): give each model once")
+        labels.append(m.name + _details(m, ".6g"))
+    for i, m in enumerate(resolved):  # equal to 6 digits but not equal: every digit
+        if labels.count(labels[i]) > 1:
+            labels[i] = m.name + _details(m, ".17g")
+    return labels
+
+
+def _details(m, fmt):
+    """``"(option=..., parameter=...)"`` for what differs from the defaults, else ``""``."""
+    parts = [f"{k}={v}" for k, v in m.options().items() if v != m.OPTIONS[k]]
+    for k, q in m.quantities().items():
+        if m.values[k] != m.parameters[k].default:
+            parts.append(f"{k}={format(q, fmt + '~P')}")
+    return f"({', '.join(parts)})" if parts else ""
 
 
 def _category(message, result):

@@ -30,7 +30,7 @@ from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_ch
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.fitting.parameters import FitParameters
+from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
@@ -139,7 +139,8 @@ def _extension_offset_mode(value):
 def _check_params(params, rot, model, inter):
     allowed = {"dna": ("length", "bending_persistence", "twist_persistence", "radius"),
                "model": tuple(model.parameters), "interaction": tuple(inter.parameters),
-               "offset": ("turns_offset", "extension_offset")}
+               "offset": ("turns_offset", "extension_offset"),
+               "calibration": tuple(CALIBRATION)}
     forces = np.unique(rot.force)
     for p in params.values():
         want = (("per-molecule", "per-force") if p.kind == "extension_offset" else
@@ -283,7 +284,8 @@ def run_fit(spec: FitSpec) -> dict:
         "z0_points": np.asarray(z0_pts, dtype=float),
         "states": prob.states(u) if prob._per_force else None,
         "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
-        "torque": np.asarray(pts.torque, dtype=float),
+        "torque": prob.torque_prediction(u),  # the predicted measured torque
+        "calibration": {k: prob.scale(k, u) for k in CALIBRATION},
         "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),
         "residual_weighted": r, "goodness": gof_info, "warnings": records,
         "channels": channels, "notes": list(spec.notes) + start_notes,

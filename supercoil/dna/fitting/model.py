@@ -16,12 +16,19 @@ residual vector is ``[(z_model - z) / sigma_z, (tau_model - tau) / sigma_tau]``
 (docs/theory/fitting.md#joint-torque-fit); the turns offsets act on both
 channels, the extension offsets on the extensions only.
 
+Calibration nuisance parameters (docs/theory/fitting.md#calibration-nuisance-parameters,
+:data:`~supercoil.dna.fitting.parameters.CALIBRATION`; both 1 unless given):
+the kernel is evaluated at ``force_scale x`` the data's (nominal) force, and the
+measured torque is predicted as ``tau_model / torque_scale`` (model torque =
+torque_scale x measured torque); the data and their sigmas are never rescaled.
+
 Numerics
 --------
 The optimiser works on scaled variables of order one (``value / scale``). The
 Jacobian is built in ``n_global + 1`` kernel calls: forward differences for the
 global parameters, one central difference in N for all turns offsets at once
-(``dz/dN0 = -dz/dN``) and exact columns for the extension offsets. Kernel
+(``dz/dN0 = -dz/dN``) and exact columns for the extension offsets and the
+torque scale (``d(tau/s)/ds = -tau / s^2``). Kernel
 failures (:class:`~supercoil.exceptions.NoEquilibriumError`,
 :class:`~supercoil.exceptions.ValidityError`) at a trial point give a
 non-finite residual (scipy's TRF then shrinks the trust region).
@@ -29,9 +36,9 @@ non-finite residual (scipy's TRF then shrinks the trust region).
 Caches (within one fit): the unpacked kernel arguments, the residual and the
 points at the last few parameter vectors (no repeated evaluation or unpacking
 at the same parameters), and the plectoneme
-equilibria keyed by the interaction, force and molecule; for the hard-core
-interaction the key leaves out the twist rigidity C, on which only ``omega =
-M/C`` and the twist energy depend (:mod:`supercoil.core.dna.plectoneme`).
+equilibria keyed by :meth:`~supercoil.dna.interactions.base.Interaction.cache_key`
+and the force: the key leaves out the length and the twist rigidity C, on which only
+``omega = M/C`` and the twist energy depend (for every interaction: (GE2) contains no C).
 """
 
 from __future__ import annotations
@@ -41,7 +48,6 @@ from collections import OrderedDict
 
 import numpy as np
 
-from supercoil.dna.interactions.hard_core import HardCore
 from supercoil.dna.models.base import HatPoints
 from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 from supercoil.units import BOLTZMANN
@@ -74,19 +80,14 @@ class _CachedInteraction:
     def __init__(self, interaction, store):
         self._inter = interaction
         self._store = store
-        self._reduced = type(interaction) is HardCore
 
     def __getattr__(self, name):
         return getattr(self._inter, name)
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)
-        if self._reduced:  # C-free key; omega and the twist energy scale with 1/C
-            key_dna = (dna.bending_rigidity, dna.kT, dna.radius)
-        else:
-            key_dna = tuple(dna)
-        key = (type(self._inter), tuple(sorted(self._inter.values.items())), key_dna,
-               tension.tobytes())
+        # C-free key (Interaction.cache_key): omega and the twist energy scale with 1/C
+        key = (self._inter.cache_key(dna), tension.tobytes())
         hit = self._store.get(key)
         if hit is None:
             state = self._inter.equilibrium(tension, dna)
@@ -130,8 +131,14 @@ class HatCurveModel:
         self._eq_store = OrderedDict()
         self._unpacked = OrderedDict()
         self._jac = None
-        # the kernel does not depend on the extension offsets: leave them out of the cache key
-        self._kernel_mask = np.array([p.kind != "extension_offset" for p in self.free], bool)
+        # the kernel does not depend on the extension offsets nor on the torque scale: leave
+        # them out of the cache key
+        self._kernel_mask = np.array([p.kind not in ("extension_offset", "torque_scale")
+                                      for p in self.free], bool)
+        self._calibration = {p.kind: (j if p.vary else None, p.value)
+                             for j, p in enumerate(self.free) if p.owner == "calibration"}
+        self._calibration.update({p.kind: (None, p.value) for p in params.values()
+                                  if p.owner == "calibration" and not p.vary})
         self._per_force = any(p.shared == "per-force" for p in params.values())
 
     def set_torque_sigma(self, sigma):
@@ -146,12 +153,24 @@ class HatCurveModel:
         self.weights = np.concatenate([self.w, self.weights[self.n_ext:]])
         self._jac = None
 
-    def channels(self, pts):
-        """Kernel points as the model vector (extension, then torque if fitted; no offsets)."""
+    def scale(self, name, u):
+        """The calibration parameter ``name`` (``"force_scale"``, ``"torque_scale"``) at ``u``."""
+        j, value = self._calibration.get(name, (None, 1.0))
+        return value if j is None else float(u[j] * self.free[j].scale)
+
+    def channels(self, pts, torque_scale=1.0):
+        """Kernel points as the model vector (extension, then the predicted measured torque
+        ``tau / torque_scale`` if fitted; no offsets)."""
         z = np.array(pts.extension, dtype=float)  # a copy: the points are cached
         if not self.data.has_torque:
             return z
-        return np.concatenate([z, np.asarray(pts.torque, dtype=float)])
+        return np.concatenate([z, np.asarray(pts.torque, dtype=float) / torque_scale])
+
+    def torque_prediction(self, u):
+        """The model's torque at the data points (N m): the predicted measured torque
+        ``tau / torque_scale`` with torque data, the model torque without."""
+        tau = np.asarray(self.points(u)[0].torque, dtype=float)
+        return tau / self.scale("torque_scale", u) if self.data.has_torque else tau
 
     # ---- parameters -> kernel arguments ----
     def unpack(self, u, force=None):
@@ -207,14 +226,18 @@ class HatCurveModel:
         return evaluate(model, turns, force, dna, self.thermal, inter)
 
     def kernel_at(self, turns, force, u):
-        """Kernel points at ``u``: one call, or one per force with per-force parameters."""
+        """Kernel points at ``u``: one call, or one per force with per-force parameters.
+
+        ``force`` is the data's nominal force: the kernel sees ``force_scale x force``.
+        """
+        fs = self.scale("force_scale", u)
         if not self._per_force:
             dna, model, inter = self.unpack(u)[:3]
-            return self.kernel(turns, force, dna, model, inter)
+            return self.kernel(turns, force * fs, dna, model, inter)
         out = None
         for f in np.unique(force):
             sel = force == f
-            pts = self.kernel(turns[sel], force[sel], *self.unpack(u, f)[:3])
+            pts = self.kernel(turns[sel], force[sel] * fs, *self.unpack(u, f)[:3])
             if out is None:  # arrays only (a kernel's summary, a tuple, covers its own call)
                 out = [None if a is None or isinstance(a, tuple)
                        else np.empty(len(turns), np.asarray(a).dtype) for a in pts]
@@ -251,7 +274,7 @@ class HatCurveModel:
     def predicted(self, u):
         """The model vector at ``u``: extensions with offsets, then torques (if fitted)."""
         pts, z0 = self.points(u)
-        y = self.channels(pts)
+        y = self.channels(pts, self.scale("torque_scale", u))
         y[: self.n_ext] += z0
         return y
 
@@ -286,6 +309,10 @@ class HatCurveModel:
             if p.owner == "offset" and p.kind == "extension_offset":
                 sel = np.flatnonzero(mol == p.molecule)  # extension rows only
                 J[sel, j] = p.scale * self.w[sel]
+            elif p.kind == "torque_scale":  # torque rows only: d(tau / s)/ds = -tau / s^2
+                s = self.scale("torque_scale", u)
+                tau = np.asarray(self.points(u)[0].torque, dtype=float)
+                J[self.n_ext:, j] = -tau / s**2 * self.weights[self.n_ext:] * p.scale
             elif p.owner == "offset":
                 turns_cols.append(j)
             else:
@@ -316,6 +343,7 @@ class HatCurveModel:
     def dz_dturns(self, u):
         """dz/dN (then dtau/dN if fitted) at every point: one kernel call at N -/+ h."""
         h = 1e-4
+        ts = self.scale("torque_scale", u)
         n0 = self.unpack(u)[3]
         n_eff = self.data.turns - n0[self.data.mol_index]
         force = self.data.force
@@ -327,13 +355,13 @@ class HatCurveModel:
             arrays = [None if a is None or isinstance(a, tuple) else np.asarray(a) for a in pts]
             lo_pts = type(pts)(*(None if a is None else a[:m] for a in arrays))
             hi_pts = type(pts)(*(None if a is None else a[m:] for a in arrays))
-            return (self.channels(hi_pts) - self.channels(lo_pts)) / (2 * h)
+            return (self.channels(hi_pts, ts) - self.channels(lo_pts, ts)) / (2 * h)
         except _KERNEL_ERRORS:
             pass
-        base = self.channels(self.points(u)[0])
+        base = self.channels(self.points(u)[0], ts)
         for sgn in (1.0, -1.0):
             try:
-                y = self.channels(self.kernel_at(n_eff + sgn * h, force, u))
+                y = self.channels(self.kernel_at(n_eff + sgn * h, force, u), ts)
                 return (y - base) / (sgn * h)
             except _KERNEL_ERRORS:
                 continue

@@ -12,7 +12,10 @@ A parameter is one of
   (:class:`~supercoil.dna.parameters.ModelParameter`; ``owner="model"`` or
   ``"interaction"``), shared by all points;
 * a nuisance offset of one molecule (``turns_offset[<molecule>]``,
-  ``extension_offset[<molecule>]``; ``owner="offset"``, ``shared="per-molecule"``).
+  ``extension_offset[<molecule>]``; ``owner="offset"``, ``shared="per-molecule"``);
+* a calibration nuisance parameter (:data:`CALIBRATION`: ``torque_scale``,
+  ``force_scale``; ``owner="calibration"``), shared by all points, fixed at 1
+  unless varied (docs/theory/fitting.md#calibration-nuisance-parameters).
 
 Plausible limits
 ----------------
@@ -35,8 +38,8 @@ import pandas as pd
 
 from supercoil.units import ureg
 
-__all__ = ["DNA_FIELDS", "PLAUSIBLE", "SHARING", "FitParameter", "FitParameters",
-           "display_factor"]
+__all__ = ["CALIBRATION", "DNA_FIELDS", "PLAUSIBLE", "SHARING", "FitParameter",
+           "FitParameters", "calibration_parameter", "display_factor"]
 
 #: DNA fields that can be fitted (shared by all forces and molecules).
 DNA_FIELDS = ("length", "bending_persistence", "twist_persistence", "radius")
@@ -61,6 +64,32 @@ PLAUSIBLE = {
     "turns_offset": (-_INF, _INF, "no limit"),
     "extension_offset": (-_INF, _INF, "no limit"),
 }
+
+#: Calibration nuisance parameters (dimensionless, default 1 = off): name -> (the channels
+#: it acts on, plausible low, plausible high, definition);
+#: docs/theory/fitting.md#calibration-nuisance-parameters. The measured channel and its
+#: sigmas are never rescaled: the model's prediction of the measurement is.
+CALIBRATION = {
+    "torque_scale": ("torque", 0.5, 2.0,
+                     "model torque = torque_scale x measured torque: the fit predicts the "
+                     "measured torque as tau_model / torque_scale"),
+    "force_scale": ("extension and torque", 0.5, 2.0,
+                    "true force = force_scale x nominal force: the model is evaluated at "
+                    "force_scale x the data's force"),
+}
+_CALIBRATION_SOURCE = ("choice: a calibration off by more than a factor 2 is not a "
+                       "calibration error")
+
+
+def calibration_parameter(name, value=1.0, vary=True) -> FitParameter:
+    """The :class:`FitParameter` of the calibration parameter ``name`` (see :data:`CALIBRATION`).
+
+    Bounded below by 0 (exclusive), plausible within a factor 2 of 1.
+    """
+    lo, hi = CALIBRATION[name][1:3]
+    return FitParameter(name, float(value), "", vary=vary, min=0.0, max=_INF, kind=name,
+                        owner="calibration", plausible=(lo, hi),
+                        plausible_source=_CALIBRATION_SOURCE, scale=1.0)
 
 
 @functools.lru_cache(maxsize=256)
@@ -109,8 +138,9 @@ class FitParameter:
         The force (N) of a per-force parameter (its points share it).
     kind : str
         Base name (``"turns_offset"`` for ``"turns_offset[m1]"``).
-    owner : {"dna", "model", "interaction", "offset"}
-        Where the value goes: a DNA field, the model, the interaction, an offset.
+    owner : {"dna", "model", "interaction", "offset", "calibration"}
+        Where the value goes: a DNA field, the model, the interaction, an offset,
+        a calibration scale of a channel (:data:`CALIBRATION`).
     plausible : (float, float)
         Plausible range (SI); a fit ending at or beyond it warns.
     plausible_source : str

@@ -25,8 +25,12 @@ def _curve(result, force, grid, field="extension"):
     dna, model, inter = c["dna"], c["model_obj"], c["interaction_obj"]
     if c.get("states"):  # per-force parameters: the molecule and model at this force
         dna, model, inter = c["states"][float(force)]
-    pts = model.points(grid, np.full_like(grid, force), dna, result.thermal, inter, None)
-    return np.asarray(getattr(pts, field)) * (1e9 if field == "extension" else 1e21)
+    scale = c.get("calibration", {})  # docs/theory/fitting.md#calibration-nuisance-parameters
+    pts = model.points(grid, np.full_like(grid, force * scale.get("force_scale", 1.0)), dna,
+                       result.thermal, inter, None)
+    if field == "extension":
+        return np.asarray(pts.extension) * 1e9
+    return np.asarray(getattr(pts, field)) * 1e21 / scale.get("torque_scale", 1.0)
 
 
 def _torque_panels(result, axes, k, f, grid):

@@ -4,7 +4,9 @@ Names a fit accepts: the DNA fields (:data:`DNA_FIELDS`; ``temperature`` only
 in ``fixed``), the parameters the DNA model and the interaction declare
 (``model.parameters``, ``interaction.parameters``), and the offsets
 ``turns_offset`` / ``extension_offset`` (all molecules) or
-``turns_offset[<molecule>]`` (one molecule).
+``turns_offset[<molecule>]`` (one molecule), and the calibration scales
+(:data:`~supercoil.dna.fitting.parameters.CALIBRATION`: ``torque_scale``,
+``force_scale``; held at 1 unless varied or fixed).
 """
 
 from __future__ import annotations
@@ -15,7 +17,14 @@ import re
 import numpy as np
 
 from supercoil.dna.fitting.model import dna_si
-from supercoil.dna.fitting.parameters import DNA_FIELDS, PLAUSIBLE, FitParameter, FitParameters
+from supercoil.dna.fitting.parameters import (
+    CALIBRATION,
+    DNA_FIELDS,
+    PLAUSIBLE,
+    FitParameter,
+    FitParameters,
+    calibration_parameter,
+)
 from supercoil.exceptions import FitError
 from supercoil.units import U, as_turns, magnitude
 
@@ -47,7 +56,8 @@ class _Names:
         self.interaction = interaction
 
     def allowed(self):
-        return [*DNA_FIELDS, *self.model.parameters, *self.interaction.parameters]
+        return [*DNA_FIELDS, *self.model.parameters, *self.interaction.parameters,
+                *CALIBRATION]
 
     def kind(self, name):
         if name in DNA_FIELDS or name == "temperature":
@@ -56,6 +66,8 @@ class _Names:
             return "model", name, None
         if name in self.interaction.parameters:
             return "interaction", name, None
+        if name in CALIBRATION:
+            return "calibration", name, None
         m = _NAME.match(name)
         if not m:
             raise FitError(f"unknown parameter {name!r}; fit parameters are {self.allowed()}, "
@@ -79,6 +91,8 @@ class _Names:
                 return float(as_turns(value, name))
             if base == "temperature":
                 return float(magnitude(value, U.K, name))
+            if owner == "calibration":
+                return float(magnitude(value, U.dimensionless, name))
             if owner in ("model", "interaction"):
                 spec = self.spec(owner, base)
                 if hasattr(value, "_units"):
@@ -90,6 +104,8 @@ class _Names:
 
 
 def _global_parameter(names, owner, base, value, vary):
+    if owner == "calibration":
+        return calibration_parameter(base, value, vary)
     if owner == "dna":
         lo, hi, src = PLAUSIBLE[base]
         return FitParameter(base, value, "nm", vary=vary, min=0.0, kind=base, owner="dna",
@@ -127,7 +143,9 @@ def _apply_fixed(fixed, names, vary, values, n0, z0):
             if not (np.isfinite(v) and v > 0):
                 raise FitError(f"fixed {name} must be finite and positive, got {plain(value)}")
             values[("dna", base)] = v
-        elif owner in ("model", "interaction"):
+        elif owner in ("model", "interaction", "calibration"):
+            if owner == "calibration" and not (np.isfinite(v) and v > 0):
+                raise FitError(f"fixed {name} must be finite and positive, got {plain(value)}")
             values[(owner, base)] = v
         else:
             table = n0 if base == "turns_offset" else z0
@@ -198,6 +216,17 @@ def _add_per_force_offsets(params, data, i, label, entry, source):
                                 given=given, scale=Z0_SCALE))
 
 
+def _fixed_calibration(params, vary, values, data):
+    """A fixed calibration scale other than 1 as a fixed parameter; FitError for a torque
+    scale without torque data."""
+    for base in CALIBRATION:
+        if base not in vary and values[("calibration", base)] != 1.0:
+            params.add(calibration_parameter(base, values[("calibration", base)], vary=False))
+    if "torque_scale" in params and not data.has_torque:
+        raise FitError("torque_scale scales the torque channel, but the data have no "
+                       "'torque' column")
+
+
 def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=None, start=None,
                      fit_turns_offset=True, fit_extension_offset=True,
                      extension_offset_per_force=False):
@@ -214,6 +243,7 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     values = {("dna", k): getattr(si, k) for k in (*DNA_FIELDS, "temperature")}
     values.update({("model", k): v for k, v in model.values.items()})
     values.update({("interaction", k): v for k, v in interaction.values.items()})
+    values.update({("calibration", k): 1.0 for k in CALIBRATION})
     n_mol = len(data.labels)
     # per molecule: (value, given, free)
     n0 = [(0.0, False, bool(fit_turns_offset))] * n_mol
@@ -232,6 +262,7 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     for base in vary:
         params.add(_global_parameter(names, owners[base], base, values[(owners[base], base)],
                                      True))
+    _fixed_calibration(params, vary, values, data)
     _add_offsets(params, data, n0, z0, extension_offset_per_force)
     if "length" in params and "length" not in dict(start or {}):
         params["length"].given = False  # a varied length starts from the data (issue 22)

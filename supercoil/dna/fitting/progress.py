@@ -1,15 +1,18 @@
-"""Progress of many fits: a tqdm bar on a terminal, one line per event in a log.
+"""Progress of many fits: a tqdm bar on a terminal or in a notebook, silent elsewhere.
 
-Used by :func:`~supercoil.fit_many` and ``supercoil fit``. A bar's carriage
-returns pile up into one unreadable line in a log file, so off a terminal
-each finished molecule is one line (``molecule m3 done (3/20)``).
+Used by :func:`~supercoil.fit_many` and ``supercoil fit``. The bar is
+:mod:`tqdm.auto`'s (a widget in a Jupyter notebook, text on a terminal). Off
+a terminal (a log file, a pipe, a captured stream) nothing is written unless
+asked: ``progress="log"`` writes one line per finished molecule there
+(``molecule m3 done (3/20)``; a bar's carriage returns would pile up into one
+unreadable line), which is what ``supercoil fit`` asks for.
 """
 
 from __future__ import annotations
 
 import sys
 
-__all__ = ["Progress", "is_terminal"]
+__all__ = ["Progress", "in_notebook", "is_terminal"]
 
 
 def is_terminal(stream) -> bool:
@@ -21,15 +24,29 @@ def is_terminal(stream) -> bool:
         return False
 
 
+def in_notebook(stream) -> bool:
+    """True when ``stream`` is the standard output or error of a Jupyter (IPython) kernel."""
+    if "ipykernel" not in sys.modules or stream not in (sys.stderr, sys.stdout):
+        return False
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - ipykernel needs IPython
+        return False
+    shell = get_ipython()
+    return shell is not None and type(shell).__name__ == "ZMQInteractiveShell"
+
+
 class Progress:
     """Progress reporting of ``total`` molecules.
 
     Parameters
     ----------
-    progress : None, bool or callable
-        None: a tqdm bar if ``stream`` is a terminal, else one line per
-        molecule; True: the bar (ImportError without tqdm); False: silent; a
-        callable: ``progress(done, total, molecule)`` after each molecule.
+    progress : None, bool, "log" or callable
+        None: a :mod:`tqdm.auto` bar if ``stream`` is a terminal or a
+        notebook's output, else silent; ``"log"``: the same bar, and one line
+        per molecule off a terminal; True: the bar (ImportError without
+        tqdm); False: silent; a callable: ``progress(done, total, molecule)``
+        after each molecule.
     total : int
         Number of molecules.
     stream : file, optional
@@ -45,15 +62,16 @@ class Progress:
         self.lines = False
         if progress is False:
             return
-        if progress is not None and progress is not True:
-            if not callable(progress):
-                raise TypeError("progress must be None, True, False or a callable "
+        log = isinstance(progress, str) and progress == "log"
+        if progress is not None and progress is not True and not log:
+            if isinstance(progress, str) or not callable(progress):
+                raise TypeError("progress must be None, True, False, 'log' or a callable "
                                 f"progress(done, total, molecule), got {progress!r}")
             self.callback = progress
             return
-        if progress is True or is_terminal(self.stream):
+        if progress is True or is_terminal(self.stream) or in_notebook(self.stream):
             try:
-                from tqdm import tqdm
+                from tqdm.auto import tqdm
             except ImportError as exc:
                 if progress is True:
                     raise ImportError("progress=True needs tqdm (pip install "
@@ -63,7 +81,7 @@ class Progress:
             self.bar = tqdm(total=self.total, file=self.stream, unit="molecule",
                             desc=prefix.rstrip(": ") or "fit_many", leave=True)
             return
-        self.lines = True
+        self.lines = log
 
     def update(self, molecule):
         """One more molecule finished."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil.dna.fitting.consistency import report_lines
 from supercoil.units import ureg
 
 __all__ = ["fit_report"]
@@ -138,6 +139,7 @@ def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
         "parameters counted)",
         f"    weighting          = {wtext}",
         *_channel_lines(result),
+        *report_lines(result),
         f"    converged          = {result.success} ({result.message})",
         "[[Parameters]]",
     ]

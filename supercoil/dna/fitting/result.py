@@ -267,7 +267,7 @@ class FitResult:
                 if k not in spec.vary:
                     fixed[k] = q
         for p in spec.params.values():
-            if p.owner == "offset" and not p.vary:
+            if p.owner in ("offset", "calibration") and not p.vary:
                 fixed[p.name] = p.quantity()
         return fixed
 

@@ -12,7 +12,8 @@ from supercoil.dna.interactions.screened import Screened
 from supercoil.dna.registry import Registry
 
 __all__ = ["DEFAULT_INTERACTION", "HardCore", "Interaction", "Screened",
-           "available_interactions", "get_interaction", "register_interaction"]
+           "available_interactions", "get_interaction", "register_interaction",
+           "unregister_interaction"]
 
 #: the interaction used when none is given (the paper's)
 DEFAULT_INTERACTION = "hard-core"
@@ -22,6 +23,11 @@ _REGISTRY = Registry("interaction", Interaction)
 def register_interaction(cls, replace=False):
     """Make an :class:`Interaction` subclass available by its ``name``."""
     return _REGISTRY.register(cls, replace=replace)
+
+
+def unregister_interaction(name):
+    """Remove a registered interaction by name (returns its class)."""
+    return _REGISTRY.unregister(name)
 
 
 def get_interaction(spec=DEFAULT_INTERACTION, **values):

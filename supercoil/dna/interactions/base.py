@@ -65,5 +65,22 @@ class Interaction(Parametrised):
         """
         raise NotImplementedError
 
+    #: DNASI fields the plectoneme equilibrium never reads: the molecule's length, and its
+    #: twist rigidity C, because (GE2) contains no C, so the tilt, the radius and the
+    #: torque M = C omega at a tension are independent of it (only ``omega = M / C`` and
+    #: the twist energy ``M omega / 2`` scale with 1/C; docs/theory/plectoneme.md)
+    C_FREE_FIELDS = ("length", "twist_persistence", "torsional_rigidity")
+
+    def cache_key(self, dna):
+        """Hashable key of everything :meth:`equilibrium` depends on, C excluded.
+
+        Two molecules with the same key have the same plectoneme tilt, radius and torque
+        at every tension; a cache rescales ``omega`` and ``twist_energy`` to the new C.
+        An interaction that reads more than the DNA fields and its own parameters
+        overrides this.
+        """
+        fields = tuple(v for k, v in dna._asdict().items() if k not in self.C_FREE_FIELDS)
+        return (type(self).__qualname__, tuple(sorted(self.values.items())), fields)
+
     def check(self, dna):
         """Raise ParameterError if ``dna`` lacks something this interaction needs."""

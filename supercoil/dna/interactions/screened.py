@@ -25,6 +25,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil._checks import check_scale
 from supercoil.core.blocks import in_blocks
 from supercoil.core.dna import contact as _ct
 from supercoil.core.dna import electrostatics as _el
@@ -144,8 +145,25 @@ class Screened(Interaction):
 
     # ---- float level (SI) -------------------------------------------------
     def check(self, dna):
-        """Raise :class:`ParameterError` naming ``salt`` if the DNA has none."""
-        _si(dna)
+        """ParameterError naming ``salt`` if the DNA has none; ValidityError if it is absurd.
+
+        The Debye length must lie between ``a / 300`` and ``1000 a`` (``a`` the
+        hard-core radius; about 8e3 M to 9e-8 M for a = 1 nm at 25 degC): below,
+        ``exp(a / lambda_D)`` of Stigter's far-field matching leaves the float range
+        (at a / lambda_D ~ 709; the branch solver already fails near 3e4 M); above,
+        the repulsion is unscreened over the whole tabulated branch (R up to
+        1000 a) and no confined branch exists in it (measured at 5e-8 M). A
+        salt of 1e300 M gave a ZeroDivisionError (issue 20, item 5).
+        """
+        si = _si(dna)
+        a = self.values["hard_core_radius"]
+        with np.errstate(over="ignore", under="ignore", divide="ignore"):
+            lam = float(_el.debye_length(si.salt, si.temperature))
+        check_scale(lam / a, f"the Debye length over the hard-core radius, lambda_D/a (salt "
+                    f"{si.salt * 1e-3:.6g} M, lambda_D = {lam * 1e9:.6g} nm, a = {a * 1e9:.6g} "
+                    "nm)", lo=1.0 / 300.0, hi=_R_MAX_FACTOR,
+                    why="the screened interaction is solved for a / 300 <= lambda_D <= "
+                        f"{_R_MAX_FACTOR:g} a (docs/theory/screened-interaction.md)")
 
     def screening(self, dna):
         """``(lambda_D [m], l_B [m], nu [1/m], nu^2 kT l_B [J/m])`` for the DNA's buffer."""

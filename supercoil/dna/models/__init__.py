@@ -12,7 +12,8 @@ from supercoil.dna.models.marko2007 import Marko2007
 from supercoil.dna.registry import Registry
 
 __all__ = ["DEFAULT_MODEL", "Buckling", "DNAModel", "FreeEnergy", "HatPoints", "LiZhao",
-           "Marko2007", "available_models", "get_model", "register_model", "unique_forces"]
+           "Marko2007", "available_models", "get_model", "register_model", "unique_forces",
+           "unregister_model"]
 
 #: the model used when none is given (the paper's)
 DEFAULT_MODEL = "li-zhao"
@@ -22,6 +23,12 @@ _REGISTRY = Registry("model", DNAModel)
 def register_model(cls, replace=False):
     """Make a :class:`DNAModel` subclass available by its ``name`` (returns the class)."""
     return _REGISTRY.register(cls, replace=replace)
+
+
+def unregister_model(name):
+    """Remove a registered model by name (returns its class); the package's own stay
+    registered unless removed explicitly (tests re-register them)."""
+    return _REGISTRY.unregister(name)
 
 
 def get_model(spec=DEFAULT_MODEL, **values):

@@ -19,7 +19,7 @@ Contract (float level, SI; modelled on scipy's ``OdeSolver`` rules)
 3. ``buckling(force, dna, thermal, interaction)`` -> :class:`Buckling` per
    force (1-D array of distinct forces, N).
 4. ``points(turns, force, dna, thermal, interaction, short_tail_length)`` ->
-   :class:`~supercoil.core.dna.hat.HatPoints`; ``turns`` and ``force`` are 1-D
+   :class:`~supercoil.core.dna.interface.HatPoints`; ``turns`` and ``force`` are 1-D
    arrays of the same shape (force repeated per point; read-only: for one
    force it is a broadcast view).
 5. ``has_free_energy(thermal)`` and ``free_energy(turns, force, ...)`` (J): the
@@ -42,7 +42,7 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-from supercoil.core.dna.hat import HatPoints
+from supercoil.core.dna.interface import HatPoints
 from supercoil.dna.parameters import ModelParameter, Parametrised
 from supercoil.exceptions import ModelError
 

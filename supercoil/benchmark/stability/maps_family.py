@@ -1,0 +1,163 @@
+"""Stability maps of the DNA model family, generated from the model and interaction registries.
+
+One map per registered model and (for models with a plectoneme helix) per registered
+interaction, so a model added to the registry enters the maps without new code here. Each
+cell is one hat curve at a force over symmetric turns up to a supercoiling density of
++-0.15 (past full coiling at every force of the grid), for one molecule (the given set, with
+150 mM salt if it has none): the y axis is the salt for interactions that need one, else the
+bending persistence A (elasticity).
+
+References (a second method, not the model's own formulas):
+
+* the contract of :mod:`supercoil.dna.models.base`: finite numbers, ``0 <= z <= L`` on
+  points not flagged ``short_tail``, extension even and torque odd in N (the grid is
+  symmetric), phase codes of the shared set;
+* models derived from one free energy (``has_free_energy``): at interior points (same
+  phase as both neighbours) ``z = -dG/dF`` and ``M = (1/2 pi) dG/dN`` by central
+  differences of the model's free energy, to ``1e-5 L`` and ``1e-5 max|M|``.
+
+A cell whose hat curve takes longer than :data:`HANG_SECONDS` is WRONG ("hang").
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+
+import numpy as np
+
+from supercoil.benchmark.stability.classify import (
+    Axis,
+    call,
+    finite_problems,
+    log_grid,
+    verdict,
+)
+
+#: a cell slower than this (s) is classified WRONG: a solver that does not come back
+HANG_SECONDS = 20.0
+#: supercoiling density at the ends of each cell's turns grid
+SIGMA_MAX = 0.15
+_HELICAL_REPEAT = 3.57e-9  # m per helical turn (the package's h)
+
+
+def cases():
+    """``(key, model name, interaction name or None)`` of every registered combination."""
+    from supercoil.benchmark.family import cases as family_cases
+
+    return [(f"family {key}", name, inter) for key, name, inter in family_cases()]
+
+
+def _needs_salt(inter, dna):
+    """Whether the interaction reads the DNA's salt (it rejects a DNA without one)."""
+    from supercoil.dna.interactions import get_interaction
+    from supercoil.exceptions import ParameterError
+
+    if inter is None:
+        return False
+    try:
+        get_interaction(inter).check(dna.replace(salt=None).si)
+    except ParameterError:
+        return True
+    return False
+
+
+def _interior(phase, neighbours):
+    return np.all([p == phase for p in neighbours], axis=0)
+
+
+def free_energy_problems(dna, F, model, inter, thermal):
+    """z = -dG/dF and M = dG/dN / 2 pi at interior points, by central differences.
+
+    One hat curve and one free-energy call over the forces ``F, F -+ h_F`` and the turns
+    ``N, N -+ h_N`` (force-major tables): the points, their neighbours' phases and the
+    differences all come from those two calls.
+    """
+    import supercoil as sc
+
+    u = sc.ureg
+    L = dna.si.length
+    n = np.linspace(0.05, 0.95, 5) * SIGMA_MAX * L / _HELICAL_REPEAT
+    hN, hF = 1e-4, 1e-5 * F
+    turns = np.concatenate([n - hN, n, n + hN])
+    forces = np.array([F - hF, F, F + hF])
+    kw = {"model": model, "thermal": thermal, **({"interaction": inter} if inter else {})}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        df = sc.hat_curve(dna, forces * u.pN, turns, **kw)
+        g = sc.free_energy(dna, forces * u.pN, turns, **kw).m_as("J").reshape(3, 3, n.size)
+    z = df["extension"].to_numpy().reshape(3, 3, n.size)[1, 1] * 1e-9
+    M = df["torque"].to_numpy().reshape(3, 3, n.size)[1, 1] * 1e-21
+    ph = df["phase"].to_numpy().reshape(3, 3, n.size)
+    inner = _interior(ph[1, 1], [ph[1, 0], ph[1, 2], ph[0, 1], ph[2, 1]]) & (z > 1e-3 * L)
+    if not inner.any():
+        return []
+    dGdN = (g[1, 2] - g[1, 0]) / (2 * hN)
+    dGdF = (g[2, 1] - g[0, 1]) / (2 * hF * 1e-12)
+    dz = np.abs(-dGdF - z)[inner].max()
+    dM = np.abs(dGdN / (2 * np.pi) - M)[inner].max()
+    out = []
+    if dz > 1e-5 * L:
+        out.append(f"z differs from -dG/dF by {dz:.3e} m (> 1e-5 L)")
+    if dM > 1e-5 * max(np.abs(M).max(), 1e-30):
+        out.append(f"torque differs from dG/dN / 2 pi by {dM:.3e} N m")
+    return out
+
+
+def contract_problems(df, dna):
+    """The contract's bounds and symmetries on one symmetric hat curve."""
+    L = dna.si.length
+    z = df["extension"].to_numpy() * 1e-9
+    M = df["torque"].to_numpy()
+    short = df["short_tail"].to_numpy(bool)
+    out = []
+    bad = ~short & ((z < -1e-9 * L) | (z > L * (1 + 1e-9)))
+    if bad.any():
+        out.append(f"unflagged extension {z[bad][0]:.6g} m outside [0, L]")
+    if not np.allclose(z, z[::-1], rtol=1e-9, atol=1e-12 * L):
+        out.append("extension is not even in N")
+    if not np.allclose(M, -M[::-1], rtol=1e-9, atol=1e-12 * max(np.abs(M).max(), 1e-300)):
+        out.append("torque is not odd in N")
+    return out
+
+
+def family_map(dna, name, inter, quick, thermal=True):
+    """The map of one model (and interaction) over force x (salt or A)."""
+    import supercoil as sc
+    from supercoil.dna.models import get_model
+
+    u = sc.ureg
+    if dna.salt is None:  # the seed set has none: the family's molecules carry 150 mM
+        dna = dna.replace(salt=150 * u.mM)
+    forces = np.concatenate([[0.0], log_grid(1e-2, 1e3, 5 if quick else 24)])
+    salt = _needs_salt(inter, dna)
+    if salt:
+        ys = log_grid(1.0, 3000.0, 2 if quick else 10)  # mM
+        axis = Axis("salt", "monovalent salt [mM]", "mM", ys)
+    else:
+        ys = log_grid(10.0, 200.0, 2 if quick else 10)  # nm
+        axis = Axis("bending_persistence", "bending persistence A [nm]", "nm", ys)
+    has_g = get_model(name).has_free_energy(thermal)
+    kw = {"model": name, "thermal": thermal, **({"interaction": inter} if inter else {})}
+    out = np.empty((ys.size, forces.size), dtype=object)
+    for j, y in enumerate(ys):
+        d = dna.replace(salt=y * u.mM) if salt else dna.replace(bending_persistence=y * u.nm)
+        nmax = SIGMA_MAX * d.si.length / _HELICAL_REPEAT
+        turns = np.linspace(-nmax, nmax, 21 if quick else 81)
+        for i, F in enumerate(forces):
+            t0 = time.perf_counter()
+            df, exc, warns = call(lambda d=d, F=F, t=turns: sc.hat_curve(d, F * u.pN, t, **kw))
+            seconds = time.perf_counter() - t0
+            problems = []
+            if seconds > HANG_SECONDS:
+                problems.append(f"hang: the hat curve took {seconds:.1f} s (> {HANG_SECONDS} s)")
+            elif df is not None:
+                num = df.select_dtypes("number")
+                problems = finite_problems({c: num[c].to_numpy() for c in num.columns})
+                if not problems:
+                    problems = contract_problems(df, d)
+                if not problems and has_g and F > 0:
+                    problems = free_energy_problems(d, F, name, inter, thermal)
+            out[j, i] = verdict(exc, warns, problems)
+    key = f"hat_curve {name}" + (f"/{inter}" if inter else "")
+    return key, Axis("force", "force [pN]", "pN", forces), axis, out
