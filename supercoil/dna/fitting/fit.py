@@ -244,6 +244,10 @@ def run_fit(spec: FitSpec) -> dict:
     res, noise = joint_noise(spec, prob, res, _solve)
     u = res.x
     J = prob.jacobian(u)
+    flat = ~np.any(J, axis=0)  # the model does not change with them: back to their start
+    if flat.any() and not np.array_equal(u[flat], u0[flat]):
+        u = np.where(flat, u0, u)
+        J = prob.jacobian(u)
     r = prob.residual(u)
     n = len(r)
     chi2 = float(r @ r)
