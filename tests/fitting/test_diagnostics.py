@@ -61,11 +61,13 @@ def test_constant_data_warn_about_implausible_values_and_misfit(base):
     fit = [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
     assert any(m.startswith("twist_persistence = ") and "plausible lower limit 43 nm" in m
                for m in fit), fit
-    assert any(m.startswith("radius = ") and "plausible lower limit 0.4375 nm" in m
-               for m in fit), fit
+    # issue 22: the turns offset starts at 0 here (no channel locates zero in a flat curve),
+    # and the radius ends undetermined instead of at an implausible value: both say it
+    assert any((m.startswith("radius = ") and "plausible lower limit 0.4375 nm" in m)
+               or "do not determine radius" in m for m in fit), fit
     assert any("runs test" in m and "does not describe the shape" in m for m in fit), fit
     assert any(issubclass(w.category, ValidityWarning) for w in caught)  # denaturation
-    assert r.parameters["radius"].m < 0.1 and r.goodness["p_value"] < 1e-10
+    assert r.goodness["p_value"] < 1e-10
     text = r.report()
     assert "plausible lower limit" in text and "runs test" in text.split("[[Warnings]]")[1]
 

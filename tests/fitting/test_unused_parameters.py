@@ -44,9 +44,15 @@ def test_li_zhao_uses_the_radius(base):
 
 
 def test_explicit_unused_parameter_is_undetermined_and_not_counted(marko_data, base):
-    with pytest.warns(FitWarning, match=r"do not determine radius"):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         r = sc.fit_hat_curves(marko_data, base, vary=[*VARY, "radius"], model="marko2007")
+    fit = [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
+    assert any("do not determine radius" in m for m in fit), fit
     assert r.undetermined == ["radius"]
+    # its Jacobian column is exactly zero: it stays at its start, no implausible value
+    assert r.parameters["radius"].m_as("nm") == pytest.approx(base.radius.m_as("nm"))
+    assert not any("radius = " in m and "plausible" in m for m in fit), fit
     assert r.n_determined == r.nvarys - 1
     ref = sc.fit_hat_curves(marko_data, base, vary=VARY, model="marko2007")
     # the same optimum, the same information criteria: the flat direction costs nothing

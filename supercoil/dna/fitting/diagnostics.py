@@ -37,15 +37,11 @@ __all__ = ["P_THRESHOLD", "chi_square_test", "plausibility_messages", "runs_test
 P_THRESHOLD = 1e-3
 
 
-def plausibility_messages(params, skip=()):
-    """Messages for free parameters ending at or beyond their plausible range.
-
-    ``skip``: names left out (the undetermined ones: their value is arbitrary
-    and the singular-Jacobian warning already names them).
-    """
+def plausibility_messages(params):
+    """Messages for free parameters ending at or beyond their plausible range."""
     out = []
     for p in params.free_params():
-        msg = None if p.name in skip else p.implausible()
+        msg = p.implausible()
         if msg:
             out.append(msg)
     return out

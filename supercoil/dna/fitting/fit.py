@@ -24,11 +24,12 @@ from scipy.optimize import least_squares
 from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
+from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
-from supercoil.dna.fitting.model import HatCurveModel, guess_turns_center
+from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
@@ -134,7 +135,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     """
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
-    fit_extension_offset = check_flag(fit_extension_offset, "fit_extension_offset")
+    fit_extension_offset, z0_per_force = _extension_offset_mode(fit_extension_offset)
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
@@ -148,7 +149,8 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     check_sigma_scale(rot, dna.si.length)
     if params is None:
         params, si, m, inter = build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
-                                                fit_turns_offset, fit_extension_offset)
+                                                fit_turns_offset, fit_extension_offset,
+                                                z0_per_force)
     else:
         if not isinstance(params, FitParameters):
             raise TypeError(f"params must be a FitParameters, got {type(params).__name__}")
@@ -156,31 +158,26 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
             raise FitError("give either params= or vary/fixed/bounds/start, not both")
         params, si = params.copy(), dna.si
         _check_params(params, rot, m, inter)
+    _start.check_length(params, si, rot)
     if optional is None:  # a params= set is the user's full control: nothing dropped
         default = (not own_params and not isinstance(vary, str)
                    and tuple(vary or ()) == DEFAULT_VARY)
         optional = DEFAULT_VARY if default else ()
-    notes = _drop_unused(params, optional, rot, si, m, inter, thermal,
+    notes = _start.drop_unused(params, optional, rot, si, m, inter, thermal,
                          dna.wlc_persistence is None)
     vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
     return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal, max_nfev,
                    float(tol), vary, notes)
 
 
-def _drop_unused(params, optional, rot, si, model, inter, thermal, xi_is_bending):
-    """Hold the ``optional`` free parameters the model does not use; the notes saying so."""
-    names = [n for n in dict.fromkeys(optional) if n in params and params[n].vary]
-    if not names:
-        return []
-    unused = _start.unused_parameters(names, rot.force, si, model, inter, thermal,
-                                      xi_is_bending)
-    if len(unused) == len(params.free):
-        return []  # nothing left to fit: let the Jacobian say it
-    for name in unused:
-        params[name].vary = False
-    return [f"{name} not varied: the model {model.name!r} does not use it (its extensions "
-            "and torques do not change with it), so the data cannot determine it; give it "
-            "in vary explicitly to fit it anyway" for name in unused]
+def _extension_offset_mode(value):
+    """``(fitted, per force)`` from ``fit_extension_offset`` (bool, "per-molecule", "per-force")."""
+    if isinstance(value, str):
+        if value not in ("per-molecule", "per-force"):
+            raise TypeError(f"fit_extension_offset must be True or False, got {value!r} (or "
+                            "'per-molecule', the default, or 'per-force')")
+        return True, value == "per-force"
+    return check_flag(value, "fit_extension_offset"), False
 
 
 def _check_params(params, rot, model, inter):
@@ -190,7 +187,8 @@ def _check_params(params, rot, model, inter):
                "calibration": tuple(CALIBRATION)}
     forces = np.unique(rot.force)
     for p in params.values():
-        want = ("per-molecule",) if p.owner == "offset" else ("global", "per-force")
+        want = (("per-molecule", "per-force") if p.kind == "extension_offset" else
+                ("per-molecule",)) if p.owner == "offset" else ("global", "per-force")
         if p.shared not in want:
             raise FitError(f"parameter {p.name!r}: shared={p.shared!r} is not supported for "
                            f"{p.owner} parameters (only {' or '.join(map(repr, want))})")
@@ -211,13 +209,12 @@ def _check_params(params, rot, model, inter):
 
 
 def _start_offsets(spec, prob):
-    """Guess the offsets that were not given: turns (centre of symmetry), extension (median)."""
+    """Start values not given, read from the data: the turns offsets and a varied length
+    (:func:`~supercoil.dna.fitting.start.start_from_data`), then the extension offsets
+    (median difference to the model). Returns the notes saying what was used."""
     data, params = spec.data, spec.params
     groups = data.groups()
-    for p in params.values():
-        if p.vary and not p.given and p.kind == "turns_offset":
-            g = groups[p.molecule]
-            p.value = guess_turns_center(data.turns[g], data.extension[g], data.force[g])
+    notes = _start.start_from_data(data, params, spec.dna)
     u = params.vector()
     try:
         z_start = np.asarray(prob.points(u)[0].extension, dtype=float)
@@ -229,8 +226,9 @@ def _start_offsets(spec, prob):
             f"the data's forces ({forces} pN): {type(exc).__name__}: {exc}") from exc
     for p in params.values():
         if p.vary and not p.given and p.kind == "extension_offset":
-            g = groups[p.molecule]
+            g = groups[p.molecule] if p.shared != "per-force" else _offsets.curve_rows(data, p)
             p.value = float(np.median(data.extension[g] - z_start[g]))
+    return notes
 
 
 def _start_vector(params):
@@ -271,18 +269,29 @@ def _solve(spec, prob, u0):
     return res
 
 
+#: the solver under a public name (the profile likelihood's refits use it)
+solve = _solve
+
+
 def run_fit(spec: FitSpec) -> dict:
     """Run one fit on a prepared spec; a dict of plain data (picklable), warnings as records."""
     t0 = time.perf_counter()
-    prob = HatCurveModel(spec.data, spec.params, spec.dna, spec.model, spec.interaction,
-                         spec.thermal, spec.xi_is_bending)
-    _start_offsets(spec, prob)
+    cls = (_offsets.PerForceOffsetModel if _offsets.has_per_force_offsets(spec.params)
+           else HatCurveModel)
+    prob = cls(spec.data, spec.params, spec.dna, spec.model, spec.interaction, spec.thermal,
+               spec.xi_is_bending)
+    pre = _start.length_records(spec)
+    start_notes = _start_offsets(spec, prob)
     u0 = _start_vector(spec.params)
     start = u0 * spec.params.scales
     res = _solve(spec, prob, u0)
     res, noise = joint_noise(spec, prob, res, _solve)
     u = res.x
     J = prob.jacobian(u)
+    flat = ~np.any(J, axis=0)  # the model does not change with them: back to their start
+    if flat.any() and not np.array_equal(u[flat], u0[flat]):
+        u = np.where(flat, u0, u)
+        J = prob.jacobian(u)
     r = prob.residual(u)
     n = len(r)
     chi2 = float(r @ r)
@@ -293,7 +302,7 @@ def run_fit(spec: FitSpec) -> dict:
     s2 = s2 if s2 > 0 else 1.0
     channels = channels_info(spec, prob, u, noise)
     cov_u, undetermined, note = covariance(J, prob.names)
-    records = [("FitWarning", note)] if note else []
+    records = pre + ([("FitWarning", note)] if note else [])
     if spec.data.weighting == "unit" and not spec.data.has_torque:
         cov_u = cov_u * (chi2 / nfree)
     scales = spec.params.scales
@@ -306,8 +315,7 @@ def run_fit(spec: FitSpec) -> dict:
     dna, model, inter, n0, z0 = prob.unpack(u)
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
-    skip = [n for n, bad in zip(prob.names, undetermined, strict=True) if bad]
-    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params, skip)]
+    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
     gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
@@ -321,13 +329,14 @@ def run_fit(spec: FitSpec) -> dict:
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
         "interaction_obj": getattr(inter, "_inter", inter), "n0": n0, "z0": z0, "model": best,
+        "z0_points": np.asarray(z0_pts, dtype=float),
         "states": prob.states(u) if prob._per_force else None,
         "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
         "torque": prob.torque_prediction(u),  # the predicted measured torque
         "calibration": {k: prob.scale(k, u) for k in CALIBRATION},
         "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),
         "residual_weighted": r, "goodness": gof_info, "warnings": records,
-        "channels": channels, "notes": list(spec.notes),
+        "channels": channels, "notes": list(spec.notes) + start_notes,
         "seconds": time.perf_counter() - t0,
     }
 
@@ -408,6 +417,9 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         Parameters fitted, shared by all forces and molecules: DNA fields
         (``length``, ``bending_persistence``, ``twist_persistence``,
         ``radius``) and the parameters the model and the interaction declare.
+        The default (:data:`DEFAULT_VARY`) drops a field the model does not
+        use (``radius`` for ``marko2007``), with a note; named explicitly it is
+        fitted and reported undetermined.
     fixed : dict of str -> Quantity, optional
         Values held fixed: DNA fields (override ``dna``), model or interaction
         parameters, or offsets (``"turns_offset"`` for all molecules,
@@ -418,15 +430,26 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         their declared range. Start values must lie strictly inside, else
         :class:`FitError` names the parameter before any fitting.
     start : dict of str -> Quantity, optional
-        Start values overriding ``dna`` and the offset guesses (turns: centre
-        of symmetry of the curves; extension: median difference to the model).
+        Start values overriding ``dna`` and the starts read from the data
+        (docs/theory/fitting.md#start-values): the turns offset from the
+        torque zero crossing, else the hat symmetry when the data straddle the
+        maximum, else 0 (the report's notes say which); a varied ``length``
+        from the worm-like chain at the turns nearest zero; the extension
+        offset from the median difference to the model.
     sigma : Quantity [length], optional
         Standard error of the extensions: a scalar, or one value per data row
         (overrides a ``sigma`` column); in ``[1e-150 L, L]``. Any other shape
         (e.g. one per force) is a ValueError naming the accepted shapes.
         Without either: unit weights, errors scaled by the noise.
-    fit_turns_offset, fit_extension_offset : bool
-        Fit the per-molecule offsets (default); off: held at 0 or at ``fixed``.
+    fit_turns_offset : bool
+        Fit the per-molecule turns offset (default); off: held at 0 or at ``fixed``.
+    fit_extension_offset : bool or {"per-molecule", "per-force"}
+        Fit the extension offset (the bead-height reference). Default (True,
+        ``"per-molecule"``): a molecule is one bead, one offset for all its
+        forces. ``"per-force"``: one per (molecule, force) curve, named
+        ``extension_offset[0.3 pN]`` (``extension_offset[m1, 0.3 pN]`` with a
+        molecule column), for curves referenced separately. False: held at 0
+        or at ``fixed``.
     thermal : bool
         Thermal hat curve (Moroz-Nelson tail); False for the athermal variant.
     max_nfev : int, optional
@@ -451,7 +474,8 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         The table is malformed (names the row and column).
     FitError
         Unknown or conflicting names, bad bounds, a start value outside its
-        bounds, the model failing at the start, or no convergence; a stated
+        bounds, extensions beyond a fixed contour length (names both and the
+        fix), the model failing at the start, or no convergence; a stated
         sigma outside ``[1e-150 L, L]``.
     ValueError
         ``sigma`` neither a scalar nor one value per data row.
@@ -463,7 +487,9 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     BoundWarning
         An estimate sits on a bound.
     FitWarning
-        Singular Jacobian (names the parameters the data do not determine);
+        Extensions beyond the contour length given (varied length: the fit
+        starts it from the data); singular Jacobian (names the parameters the
+        data do not determine: they are not counted in AIC and BIC);
         an estimate at or beyond its plausible limit; residuals inconsistent
         with the stated sigmas (chi-square test) or with the model (runs test
         with unit weights); see :mod:`supercoil.dna.fitting.diagnostics`.
@@ -491,9 +517,10 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     check_material(dna, DNA, "dna")
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
+    z0_fit, z0_per_force = _extension_offset_mode(fit_extension_offset)
     return build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
-                            check_flag(fit_turns_offset, "fit_turns_offset"),
-                            check_flag(fit_extension_offset, "fit_extension_offset"))[0]
+                            check_flag(fit_turns_offset, "fit_turns_offset"), z0_fit,
+                            z0_per_force)[0]
 
 
 #: names that lived in this module before the fit package was split (old import paths)

@@ -146,7 +146,8 @@ class FitParameter:
     plausible_source : str
         The reason or source of :attr:`plausible`.
     given : bool
-        The start value was given (False: guessed from the data, offsets only).
+        The start value was given (False: read from the data: the offsets, and
+        a varied ``length`` not in ``start``; :mod:`supercoil.dna.fitting.start`).
     scale : float
         The optimiser works on ``value / scale`` (of order one).
     """

@@ -12,6 +12,12 @@ __all__ = ["plot_comparison", "plot_fit"]
 _MARKERS = "osd^v<>p*hX"
 
 
+def _z0(core, mol):
+    """Extension offset per point: per molecule, or per curve (``"per-force"`` offsets)."""
+    z = core.get("z0_points")
+    return core["z0"][mol] if z is None else z
+
+
 def _curve(result, force, grid, field="extension"):
     """The fitted hat curve (offset-free, nm; or the torque, pN nm) on ``grid`` turns at
     ``force`` (N)."""
@@ -55,7 +61,7 @@ def _data_panels(result, axes, k, f):
     ax, axr = axes[0, k], axes[1, k]
     mol = d.mol_index
     n_eff = d.turns - c["n0"][mol]
-    z_corr = (d.extension - c["z0"][mol]) * 1e9
+    z_corr = (d.extension - _z0(c, mol)) * 1e9
     resid = (d.extension - c["model"]) * 1e9
     sel = d.force == f
     for i, lab in enumerate(d.labels):
@@ -97,7 +103,7 @@ def plot_fit(result, fig=None, n_curve=300):
         except SupercoilError:
             sel = d.force == f
             order = np.argsort(n_sel)
-            z = (c["model"][sel] - c["z0"][d.mol_index][sel])[order] * 1e9
+            z = (c["model"][sel] - _z0(c, d.mol_index)[sel])[order] * 1e9
             ax.plot(n_sel[order], z, "k-", lw=1.5, label="fit" if k == 0 else None)
         ax.set_title(f"F = {f * 1e12:.3g} pN")
         axr.axhline(0, color="k", lw=0.8)
@@ -141,7 +147,7 @@ def plot_comparison(results, fig=None, n_curve=300):
         c = first._core
         sel = d.force == f
         n_eff = (d.turns - c["n0"][d.mol_index])[sel]
-        ax.plot(n_eff, (d.extension - c["z0"][d.mol_index])[sel] * 1e9, "o", ms=3,
+        ax.plot(n_eff, (d.extension - _z0(c, d.mol_index))[sel] * 1e9, "o", ms=3,
                 color="0.6", label="data" if k == 0 else None)
         grid = np.linspace(n_eff.min(), n_eff.max(), n_curve)
         for j, (label, r) in enumerate(results.items()):

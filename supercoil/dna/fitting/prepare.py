@@ -187,6 +187,35 @@ def _apply_bounds(bounds, names, params):
             p.min, p.max = lo, hi
 
 
+def _add_offsets(params, data, n0, z0, per_force):
+    """The per-molecule offsets (or per-force extension offsets) from the tables."""
+    for i, lab in enumerate(data.labels):
+        suffix = f"[{lab}]" if data.has_molecule else ""
+        for base, table, unit, scale in (("turns_offset", n0, "turn", 1.0),
+                                         ("extension_offset", z0, "nm", Z0_SCALE)):
+            v, given, free = table[i]
+            lo, hi, src = PLAUSIBLE[base]
+            if base == "extension_offset" and per_force:
+                _add_per_force_offsets(params, data, i, lab, (v, given, free), src)
+                continue
+            params.add(FitParameter(f"{base}{suffix}", v, unit, vary=free,
+                                    shared="per-molecule", molecule=i, kind=base,
+                                    owner="offset", plausible=(lo, hi), plausible_source=src,
+                                    given=given, scale=scale))
+
+
+def _add_per_force_offsets(params, data, i, label, entry, source):
+    """One extension offset per force of molecule ``i`` (``extension_offset[0.3 pN]``)."""
+    v, given, free = entry
+    for f in np.unique(data.force[data.mol_index == i]):
+        inner = f"{f * 1e12:.6g} pN" if not data.has_molecule else f"{label}, {f * 1e12:.6g} pN"
+        params.add(FitParameter(f"extension_offset[{inner}]", v, "nm", vary=free,
+                                shared="per-force", molecule=i, force=float(f),
+                                kind="extension_offset", owner="offset",
+                                plausible=(-np.inf, np.inf), plausible_source=source,
+                                given=given, scale=Z0_SCALE))
+
+
 def _fixed_calibration(params, vary, values, data):
     """A fixed calibration scale other than 1 as a fixed parameter; FitError for a torque
     scale without torque data."""
@@ -199,8 +228,12 @@ def _fixed_calibration(params, vary, values, data):
 
 
 def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=None, start=None,
-                     fit_turns_offset=True, fit_extension_offset=True):
+                     fit_turns_offset=True, fit_extension_offset=True,
+                     extension_offset_per_force=False):
     """The :class:`FitParameters` of a fit and the model/interaction with fixed values applied.
+
+    ``extension_offset_per_force``: one extension offset per (molecule, force)
+    curve instead of one per molecule (:mod:`supercoil.dna.fitting.offsets`).
 
     Returns ``(params, dna SI, model, interaction)``.
     """
@@ -230,16 +263,9 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
         params.add(_global_parameter(names, owners[base], base, values[(owners[base], base)],
                                      True))
     _fixed_calibration(params, vary, values, data)
-    for i, lab in enumerate(data.labels):
-        suffix = f"[{lab}]" if data.has_molecule else ""
-        for base, table, unit, scale in (("turns_offset", n0, "turn", 1.0),
-                                         ("extension_offset", z0, "nm", Z0_SCALE)):
-            v, given, free = table[i]
-            lo, hi, src = PLAUSIBLE[base]
-            params.add(FitParameter(f"{base}{suffix}", v, unit, vary=free,
-                                    shared="per-molecule", molecule=i, kind=base,
-                                    owner="offset", plausible=(lo, hi), plausible_source=src,
-                                    given=given, scale=scale))
+    _add_offsets(params, data, n0, z0, extension_offset_per_force)
+    if "length" in params and "length" not in dict(start or {}):
+        params["length"].given = False  # a varied length starts from the data (issue 22)
     _apply_bounds(dict(bounds or {}), names, params)
     n_free = len(params.free)
     if n_free == 0:

@@ -295,6 +295,26 @@ class FitResult:
 
         return fit_report(self, min_correlation, max_correlations)
 
+    def profile(self, name, confidence_level=0.6827, max_steps=12, step=0.5):
+        """Profile likelihood of one parameter (the others refitted at each step).
+
+        Returns a :class:`~supercoil.dna.fitting.profile.ProfileLikelihood`
+        (``lower_bound``, ``upper_bound``, ``interval(level)``, ``plot()``);
+        pylake's ``profile_likelihood``. ``step`` is in standard errors; at
+        most ``max_steps`` refits on each side (docs/theory/fitting.md#profile-likelihood).
+        """
+        from supercoil.dna.fitting.profile import profile_likelihood
+
+        return profile_likelihood(self, name, confidence_level, max_steps, step)
+
+    def conf_interval(self, names=None, sigmas=(1, 2), max_steps=12, step=0.5):
+        """Profile-likelihood intervals (lmfit's ``conf_interval``): one row per parameter
+        with ``best``, ``stderr``, ``lower_<s>sigma`` and ``upper_<s>sigma`` (display units).
+        """
+        from supercoil.dna.fitting.profile import conf_interval
+
+        return conf_interval(self, names, sigmas, max_steps, step)
+
     def plot(self, fig=None, n_curve=300):
         """Data, fit and residuals per force (offset-corrected); returns the Figure."""
         from supercoil.dna.fitting.plot import plot_fit
