@@ -1,15 +1,21 @@
-"""The phase interface of the real-DNA model: per-length Gibbs free energy and derivatives.
+"""Phases of a stretched, twisted DNA molecule in the (force, torque) ensemble.
 
-A phase of the molecule is described by its Gibbs free energy per unit B-DNA contour
-length in the (force F, torque M) ensemble, with its derivatives (SI floats, broadcast):
+Float-only kernel (SI units), the shared phase interface of the real-DNA models
+(docs/theory/ensemble.md#2-phases). A phase is its Gibbs free energy per unit
+B-DNA contour length ``phi(F, M)`` (J/m) with
 
-* ``phi(F, M)`` (J/m = N);
-* ``dphi/dF = -x`` (dimensionless: extension per B contour length of that phase);
-* ``dphi/dM = -Omega`` (1/m: excess twist density relative to relaxed B-DNA, rad/m);
-* ``d2phi/dM2 = -dOmega/dM`` (1/(N m^2), negative).
+* ``dphi/dF = -x`` (extension per contour length of the phase),
+* ``dphi/dM = -Omega`` (excess twist density, rad/m),
+* ``d2phi/dM2 = -dOmega/dM`` (negative: the phase is torsionally stable).
 
-Each phase module exposes ``<phase>_gibbs(F, M, *params) -> PhaseGibbs``.
-Float-only kernel.
+Phases here: the stretched worm-like chain with the exact Bouchiat force-extension
+and the resummed Moroz-Nelson twist stiffness (:func:`stretched_gibbs`), a
+plectoneme whose effective twist stiffness grows with torque
+(:func:`plectoneme_gibbs`), a simple torque-melted phase
+(:func:`simple_melted_gibbs`), the cooperative two-state (Zimm-Bragg) mixture of two
+phases along the tail (:func:`two_state_gibbs`) and the end loop of a plectoneme
+domain as a per-domain Gibbs free energy (:func:`end_loop_gibbs`). Everything
+broadcasts over ``F`` and ``M``.
 """
 
 from __future__ import annotations
@@ -17,14 +23,181 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+from scipy.optimize import elementwise
 
-__all__ = ["PhaseGibbs"]
+__all__ = [
+    "BOUCHIAT_COEFFICIENTS",
+    "PhaseGibbs",
+    "end_loop_gibbs",
+    "plectoneme_gibbs",
+    "simple_melted_gibbs",
+    "stretched_gibbs",
+    "two_state_gibbs",
+    "wlc_exact_free_energy_gain",
+]
+
+#: a_2 ... a_7 of the 7-coefficient interpolation of the exact worm-like-chain
+#: force-extension, F A / kT = x + 1/(4(1-x)^2) - 1/4 + sum a_i x^i (Bouchiat et al.,
+#: Biophys. J. 76, 409, 1999, text below their eq. 11)
+BOUCHIAT_COEFFICIENTS = (-0.5164228, -2.737418, 16.07497, -38.87607, 39.49944, -14.17718)
+_TWO_PI = 2.0 * np.pi
 
 
 class PhaseGibbs(NamedTuple):
-    """Gibbs free energy per B contour length of one phase and its derivatives (SI)."""
+    """Gibbs free energy per length of a phase and its derivatives (SI arrays)."""
 
-    phi: np.ndarray  # J/m (= N)
-    dphi_dF: np.ndarray  # dimensionless, = -extension per contour length
-    dphi_dM: np.ndarray  # 1/m, = -excess twist density (rad/m)
-    d2phi_dM2: np.ndarray  # 1/(N m^2), = -dOmega/dM (negative)
+    phi: np.ndarray  # J/m
+    dphi_dF: np.ndarray  # -x, dimensionless
+    dphi_dM: np.ndarray  # -Omega, 1/m
+    d2phi_dM2: np.ndarray  # 1/(N m^2), negative
+
+
+def _bouchiat_reduced_force(x):
+    """``F A / kT`` of the Bouchiat interpolation at relative extension x."""
+    out = x + 0.25 / (1.0 - x) ** 2 - 0.25
+    for i, a in enumerate(BOUCHIAT_COEFFICIENTS):
+        out = out + a * x ** (i + 2)
+    return out
+
+
+def _bouchiat_reduced_work(x):
+    """``(A / kT) int_0^x F dx'`` of the Bouchiat interpolation."""
+    out = 0.5 * x**2 + 0.25 / (1.0 - x) - 0.25 - 0.25 * x
+    for i, a in enumerate(BOUCHIAT_COEFFICIENTS):
+        out = out + a * x ** (i + 3) / (i + 3)
+    return out
+
+
+def wlc_exact_free_energy_gain(force, A, kT):
+    """``g(F) = int_0^F x dF'`` (N) and ``x(F)`` of the exact worm-like chain.
+
+    ``x`` inverts the Bouchiat interpolation (root in ``0 <= x < 1``) and
+    ``g = F x - int_0^x F dx'`` (integration by parts), so ``dg/dF = x``
+    [ensemble.md#21-stretched].
+    """
+    f = np.asarray(force, dtype=float) * A / kT
+    res = elementwise.find_root(lambda x, t: _bouchiat_reduced_force(x) - t,
+                                (np.zeros_like(f), np.full_like(f, 1.0 - 1e-13)), args=(f,))
+    x = res.x
+    return (f * x - _bouchiat_reduced_work(x)) * kT / A, x
+
+
+def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed=True,
+                    wlc=None):
+    """Stretched, twisted worm-like chain ``phi_s = -g(F) - M^2 / (2 kT c_s(F))``.
+
+    ``resummed``: ``1/c_s = 1/C + k (1/4A) sqrt(kT/(A F))`` (Moroz & Nelson, PNAS 94,
+    14418, 1997, resummed; ``k`` = ``softening``, 1 for Moroz-Nelson); else the
+    first-order ``c_s = C (1 - k (C/4A) sqrt(kT/(A F)))`` of Marko (2007).
+    ``exact``: Bouchiat's g(F); else Marko's ``g = F - sqrt(kT F / A)``
+    [ensemble.md#21-stretched]. ``wlc``: ``(g, x)`` precomputed by
+    :func:`wlc_exact_free_energy_gain` at these forces (saves its root solve).
+    """
+    F, M = np.broadcast_arrays(np.asarray(force, float), np.asarray(torque, float))
+    root = np.sqrt(kT / (A * F))
+    if exact and wlc is not None:
+        g, x = (np.broadcast_to(a, F.shape) for a in wlc)
+    elif exact:
+        g, x = wlc_exact_free_energy_gain(F, A, kT)
+    else:
+        g, x = F * (1.0 - root), 1.0 - 0.5 * root
+    if resummed:
+        inv_c = 1.0 / C + softening * root / (4.0 * A)
+        dinv_dF = -softening * root / (8.0 * A * F)
+    else:
+        u = softening * C * root / (4.0 * A)
+        cs = C * (1.0 - u)
+        inv_c = 1.0 / cs
+        dinv_dF = -(C * u / (2.0 * F)) / cs**2
+    q = 1.0 / kT
+    return PhaseGibbs(-g - 0.5 * q * inv_c * M**2, -x - 0.5 * q * dinv_dF * M**2,
+                      -q * inv_c * M, -q * inv_c + 0.0 * M)
+
+
+def plectoneme_gibbs(force, torque, P0, exponent, M0, kT):
+    """Plectoneme of torque-dependent twist stiffness ``P(M) = P0 (|M|/M0)^a``.
+
+    ``phi_p = -|M|^(2-a) M0^a / ((2-a) kT P0)``, so ``Omega_p = M / (kT P(M))``; no
+    extension. ``a = 0`` is Marko's (2007) constant-P plectoneme
+    [ensemble.md#22-plectoneme].
+    """
+    F, M = np.broadcast_arrays(np.asarray(force, float), np.asarray(torque, float))
+    a = exponent
+    am = np.abs(M)
+    scale = (am / M0) ** a if a != 0.0 else np.ones_like(am)
+    inv = 1.0 / (kT * P0 * scale)  # 1 / (kT P(M)); finite at M = 0 only for a <= 0
+    return PhaseGibbs(-am**2 * inv / (2.0 - a), np.zeros_like(F), -M * inv,
+                      -(1.0 - a) * inv)
+
+
+def simple_melted_gibbs(force, torque, energy, extension, twist):
+    """Torque-melted DNA ``phi_m = e - x_m F - M Omega_m`` (no twist compliance).
+
+    ``energy`` per B-DNA length (J/m), ``extension`` x_m, ``twist`` Omega_m (rad/m,
+    negative: melting unwinds) [ensemble.md#23-melted].
+    """
+    F, M = np.broadcast_arrays(np.asarray(force, float), np.asarray(torque, float))
+    return PhaseGibbs(energy - extension * F - twist * M, np.full_like(F, -extension),
+                      np.full_like(F, -twist), np.zeros_like(F))
+
+
+def two_state_gibbs(b, m, segment, cooperativity, kT):
+    """Cooperative mixture of two phases along the tail (Zimm-Bragg transfer matrix).
+
+    Segments of length ``segment`` are in phase ``b`` or ``m``; each boundary costs
+    ``cooperativity / 2`` (``sigma = exp(-cooperativity/kT)``). In the long-chain limit
+    ``phi = phi_b - (kT/l) ln lambda``, ``lambda = (1 + s + sqrt((1-s)^2 + 4 sigma s))/2``,
+    ``s = exp(-(phi_m - phi_b) l / kT)``; ``dphi = (1-theta) dphi_b + theta dphi_m``
+    with the fraction ``theta = dln lambda / dln s`` [ensemble.md#24-tail].
+
+    Returns
+    -------
+    (PhaseGibbs, theta)
+    """
+    sig = np.exp(-cooperativity / kT)
+    d = (m.phi - b.phi) * segment / kT
+    dc = np.clip(d, -600.0, 600.0)
+    s = np.exp(-dc)
+    R = np.sqrt((1.0 - s) ** 2 + 4.0 * sig * s)
+    lam = 0.5 * (1.0 + s + R)
+    theta = 0.5 * s * (1.0 + (s - 1.0 + 2.0 * sig) / R) / lam
+    # d theta / d ln s = theta - theta^2 + s^2 lambda'' / lambda, lambda'' = 2 sig (1-sig)/R^3
+    chi = theta - theta**2 + s**2 * 2.0 * sig * (1.0 - sig) / (R**3 * lam)
+    far = d < -600.0  # deep in phase m: ln lambda = -d to round-off
+    lnlam = np.where(far, -d, np.log(lam))
+    theta = np.where(far, 1.0, theta)
+    chi = np.where(far, 0.0, chi)
+    w = 1.0 - theta
+    dm = m.dphi_dM - b.dphi_dM
+    out = PhaseGibbs(b.phi - kT / segment * lnlam,
+                     w * b.dphi_dF + theta * m.dphi_dF,
+                     w * b.dphi_dM + theta * m.dphi_dM,
+                     w * b.d2phi_dM2 + theta * m.d2phi_dM2 - segment / kT * chi * dm**2)
+    return out, theta
+
+
+def end_loop_gibbs(tail, torque, A, C, kT, writhe, chirality, extra=0.0, physical=True):
+    """Gibbs free energy of one plectoneme domain's end loop (J) and its derivatives.
+
+    ``physical``: a circle of radius R cut out of the tail (docs/theory/end-loop.md#2-loop)
+    at common torque, minimised over R:
+    ``eps = 2 pi sqrt(2 B gamma) - 2 pi chi w M + extra``,
+    ``gamma = -phi_tail - M^2/(2 kT C)``; ``d eps = l d gamma`` with ``l = 2 pi R``.
+    Else a constant nucleation ``extra - 2 pi chi w M`` (the loop absorbs ``chi w``
+    turns). ``chirality`` is +1 or -1 (the domain's handedness)
+    [ensemble.md#31-domains].
+
+    Returns
+    -------
+    (eps, deps_dF, deps_dM) : J, m, rad (same shape as ``torque``)
+    """
+    M = np.asarray(torque, float)
+    lin = _TWO_PI * writhe * chirality
+    if not physical:
+        return extra - lin * M, np.zeros_like(M), -lin + 0.0 * M
+    B = A * kT
+    gam = -tail.phi - M**2 / (2.0 * kT * C)
+    gam = np.where(gam > 0.0, gam, np.nan)
+    ell = np.pi * np.sqrt(2.0 * B / gam)
+    eps = _TWO_PI * np.sqrt(2.0 * B * gam) - lin * M + extra
+    return eps, -ell * tail.dphi_dF, ell * (-tail.dphi_dM - M / (kT * C)) - lin

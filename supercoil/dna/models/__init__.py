@@ -6,14 +6,15 @@ models register themselves with :func:`register_model`. The contract is in
 """
 
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints, unique_forces
+from supercoil.dna.models.ensemble import Ensemble
 from supercoil.dna.models.free_energy import FreeEnergy
 from supercoil.dna.models.li_zhao import LiZhao
 from supercoil.dna.models.marko2007 import Marko2007
 from supercoil.dna.registry import Registry
 
-__all__ = ["DEFAULT_MODEL", "Buckling", "DNAModel", "FreeEnergy", "HatPoints", "LiZhao",
-           "Marko2007", "available_models", "get_model", "register_model", "unique_forces",
-           "unregister_model"]
+__all__ = ["DEFAULT_MODEL", "Buckling", "DNAModel", "Ensemble", "FreeEnergy", "HatPoints",
+           "LiZhao", "Marko2007", "available_models", "get_model", "register_model",
+           "unique_forces", "unregister_model"]
 
 #: the model used when none is given (the paper's)
 DEFAULT_MODEL = "li-zhao"
@@ -44,3 +45,4 @@ def available_models():
 register_model(LiZhao)
 register_model(FreeEnergy)
 register_model(Marko2007)
+register_model(Ensemble)

@@ -1,0 +1,234 @@
+"""The phase-ensemble model of real DNA rotation curves (float kernel, SI units).
+
+Derivation and sources: docs/theory/ensemble.md. The molecule (contour L, turns N,
+force F) is a tail (stretched worm-like chain that may melt cooperatively,
+:func:`supercoil.core.dna.phases.two_state_gibbs`) plus ``m = 0, 1, ..., m_max``
+plectoneme domains of total length ``Lp``, each with an end loop
+(:func:`~supercoil.core.dna.phases.end_loop_gibbs`). One configuration ``(m, Lp,
+chirality)`` at fixed N has the Legendre free energy
+
+    G_c(N) = max_M [ (L - Lp) phi_t(F, M) + Lp phi_p(M) + m eps(F, M) + 2 pi M N ]
+             - kT ln w_m(Lp)                                   [ensemble.md#32-fixed-turns]
+
+with the positional weight ``w_m = (Ls/b)^m/m! (Lp/b)^(m-1)/(m-1)! dLp/b``; the
+molecule's free energy is ``G = -kT ln sum_c exp(-G_c/kT)`` over the configurations
+(midpoint nodes in Lp). Extension and torque are the Boltzmann averages of each
+configuration's ``z_c = -dG_c/dF`` and ``M_c`` (its stationary torque), which are
+exactly ``-dG/dF`` and ``dG/dN / 2 pi`` of the discrete sum, so the Maxwell relation
+holds to the root solver's tolerance [ensemble.md#33-maxwell].
+
+``finite_size=False`` is the thermodynamic limit without domains' entropy or loops:
+the common-tangent coexistence of the tail and the plectoneme (Marko 2007 for
+constant P, Marko's g and first-order c_s) [ensemble.md#4-limits].
+"""
+
+from __future__ import annotations
+
+from math import factorial
+from typing import NamedTuple
+
+import numpy as np
+from scipy.optimize import elementwise
+
+from supercoil.exceptions import ValidityError
+
+from . import phases as _ph
+
+__all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque", "points",
+           "tail_gibbs"]
+
+_TWO_PI = 2.0 * np.pi
+#: bracket of the torque solves, N m (200 pN nm: far beyond B-DNA's torques)
+TORQUE_BRACKET = 2e-19
+_TINY_TORQUE = 1e-40
+
+
+class EnsembleParameters(NamedTuple):
+    """Float parameters of the kernel (SI)."""
+
+    length: float  # L, m
+    A: float  # bending persistence, m
+    C: float  # twist persistence, m
+    kT: float  # J
+    softening: float = 1.0  # factor on the Moroz-Nelson term of 1/c_s
+    P0: float = 24e-9  # plectoneme twist stiffness at M0, m
+    exponent: float = 0.0  # a of P(M) = P0 (M/M0)^a
+    M0: float = 1e-20  # reference torque, N m
+    nucleation: float = 0.0  # extra free energy per domain, J
+    writhe: float = 1.0  # turns absorbed by each end loop's writhe
+    melt_energy: float = np.inf  # melted phase's free energy per B-DNA length at F = M = 0, J/m
+    melt_cooperativity: float = 0.0  # boundary cost of a bubble (both ends), J
+    melt_extension: float = 0.0  # x_m
+    melt_twist: float = -_TWO_PI / (10.5 * 0.34e-9)  # Omega_m, rad/m
+    segment: float = 0.34e-9  # Zimm-Bragg segment (one base pair), m
+    microscopic_length: float = 1e-9  # b of the positional weight, m
+    exact_wlc: bool = True
+    resummed: bool = True
+    physical_loop: bool = True
+    max_domains: int = 2
+    nodes: int = 70
+    finite_size: bool = True
+
+
+class EnsemblePoints(NamedTuple):
+    """Ensemble averages at each (N, F) (SI arrays of the points' shape)."""
+
+    extension: np.ndarray  # <z>, m
+    torque: np.ndarray  # <M>, N m
+    free_energy: np.ndarray  # G(N, F), J
+    plectoneme_length: np.ndarray  # <Lp>, m
+    melted_length: np.ndarray  # <(L - Lp) theta>, m
+    domains: np.ndarray  # <m>
+    stretched_probability: np.ndarray  # P(m = 0) (limit: 1 stretched, 0 else)
+
+
+def tail_gibbs(F, M, par, wlc=None):
+    """The tail phase: stretched WLC, cooperatively mixed with the melted phase.
+
+    ``wlc``: ``(g, x)`` of the exact WLC at ``F`` (computed if None).
+    Returns ``(PhaseGibbs, theta)`` (theta the melted fraction).
+    """
+    s = _ph.stretched_gibbs(F, M, par.A, par.C, par.kT, par.softening, par.exact_wlc,
+                            par.resummed, wlc)
+    if not np.isfinite(par.melt_energy):
+        return s, np.zeros(np.shape(s.phi))
+    m = _ph.simple_melted_gibbs(F, M, par.melt_energy, par.melt_extension, par.melt_twist)
+    return _ph.two_state_gibbs(s, m, par.segment, par.melt_cooperativity, par.kT)
+
+
+def _plectoneme(F, M, par):
+    M = np.where(np.abs(M) < _TINY_TORQUE, _TINY_TORQUE, M)
+    return _ph.plectoneme_gibbs(F, M, par.P0, par.exponent, par.M0, par.kT)
+
+
+def _wlc(F, par):
+    """``(g, x)`` of the exact WLC at F (None for Marko's expansion)."""
+    return _ph.wlc_exact_free_energy_gain(F, par.A, par.kT) if par.exact_wlc else None
+
+
+def _configuration(F, M, par, Lp, m, chirality, wlc=None):
+    """Phi(M) (J), linking -dPhi/dM (rad), extension -dPhi/dF (m), melted fraction."""
+    t, theta = tail_gibbs(F, M, par, wlc)
+    p = _plectoneme(F, M, par)
+    Ls = par.length - Lp
+    Phi = Ls * t.phi + Lp * p.phi
+    link = -(Ls * t.dphi_dM + Lp * p.dphi_dM)
+    z = -Ls * t.dphi_dF
+    if m:
+        e, e_F, e_M = _ph.end_loop_gibbs(t, M, par.A, par.C, par.kT, par.writhe, chirality,
+                                         par.nucleation, par.physical_loop)
+        Phi, link, z = Phi + m * e, link - m * e_M, z - m * e_F
+    return Phi, link, z, theta
+
+
+def _solve(F, N, par, Lp, m, chirality, wlc):
+    """Stationary torque of each configuration (bracketing root of the linking)."""
+    def h(M, F, N, Lp, *wlc):
+        return _configuration(F, M, par, Lp, m, chirality, wlc or None)[1] - _TWO_PI * N
+
+    lo = np.full(np.shape(N), -TORQUE_BRACKET)
+    res = elementwise.find_root(h, (lo, -1.03 * lo), args=(F, N, Lp, *(wlc or ())))
+    return res.x, res.success
+
+
+def points(turns, force, par):
+    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape)."""
+    N = np.asarray(turns, float)
+    F = np.asarray(force, float)
+    if not par.finite_size:
+        return _limit_points(N, F, par)
+    L, K = par.length, par.nodes
+    Lp = (np.arange(K) + 0.5) * L / K
+    b = par.microscopic_length
+    cfg = [(0, np.zeros(1), 1.0)] + [(m, Lp, c) for m in range(1, par.max_domains + 1)
+                                     for c in (1.0, -1.0)]
+    Gs, zs, Ms, ls, ths, ms = [], [], [], [], [], []
+    wlc = _wlc(F, par)
+    for m, lp, c in cfg:
+        NN, FF, LL = np.broadcast_arrays(N[:, None], F[:, None], lp[None, :])
+        w2 = None if wlc is None else tuple(np.broadcast_to(a[:, None], NN.shape) for a in wlc)
+        M, ok = _solve(FF, NN, par, LL, m, c, w2)
+        Phi, _, z, theta = _configuration(FF, M, par, LL, m, c, w2)
+        G = Phi + _TWO_PI * M * NN
+        Ls = L - LL
+        if m:
+            w = ((Ls / b) ** m / factorial(m) * (LL / b) ** (m - 1) / factorial(m - 1)
+                 * (L / K) / b)
+            G = G - par.kT * np.log(w)
+        G = np.where(ok & np.isfinite(G) & (z > 0.0), G, np.inf)
+        Gs.append(G), zs.append(z), Ms.append(M), ls.append(LL), ths.append(theta * Ls)
+        ms.append(np.full(G.shape, m, float))
+    G, z, M, Lpk, melt, mk = (np.concatenate(a, axis=1) for a in (Gs, zs, Ms, ls, ths, ms))
+    Gmin = G.min(axis=1, keepdims=True)
+    w = np.exp(-(G - Gmin) / par.kT)
+    Z = w.sum(axis=1)
+    w /= Z[:, None]
+    avg = [np.where(w > 0.0, w * a, 0.0).sum(axis=1) for a in (z, M, Lpk, melt, mk)]
+    return EnsemblePoints(avg[0], avg[1], Gmin[:, 0] - par.kT * np.log(Z), avg[2], avg[3],
+                          avg[4], w[:, 0])
+
+
+def coexistence_torque(force, par, sign=1.0, strict=True):
+    """Thermodynamic-limit coexistence torque of tail and plectoneme (N m, sign ``sign``).
+
+    Root of ``phi_t(F, M) = phi_p(M)`` (the common tangent) with ``|M|`` below
+    :data:`TORQUE_BRACKET`. ``strict=False``: NaN where there is none (a melting tail
+    that is more compliant than the plectoneme); else :class:`ValidityError`.
+    """
+    F = np.asarray(force, float)
+
+    def f(M, F):
+        return tail_gibbs(F, M, par)[0].phi - _plectoneme(F, M, par).phi
+
+    a = np.full(F.shape, sign * 1e-24)
+    b = np.full(F.shape, sign * TORQUE_BRACKET)
+    res = elementwise.find_root(f, (np.minimum(a, b), np.maximum(a, b)), args=(F,))
+    if not strict:
+        return np.where(res.success, res.x, np.nan)
+    if not np.all(res.success):
+        i = np.flatnonzero(~res.success)[0]
+        raise ValidityError(f"ensemble model at force {F.flat[i] * 1e12:.6g} pN: no coexistence "
+                            "of the tail and the plectoneme (the plectoneme is not more "
+                            "twist-compliant than the tail)")
+    return res.x
+
+
+def _single(F, N, par, phase):
+    """Stretched (phase 0) or fully plectonemic (1) molecule: G, M, z."""
+    def h(M, F, N):
+        g = tail_gibbs(F, M, par)[0] if phase == 0 else _plectoneme(F, M, par)
+        return -par.length * g.dphi_dM - _TWO_PI * N
+
+    lo = np.full(N.shape, -TORQUE_BRACKET)
+    M = elementwise.find_root(h, (lo, -1.03 * lo), args=(F, N)).x
+    g = tail_gibbs(F, M, par)[0] if phase == 0 else _plectoneme(F, M, par)
+    return par.length * g.phi + _TWO_PI * M * N, M, -par.length * g.dphi_dF
+
+
+def _limit_points(N, F, par):
+    """Thermodynamic limit (``finite_size=False``): common-tangent coexistence."""
+    L = par.length
+    G, M, z = _single(F, N, par, 0)
+    Lp = np.zeros_like(N)
+    melt = L * tail_gibbs(F, M, par)[1]
+    st = np.ones_like(N)
+    for sgn in (1.0, -1.0):
+        side = np.sign(N) == sgn
+        if not np.any(side):
+            continue
+        Mb = coexistence_torque(F[side], par, sgn, strict=False)  # NaN: no coexistence
+        t, th = tail_gibbs(F[side], Mb, par)
+        om_t, om_p = -t.dphi_dM, -_plectoneme(F[side], Mb, par).dphi_dM
+        n = N[side]
+        Ls = (om_p * L - _TWO_PI * n) / (om_p - om_t)
+        co = (n * sgn > L * om_t * sgn / _TWO_PI) & (Ls > 0.0)
+        Gc = L * t.phi + _TWO_PI * Mb * n
+        Gf, Mf, _ = _single(F[side], n, par, 1)
+        full = (Ls <= 0.0)
+        idx = np.flatnonzero(side)
+        for sel, g_, m_, z_, lp_, me_ in ((co, Gc, Mb, Ls * -t.dphi_dF, L - Ls, Ls * th),
+                                          (full, Gf, Mf, 0.0 * n, L + 0.0 * n, 0.0 * n)):
+            j = idx[sel]
+            G[j], M[j], z[j] = g_[sel], m_[sel], z_[sel]
+            Lp[j], melt[j], st[j] = lp_[sel], me_[sel], 0.0
+    return EnsemblePoints(z, M, G, Lp, melt, 1.0 - st, st)

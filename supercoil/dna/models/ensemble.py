@@ -1,0 +1,147 @@
+"""``model="ensemble"``: the phase-ensemble model of real DNA rotation curves.
+
+A cooperatively melting worm-like-chain tail (exact Bouchiat force-extension,
+resummed Moroz-Nelson twist stiffness with a twist-bend softening factor), up to two
+plectoneme domains whose twist stiffness grows with torque, each with an end loop,
+summed over the domains' number, length and position at fixed turns; extension and
+torque are derivatives of the one free energy ``G = -kT ln Z``. Kernel:
+:mod:`supercoil.core.dna.ensemble`; derivation, sources and the fit to measured
+curves: ``docs/theory/ensemble.md``.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from supercoil.core.dna import ensemble as _en
+from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
+from supercoil.dna.parameters import ModelParameter
+from supercoil.exceptions import ModelError
+
+__all__ = ["Ensemble"]
+
+_FIT = ("fit of this model to the averaged rotation curves of Qian et al., bioRxiv "
+        "10.1101/2024.10.15.618270 (2024), source data of their Fig. S5 (0.3-2 pN, both "
+        "sides), docs/theory/ensemble.md#5-fit")
+_BP = 0.34e-9  # rise per base pair of B-DNA, m
+SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
+
+
+def _p(name, unit, default, lo, hi, description, source):
+    return ModelParameter(name, unit, default, lo, hi, description, source)
+
+
+class Ensemble(DNAModel):
+    """Phase-ensemble model (docs/theory/ensemble.md).
+
+    Options (not fitted): ``finite_size`` (the sum over domains; False: the
+    thermodynamic-limit coexistence), ``physical_loop`` (end loop of
+    docs/theory/end-loop.md; False: a constant nucleation), ``exact_wlc``
+    (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
+    False: first order), ``melting`` (the melted phase in the tail),
+    ``multi_domain`` (up to two domains; False: one).
+    """
+
+    name: ClassVar[str] = "ensemble"
+    summary: ClassVar[str] = ("phase ensemble: melting WLC tail + plectoneme domains with "
+                              "torque-dependent stiffness, summed at fixed turns")
+    uses_interaction: ClassVar[bool] = False
+    OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": True, "exact_wlc": True,
+                               "resummed": True, "melting": True, "multi_domain": True}
+    parameters: ClassVar[dict[str, ModelParameter]] = {
+        "twist_bend_softening": _p(
+            "twist_bend_softening", "", 1.0, 0.5, 8.0,
+            "factor k on the Moroz-Nelson term of 1/c_s (1: Moroz-Nelson; >1 stands for "
+            "twist-bend coupling)",
+            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; the fit gives ~4 ("
+            + _FIT + ")"),
+        "plectoneme_twist_persistence_ref": _p(
+            "plectoneme_twist_persistence_ref", "nm", 12.7e-9, 3e-9, 60e-9,
+            "P0: the plectoneme's effective twist stiffness at the reference torque", _FIT),
+        "plectoneme_stiffness_exponent": _p(
+            "plectoneme_stiffness_exponent", "", 0.22, -0.5, 0.9,
+            "a of P(M) = P0 (|M|/M0)^a (0: Marko 2007's constant P)", _FIT),
+        "reference_torque": _p(
+            "reference_torque", "pN*nm", 10e-21, 1e-21, 50e-21,
+            "M0 of P(M) (a convention: P0 and M0 are degenerate)", "choice"),
+        "domain_nucleation": _p(
+            "domain_nucleation", "pN*nm", 22e-21, -100e-21, 150e-21,
+            "extra free energy per plectoneme domain beyond its end loop", _FIT),
+        "end_loop_writhe": _p(
+            "end_loop_writhe", "", 1.0, 0.5, 1.5,
+            "turns of linking absorbed as writhe by each domain's end loop",
+            "one closed loop, docs/theory/end-loop.md#2-loop"),
+        "melting_free_energy": _p(
+            "melting_free_energy", "pN*nm", 4.2e-21, 0.5e-21, 25e-21,
+            "free energy of melting one base pair at zero force and torque", _FIT),
+        "melting_cooperativity": _p(
+            "melting_cooperativity", "pN*nm", 120e-21, 0.0, 250e-21,
+            "boundary free energy of one melted bubble (both ends)", _FIT),
+        "melted_extension": _p(
+            "melted_extension", "", 0.0, -0.5, 0.9,
+            "extension per B-DNA contour length of the melted phase", "choice (0)"),
+        "positional_length": _p(
+            "positional_length", "nm", 1e-9, 0.1e-9, 100e-9,
+            "b: microscopic length of a domain's positional and length entropy (degenerate "
+            "with domain_nucleation: 2 kT ln b per domain)", "choice"),
+    }
+
+    def __repr__(self):
+        vals = ", ".join(f"{k}={v:.6g}" for k, v in self.values.items())
+        return f"Ensemble({vals}, {self.options()})"
+
+    def has_free_energy(self, thermal: bool) -> bool:
+        """True with thermal fluctuations (the model has no athermal limit)."""
+        return bool(thermal)
+
+    def kernel_parameters(self, dna, thermal=True, nodes=70):
+        """The kernel's :class:`~supercoil.core.dna.ensemble.EnsembleParameters`."""
+        if not thermal:
+            raise ModelError("model 'ensemble' has no athermal limit (its phases are "
+                             "thermal: the WLC free energy and the domains' entropy); "
+                             "use thermal=True")
+        v = self.values
+        melt = v["melting_free_energy"] / _BP if self.melting else np.inf
+        return _en.EnsembleParameters(
+            dna.length, dna.bending_persistence, dna.twist_persistence, dna.kT,
+            v["twist_bend_softening"], v["plectoneme_twist_persistence_ref"],
+            v["plectoneme_stiffness_exponent"], v["reference_torque"],
+            v["domain_nucleation"], v["end_loop_writhe"], melt, v["melting_cooperativity"],
+            v["melted_extension"], segment=_BP, microscopic_length=v["positional_length"],
+            exact_wlc=self.exact_wlc, resummed=self.resummed,
+            physical_loop=self.physical_loop, max_domains=2 if self.multi_domain else 1,
+            nodes=nodes, finite_size=self.finite_size)
+
+    def buckling(self, force, dna, thermal, interaction=None):
+        """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
+        par = self.kernel_parameters(dna, thermal)
+        f = np.asarray(force, float)
+        Mb = _en.coexistence_torque(f, par)
+        t, _ = _en.tail_gibbs(f, Mb, par)
+        om_t = -t.dphi_dM
+        om_p = -_en._plectoneme(f, Mb, par).dphi_dM
+        slope = -2.0 * np.pi * (-t.dphi_dF) / (om_p - om_t)
+        return Buckling(dna.length * om_t / (2.0 * np.pi), Mb, slope)
+
+    def points(self, turns, force, dna, thermal, interaction=None, short_tail_length=None):
+        """Ensemble averages: extension, torque, plectoneme length, phase, G."""
+        par = self.kernel_parameters(dna, thermal)
+        pt = _en.points(np.asarray(turns, float).ravel(), np.asarray(force, float).ravel(),
+                        par)
+        if short_tail_length is None:
+            short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * dna.bending_persistence
+        tail = dna.length - pt.plectoneme_length
+        phase = np.where(pt.stretched_probability > 0.5, 0,
+                         np.where(tail < short_tail_length, 2, 1)).astype(np.int8)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            zeta = np.where(tail > 0.0, pt.extension / tail, 0.0)
+        return HatPoints(pt.extension, pt.torque, pt.plectoneme_length, phase,
+                         tail < short_tail_length, zeta, pt.free_energy)
+
+    def free_energy(self, turns, force, dna, thermal, interaction=None):
+        """G(N, F) = -kT ln Z in J (ensemble.md#32-fixed-turns)."""
+        par = self.kernel_parameters(dna, thermal)
+        return _en.points(np.asarray(turns, float).ravel(), np.asarray(force, float).ravel(),
+                          par).free_energy

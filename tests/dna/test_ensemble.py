@@ -1,0 +1,225 @@
+"""The phase-ensemble model: phases, Maxwell relation, limits, recovery of parameters.
+
+References independent of the kernel's code path: finite differences of the phases'
+Gibbs free energies and of the total G(N, F); the marko2007 kernel (the limit);
+the package's end-loop formulas (docs/theory/end-loop.md); Bouchiat's published
+interpolation F(x).
+"""
+
+import pickle
+
+import numpy as np
+import pytest
+from scipy.optimize import least_squares
+
+import supercoil
+from supercoil.core.dna import end_loop as el
+from supercoil.core.dna import ensemble as en
+from supercoil.core.dna import marko2007 as mk
+from supercoil.core.dna import phases as ph
+from supercoil.dna.models import get_model
+from supercoil.dna.models.ensemble import Ensemble
+from supercoil.exceptions import ModelError
+
+KT = 4.09e-21
+PN, NM, PNNM = 1e-12, 1e-9, 1e-21
+TWO_PI = 2 * np.pi
+
+
+def _par(**kw):
+    base = dict(length=1500 * NM, A=45 * NM, C=100 * NM, kT=KT, softening=2.0, P0=13 * NM,
+                exponent=0.25, M0=10 * PNNM, nucleation=3 * KT, writhe=1.0,
+                melt_energy=1.0 * KT / 0.34e-9, melt_cooperativity=12 * KT, nodes=40)
+    base.update(kw)
+    return en.EnsembleParameters(**base)
+
+
+def _fd(f, x, h):
+    """Fourth-order central difference."""
+    return (8 * (f(x + h) - f(x - h)) - (f(x + 2 * h) - f(x - 2 * h))) / (12 * h)
+
+
+# ---- phases ---------------------------------------------------------------------------
+def test_bouchiat_inversion_and_g_prime():
+    F = np.array([0.05, 0.3, 1.0, 5.0]) * PN
+    A = 45 * NM
+    _, x = ph.wlc_exact_free_energy_gain(F, A, KT)
+    # Bouchiat et al. (1999) eq. 11 with their a_i, evaluated independently
+    a = [-0.5164228, -2.737418, 16.07497, -38.87607, 39.49944, -14.17718]
+    fa = x + 0.25 / (1 - x) ** 2 - 0.25 + sum(c * x ** (i + 2) for i, c in enumerate(a))
+    np.testing.assert_allclose(fa * KT / A, F, rtol=1e-10)
+    dg = _fd(lambda f: ph.wlc_exact_free_energy_gain(f, A, KT)[0], F, 1e-6 * F)
+    np.testing.assert_allclose(dg, x, rtol=1e-7)
+
+
+@pytest.mark.parametrize("phase", ["stretched", "stretched-marko", "plectoneme", "melted",
+                                   "tail", "loop", "loop-constant"])
+def test_phase_derivatives_match_finite_differences(phase):
+    F = np.array([0.3, 1.0, 2.0]) * PN
+    M = np.array([-9.0, 4.0, 12.0]) * PNNM
+    par = _par()
+
+    def gibbs(F, M):
+        if phase == "stretched":
+            return ph.stretched_gibbs(F, M, 45 * NM, 100 * NM, KT, 2.5)
+        if phase == "stretched-marko":
+            return ph.stretched_gibbs(F, M, 45 * NM, 100 * NM, KT, 1.0, False, False)
+        if phase == "plectoneme":
+            return ph.plectoneme_gibbs(F, M, 13 * NM, 0.3, 10 * PNNM, KT)
+        if phase == "melted":
+            return ph.simple_melted_gibbs(F, M, 3e-12, 0.2, -1.76e9)
+        t = en.tail_gibbs(F, M, par)[0]
+        if phase == "tail":
+            return t
+        e = ph.end_loop_gibbs(t, M, par.A, par.C, KT, 1.0, 1.0, 2 * KT, phase == "loop")
+        return ph.PhaseGibbs(e[0], e[1], e[2], np.zeros_like(M))
+
+    g = gibbs(F, M)
+    np.testing.assert_allclose(_fd(lambda f: gibbs(f, M).phi, F, 1e-6 * F), g.dphi_dF,
+                               rtol=1e-6, atol=1e-6 * np.max(np.abs(g.dphi_dF)) + 1e-30)
+    dM = _fd(lambda m: gibbs(F, m).phi, M, 1e-6 * np.abs(M))
+    np.testing.assert_allclose(dM, g.dphi_dM, rtol=1e-6)
+    if phase not in ("loop", "loop-constant"):
+        d2 = _fd(lambda m: gibbs(F, m).dphi_dM, M, 1e-6 * np.abs(M))
+        np.testing.assert_allclose(d2, g.d2phi_dM2, rtol=1e-6, atol=1e-12 * np.max(np.abs(d2)))
+
+
+def test_stretched_is_marko_first_order_when_not_resummed():
+    F, M = 1.3 * PN, 7 * PNNM
+    A, C = 45 * NM, 100 * NM
+    s = ph.stretched_gibbs(F, M, A, C, KT, 1.0, False, False)
+    g, _ = mk.wlc_free_energy_gain(F, A, KT)
+    cs, _ = mk.stretched_twist_stiffness(F, A, C, KT)
+    assert s.phi == pytest.approx(-g - M**2 / (2 * KT * cs), rel=1e-14)
+    assert -s.dphi_dF == pytest.approx(mk.stretched_extension_factor(M / (cs * KT), F, A, C, KT),
+                                       rel=1e-14)
+
+
+def test_physical_loop_is_the_end_loop_excess_at_marko_coexistence():
+    """At the Marko coexistence torque the loop's Gibbs energy is end_loop's eps*."""
+    par = _par(softening=1.0, exponent=0.0, exact_wlc=False, resummed=False,
+               melt_energy=np.inf, P0=20 * NM)
+    F = np.array([0.5, 1.0, 2.0]) * PN
+    mp = mk.marko_parameters(F, par.length, par.A, par.C, par.P0, KT)
+    t = en.tail_gibbs(F, mp.torque, par)[0]
+    eps = ph.end_loop_gibbs(t, mp.torque, par.A, par.C, KT, 1.0, 1.0)[0]
+    gl = el.loop_tension(mp.gamma, mp.torque, par.C * KT)
+    np.testing.assert_allclose(eps, el.loop_excess_free_energy(gl, mp.torque, par.A * KT, 1.0),
+                               rtol=1e-12)
+
+
+# ---- ensemble: Maxwell and derivatives of G ----------------------------------------------
+CASES = {  # (turns, force): stretched, positive coexistence, negative (melting + plectoneme)
+    "stretched": (3.0, 1.0), "coexistence": (14.0, 1.0), "low-force": (10.0, 0.3),
+    "melted": (-20.0, 2.0), "negative-coexistence": (-24.0, 0.75),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize("finite_size", [True, False])
+def test_extension_torque_are_derivatives_of_G_and_maxwell_holds(case, finite_size):
+    N0, F0 = CASES[case]
+    par = _par(finite_size=finite_size)
+    N, F = np.array([N0]), np.array([F0 * PN])
+
+    def at(n, f):
+        return en.points(np.atleast_1d(n), np.atleast_1d(f), par)
+
+    p = at(N, F)
+    hN, hF = 1e-3, 1e-4 * F
+    dGdN = _fd(lambda n: at(n, F).free_energy, N, hN)
+    dGdF = _fd(lambda f: at(N, f).free_energy, F, hF)
+    np.testing.assert_allclose(p.torque, dGdN / TWO_PI, rtol=1e-6, atol=1e-6 * PNNM)
+    np.testing.assert_allclose(p.extension, -dGdF, rtol=1e-6, atol=1e-6 * NM)
+    dzdN = _fd(lambda n: at(n, F).extension, N, hN)
+    dMdF = _fd(lambda f: at(N, f).torque, F, hF)
+    scale = max(abs(dzdN[0]), 1e-9)  # m per turn
+    assert abs(dzdN[0] + TWO_PI * dMdF[0]) <= 1e-6 * scale + 1e-6 * NM
+
+
+def test_phases_present_in_the_cases():
+    par = _par()
+    pts = {k: en.points(np.array([n]), np.array([f * PN]), par) for k, (n, f) in CASES.items()}
+    assert pts["stretched"].stretched_probability[0] > 0.99
+    assert pts["coexistence"].domains[0] > 0.9
+    assert pts["melted"].melted_length[0] > 50 * NM
+    neg = pts["negative-coexistence"]
+    assert neg.domains[0] > 0.1 and neg.melted_length[0] > 10 * NM  # both at once
+
+
+# ---- limits ---------------------------------------------------------------------------
+def test_limit_is_marko2007():
+    """Every term off + the thermodynamic limit: marko2007 to 1e-12 (z bit-identical here)."""
+    par = _par(softening=1.0, exponent=0.0, exact_wlc=False, resummed=False,
+               melt_energy=np.inf, finite_size=False, P0=20 * NM)
+    N = np.linspace(-60, 60, 97)
+    for f in (0.5, 1.0, 2.0):
+        F = np.full(N.shape, f * PN)
+        a = en.points(N, F, par)
+        b = mk.points(N, F, par.length, par.A, par.C, par.P0, KT)
+        np.testing.assert_allclose(a.extension, b.extension, rtol=1e-12, atol=1e-12 * par.length)
+        np.testing.assert_allclose(a.torque, b.torque, rtol=1e-12, atol=1e-12 * b.torque.max())
+        np.testing.assert_allclose(a.free_energy, b.free_energy, rtol=1e-12,
+                                   atol=1e-12 * np.abs(b.free_energy).max())
+        assert np.array_equal(a.plectoneme_length > 0, b.tail_length < par.length)
+
+
+def test_no_melting_is_the_stretched_phase_exactly():
+    par = _par(melt_energy=np.inf)
+    F, M = np.array([1e-12]), np.array([-15e-21])
+    t, theta = en.tail_gibbs(F, M, par)
+    s = ph.stretched_gibbs(F, M, par.A, par.C, KT, par.softening)
+    assert all(np.array_equal(a, b) for a, b in zip(t, s, strict=True)) and theta[0] == 0.0
+
+
+def test_melting_saturates_the_negative_torque():
+    par = _par()
+    N = np.array([-25.0, -30.0])
+    p = en.points(N, np.full(2, 2 * PN), par)
+    assert abs(p.torque[0] - p.torque[1]) < 0.1 * PNNM
+    assert p.melted_length[1] > p.melted_length[0]
+
+
+# ---- the model class ------------------------------------------------------------------
+def _dna(L=1500.0):
+    u = supercoil.ureg
+    return supercoil.DNA(length=L * u.nm, bending_persistence=45 * u.nm,
+                         twist_persistence=100 * u.nm, radius=1 * u.nm, temperature=296 * u.K).si
+
+
+def test_model_registered_picklable_and_athermal_raises():
+    m = get_model("ensemble")
+    assert isinstance(m, Ensemble)
+    assert pickle.loads(pickle.dumps(m)).values == m.values
+    with pytest.raises(ModelError, match="athermal"):
+        m.points(np.array([1.0]), np.array([1e-12]), _dna(), False)
+    assert not m.has_free_energy(False) and m.has_free_energy(True)
+
+
+def test_model_points_and_buckling_agree_with_the_limit():
+    m = Ensemble(finite_size=False)
+    dna = _dna()
+    b = m.buckling(np.array([1e-12]), dna, True)
+    N = np.array([b.turns[0] + 2.0, b.turns[0] + 4.0])
+    pts = m.points(N, np.full(2, 1e-12), dna, True)
+    assert pts.torque[0] == pytest.approx(b.torque[0], rel=1e-9)
+    assert (pts.extension[1] - pts.extension[0]) / 2.0 == pytest.approx(b.slope[0], rel=1e-9)
+    g = m.free_energy(N, np.full(2, 1e-12), dna, True)
+    np.testing.assert_array_equal(g, pts.free_energy)
+
+
+def test_fit_to_synthetic_data_recovers_parameters():
+    true = dict(P0=13 * NM, exponent=0.25, softening=2.0)
+    par = _par(max_domains=1, nodes=30, melt_energy=np.inf)
+    N = np.concatenate([np.linspace(0, 30, 16), np.linspace(0, 20, 11)])
+    F = np.concatenate([np.full(16, 1.5 * PN), np.full(11, 0.5 * PN)])
+    ref = en.points(N, F, par._replace(**true))
+
+    def res(x):
+        p = en.points(N, F, par._replace(P0=x[0] * NM, exponent=x[1], softening=x[2]))
+        return np.concatenate([(p.extension - ref.extension) / (10 * NM),
+                               (p.torque - ref.torque) / (0.5 * PNNM)])
+
+    fit = least_squares(res, [16.0, 0.1, 1.5], bounds=([5, -0.5, 0.5], [40, 0.9, 6]),
+                        x_scale=[5, 0.2, 1], diff_step=1e-5)
+    np.testing.assert_allclose(fit.x, [13.0, 0.25, 2.0], rtol=1e-3)
