@@ -152,7 +152,8 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
     hp = m.points(N, F, si, thermal, inter, short)
     if _v.summary_of(hp) is None:  # the kernel's summary says finite: no second pass
         _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
-    msgs = (_v.force_messages(f) + _v.denaturation_messages(F, N) + inter.messages(si)
+    denat = [] if m.describes_denaturation else _v.denaturation_messages(F, N)
+    msgs = (_v.force_messages(f) + denat + inter.messages(si)
             + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
             + m.validity(N, F, hp, si, thermal))
     _v.warn(msgs, stacklevel=stacklevel + 1)

@@ -104,8 +104,9 @@ def free_energy_problems(dna, F, model, inter, thermal):
     return out
 
 
-def contract_problems(df, dna):
-    """The contract's bounds and symmetries on one symmetric hat curve."""
+def contract_problems(df, dna, symmetric=True):
+    """The contract's bounds (and, for a model symmetric in N, its symmetries) on one hat
+    curve over symmetric turns."""
     L = dna.si.length
     z = df["extension"].to_numpy() * 1e-9
     M = df["torque"].to_numpy()
@@ -114,6 +115,8 @@ def contract_problems(df, dna):
     bad = ~short & ((z < -1e-9 * L) | (z > L * (1 + 1e-9)))
     if bad.any():
         out.append(f"unflagged extension {z[bad][0]:.6g} m outside [0, L]")
+    if not symmetric:
+        return out
     if not np.allclose(z, z[::-1], rtol=1e-9, atol=1e-12 * L):
         out.append("extension is not even in N")
     if not np.allclose(M, -M[::-1], rtol=1e-9, atol=1e-12 * max(np.abs(M).max(), 1e-300)):
@@ -137,7 +140,8 @@ def family_map(dna, name, inter, quick, thermal=True):
     else:
         ys = log_grid(10.0, 200.0, 2 if quick else 10)  # nm
         axis = Axis("bending_persistence", "bending persistence A [nm]", "nm", ys)
-    has_g = get_model(name).has_free_energy(thermal)
+    model = get_model(name)
+    has_g = model.has_free_energy(thermal)
     kw = {"model": name, "thermal": thermal, **({"interaction": inter} if inter else {})}
     out = np.empty((ys.size, forces.size), dtype=object)
     for j, y in enumerate(ys):
@@ -155,7 +159,7 @@ def family_map(dna, name, inter, quick, thermal=True):
                 num = df.select_dtypes("number")
                 problems = finite_problems({c: num[c].to_numpy() for c in num.columns})
                 if not problems:
-                    problems = contract_problems(df, d)
+                    problems = contract_problems(df, d, model.symmetric_in_turns)
                 if not problems and has_g and F > 0:
                     problems = free_energy_problems(d, F, name, inter, thermal)
             out[j, i] = verdict(exc, warns, problems)

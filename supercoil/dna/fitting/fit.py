@@ -377,7 +377,7 @@ def _validity_records(spec, pts, n0, model, dna):
                     f"{int(over.sum())} data points are above {OVERSTRETCHING_FORCE * 1e12:g} "
                     "pN, where B-DNA overstretches; the model (inextensible DNA) ignores it"))
     denat = (data.force > DENATURATION_FORCE) & (n_eff < 0)
-    if denat.any():
+    if denat.any() and not model.describes_denaturation:
         out.append(("ValidityWarning",
                     f"{int(denat.sum())} data points have negative turns at forces above "
                     f"{DENATURATION_FORCE * 1e12:g} pN, where real DNA denatures; the model "

@@ -14,8 +14,12 @@ Contract (float level, SI; modelled on scipy's ``OdeSolver`` rules)
 1. ``name`` (registry key), ``summary`` (one line) and ``parameters`` (its own
    :class:`~supercoil.dna.parameters.ModelParameter` declarations) are class
    attributes; instances are immutable, picklable and hold ``values`` (SI).
-2. ``uses_interaction``: True if the model has a plectoneme helix state and so
-   takes an :class:`~supercoil.dna.interactions.base.Interaction`.
+2. Capabilities, declared once as class attributes (an instance may override them
+   through a property when an option decides): ``uses_interaction`` (a plectoneme
+   helix state, so it takes an :class:`~supercoil.dna.interactions.base.Interaction`),
+   ``symmetric_in_turns`` (even extension, odd torque), ``describes_denaturation``
+   (a melted phase: the shared denaturation warning is not issued) and
+   :meth:`has_free_energy`.
 3. ``buckling(force, dna, thermal, interaction)`` -> :class:`Buckling` per
    force (1-D array of distinct forces, N).
 4. ``points(turns, force, dna, thermal, interaction, short_tail_length)`` ->
@@ -64,6 +68,12 @@ class DNAModel(Parametrised):
     summary: ClassVar[str] = ""
     parameters: ClassVar[dict[str, ModelParameter]] = {}
     uses_interaction: ClassVar[bool] = True
+    #: capability: extension, plectoneme length and phase even in N, torque odd (a model
+    #: with a melted phase for negative turns is not); checked by the contract test
+    symmetric_in_turns: ClassVar[bool] = True
+    #: capability: the model describes the denaturation of negatively twisted DNA, so the
+    #: shared "the model ignores denaturation" warning (above 0.8 pN) is not issued
+    describes_denaturation: ClassVar[bool] = False
 
     def has_free_energy(self, thermal: bool) -> bool:
         """Whether :meth:`free_energy` is defined for this construction."""

@@ -88,6 +88,16 @@ class Ensemble(DNAModel):
             "with domain_nucleation: 2 kT ln b per domain)", "choice"),
     }
 
+    @property
+    def symmetric_in_turns(self):
+        """False with the melted phase (negative turns melt), True without it."""
+        return not self.melting
+
+    @property
+    def describes_denaturation(self):
+        """True with the melted phase in the tail."""
+        return bool(self.melting)
+
     def __repr__(self):
         vals = ", ".join(f"{k}={v:.6g}" for k, v in self.values.items())
         return f"Ensemble({vals}, {self.options()})"
