@@ -62,7 +62,7 @@ def _quiet():
     The checked scalars are numpy floats (``a[()]``), not Python floats: Python's
     ``1e297 ** 2`` raises a bare OverflowError (and ``x / 0.0`` a
     ZeroDivisionError) where numpy gives inf, which :func:`_out` turns into a
-    ValidityError naming the result and the inputs (issue 20, item 5); a result
+    ValidityError naming the result and the inputs; a result
     below the float range underflows to 0, its value to rounding.
     """
     return np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore")

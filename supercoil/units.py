@@ -41,7 +41,7 @@ except OSError:  # no writable user cache folder: parse the definitions
 ureg.formatter.default_format = "~P"
 # pint's documented way for a package: quantities unpickled in any process (a
 # worker of a ProcessPoolExecutor, a joblib/dask task) are rebuilt in this
-# registry, so they pass :func:`magnitude` (issue 9, item 8).
+# registry, so they pass :func:`magnitude` (they were rejected as foreign quantities).
 pint.set_application_registry(ureg)
 Q_ = ureg.Quantity
 

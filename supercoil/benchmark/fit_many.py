@@ -1,7 +1,7 @@
 """Benchmarks of :func:`supercoil.fit_many`: the client's cost per molecule and the throughput.
 
 * :func:`client_cost`: the time the calling process spends per molecule at
-  2,000 molecules (issue 16 target: under 2 ms). The executor runs no fits: it
+  2,000 molecules (target: under 2 ms). The executor runs no fits: it
   pickles each task (what a process pool or a dask client does in the calling
   process) and hands back one real fit's row, relabelled, so what is timed is
   the table check, the validation of the settings, the split by molecule,

@@ -1,6 +1,6 @@
 """Large inputs: the loader's time against plain pandas, and peak memory per element.
 
-Two measurements of issue 9, item 12, for the lead to wire into
+Two measurements of large inputs, wired into
 :func:`supercoil.benchmark.suite.run`:
 
 * :func:`loader_timing`: :func:`supercoil.read_tweezers_csv` on a generated
@@ -119,7 +119,7 @@ def run(sizes=(10**6,), log=print):
     cols = {k: [r[k] for r in rows] for k in rows[0]}
     units = {"elements": "", "loader_s": "s", "pandas_s": "s", "loader_ratio": "",
              "bytes_per_force": "B"}
-    return make_table(cols, units, provenance(scene="large inputs (issue 9, item 12)"))
+    return make_table(cols, units, provenance(scene="large inputs"))
 
 
 if __name__ == "__main__":  # pragma: no cover - manual measurement

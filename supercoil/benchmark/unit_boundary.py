@@ -36,7 +36,7 @@ def _cases():
         return lambda: g.torsion(a, R)
 
     cases = [("geometry.torsion", geom_public, geom_kernel)]
-    try:  # DNA plectoneme equilibrium (issue 4)
+    try:  # DNA plectoneme equilibrium
         from supercoil.core.dna import plectoneme as pk
 
         dna = sc.load_parameters("dna")
@@ -68,7 +68,7 @@ def _cases():
                                             d.torsional_rigidity, d.kT, d.radius)
 
         cases.append(("hat_curve (table)", hat_public, hat_kernel))
-    except (ImportError, AttributeError):  # pragma: no cover - before issue 4 lands
+    except (ImportError, AttributeError):  # pragma: no cover - a build without the DNA layer
         pass
     return cases
 

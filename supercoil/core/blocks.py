@@ -4,7 +4,7 @@ A solver that is vectorised over its input (e.g. the plectoneme equilibrium
 over forces) allocates a few tens of temporary arrays of the input's size.
 :func:`in_blocks` runs it on slices of ``block`` elements and writes each
 result into preallocated output arrays, so the peak memory beyond the output
-is bounded by the block, not by the input (issue 9, item 12).
+is bounded by the block, not by the input.
 """
 
 from __future__ import annotations

@@ -317,7 +317,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     if short is None:
         short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
     # The checks above read the SI arrays; now each fresh array becomes its display-unit
-    # column in place (no second copy: peak memory ~1.3x the table, issue 14).
+    # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)
     columns = {
         "force": (np.full(F.size, F[0] * 1e12) if F.strides == (0,) and F.size

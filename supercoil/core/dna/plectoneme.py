@@ -112,7 +112,7 @@ RHO_MIN = 0.5
 EQUILIBRIUM_RTOL = 1e-8
 _SCALAR_LOOP_MAX = 12
 #: Forces solved together: larger inputs are processed in blocks of this size (8192: as
-#: fast as one block of 1e6 and ~2 MB of temporaries; issue 9, item 12)
+#: fast as one block of 1e6 and ~2 MB of temporaries)
 BLOCK = 8192
 
 
@@ -187,7 +187,7 @@ def _start_table(b):
 
     A fit moves r0, hence b, a little at every step and every Jacobian column; a
     table costs ~0.5 ms (600 tilt solves) against ~20 us for a scalar solve, and a
-    new molecule's fit built 12 of them (5.6 ms of its 13 ms, issue 14). One table
+    new molecule's fit built 12 of them (5.6 ms of its 13 ms). One table
     per 10 % of b serves them all; the start (hence the result, to the last bit)
     depends on b alone, not on which tables earlier calls built.
     """

@@ -68,7 +68,7 @@ _CONTROLLER = []
 #: threaded from 2304 x 4 = 9,216). Limiting is not free in a fresh worker: its first
 #: ``openblas_set_num_threads`` starts the BLAS threads, which then spin for ~0.1 s of CPU
 #: (measured: 100 ms per worker in 0.5 s idle, 3 threads instead of 1), competing with the
-#: fits (issue 14: 1.7x on 2 workers instead of >= 1.8x).
+#: fits (the pool's speed-up on 2 workers fell from about 1.8x to 1.7x).
 BLAS_LIMIT_FROM = 8192
 
 
@@ -188,7 +188,7 @@ def _chunk_size(n_molecules):
 #: Measured (200 molecules of 330 points, ProcessPoolExecutor(2), medians of 3): the
 #: parent's CPU per molecule 0.53 ms with one molecule per submit, 0.40 / 0.36 / 0.32 ms
 #: with chunks of up to 2 / 4 / 8 (1/16 of the rest). With fits of ~6.6 ms (the
-#: plectoneme start tables of issue 14) the parent's share shows in the wall time: speed-up
+#: plectoneme start tables) the parent's share shows in the wall time: speed-up
 #: over serial 1.76-1.77x with (4, 1/16) against 1.81-1.83x with (16, 1/8), parent CPU
 #: 0.31-0.35 against 0.25-0.26 ms per molecule (alternating runs, load 0.5-0.9).
 POOL_CHUNK, POOL_TAIL = 16, 8

@@ -56,7 +56,7 @@ def _fit_one(data, dna, model, vary, own, kw):
     added = [k for k in m.parameters if own and k not in vary]
     names = list(vary) + added
     # the default DNA fields and the model's own parameters added here are dropped when the
-    # model does not use them (issue 22: marko2007 has no radius; no loop, no loop writhe)
+    # model does not use them (marko2007 has no radius; without the loop, no loop writhe)
     optional = added + (list(DEFAULT_VARY) if tuple(vary) == DEFAULT_VARY else [])
     interaction = kw["interaction"] if m.uses_interaction else None
     spec = prepare(data, dna, vary=names, model=m, optional=optional,
@@ -70,7 +70,7 @@ def _row(label, result, error):
     if result is None:
         return row, {}
     n, k = result.ndata, result.n_determined
-    aic, bic = result.aic, result.bic  # undetermined parameters are not counted (issue 22)
+    aic, bic = result.aic, result.bic  # undetermined parameters are not counted
     row.update(nparams=k, ndata=n, chi_square=result.chi_square,
                reduced_chi_square=result.reduced_chi_square, aic=aic, bic=bic,
                residual_rms=result.residual_rms.m_as("nm"),

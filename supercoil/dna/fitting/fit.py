@@ -131,7 +131,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
 
     ``optional``: varied names that are dropped (held at their value, with a
     note) when the model does not use them; default: the names of
-    :data:`DEFAULT_VARY` when ``vary`` is the default (issue 22).
+    :data:`DEFAULT_VARY` when ``vary`` is the default.
     """
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")

@@ -265,7 +265,7 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     _fixed_calibration(params, vary, values, data)
     _add_offsets(params, data, n0, z0, extension_offset_per_force)
     if "length" in params and "length" not in dict(start or {}):
-        params["length"].given = False  # a varied length starts from the data (issue 22)
+        params["length"].given = False  # a varied length starts from the data
     _apply_bounds(dict(bounds or {}), names, params)
     n_free = len(params.free)
     if n_free == 0:

@@ -118,7 +118,7 @@ class FitResult:
         estimate (then ``chisqr`` is about ``nfree``; see :attr:`channels`).
     chi_square, reduced_chi_square : float
         The same numbers as ``chisqr`` and ``redchi`` (the package's older
-        names). Before issue 22 they were in nm^2 with unit weights.
+        names). In releases up to 0.2 they were in nm^2 with unit weights.
     sum_squares : pint.Quantity
         ``sum((data - model)^2)`` of the extensions (nm^2).
     aic, bic : float

@@ -6,7 +6,7 @@ all at the float level (SI, turns):
 * :func:`unused_parameters`: a parameter whose change leaves the model's
   extensions and torques bit-identical is not used by the model (``radius`` in
   ``marko2007``, ``end_loop_writhe`` with the end loop off); the default
-  ``vary`` drops it (issue 22).
+  ``vary`` drops it.
 * :func:`length_start` and :func:`length_excess`: the contour length from the
   extensions at the turns nearest zero (Marko-Siggia worm-like chain
   inverted), and the check that the extensions do not exceed the length.
@@ -196,8 +196,8 @@ def turns_offset_start(turns, z, force, torque=None):
         if vals:
             found[name] = float(np.median(vals))
     if "hat symmetry" in found:
-        # straddled: the centre of symmetry of the whole curves (the package's guess before
-        # issue 22, more precise), unless it strays from the level crossings (2 turns)
+        # straddled: the centre of symmetry of the whole curves (the package's earlier guess,
+        # more precise), unless it strays from the level crossings (2 turns)
         centre = guess_turns_center(turns, z, force)
         if abs(centre - found["hat symmetry"]) <= 2.0:
             found["hat symmetry"] = centre
