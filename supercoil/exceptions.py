@@ -75,7 +75,12 @@ class SupercoilError(ValueError):
 
 
 def _rebuild(cls, args, argument):
-    return cls(*args, argument=argument)
+    try:
+        return cls(*args, argument=argument)
+    except TypeError:  # a subclass whose constructor takes no ``argument``
+        exc = cls(*args)
+        exc.argument = argument
+        return exc
 
 
 class NoSolutionError(SupercoilError):

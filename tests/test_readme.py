@@ -9,6 +9,12 @@ command. ``supercoil bench`` and ``supercoil docs figures`` take minutes: they a
 only parsed. The two set-up commands are not run (they build a virtual
 environment); they are checked against ``.ci/run``, which runs the test command
 verbatim.
+
+The same command lines also run as a user runs them after the set-up: in a shell
+whose environment is activated (the interpreter's ``bin`` first on ``PATH``, no
+``PYTHONPATH``), the ``python -c`` lines in the repository folder itself (where the
+repository's ``supercoil/`` is first on ``sys.path``), the ``supercoil`` lines through
+the installed console script (issue 22 item 10).
 """
 
 from __future__ import annotations
@@ -39,6 +45,9 @@ SETUP = [line[4:] for line in README.splitlines()
          if line.startswith("    python3 -m venv")]
 #: commands that take minutes (bench; docs figures reruns every script): parsed, not run
 PARSE_ONLY = ("bench", "docs")
+#: the line that activates the set-up's environment (the README says it after SETUP)
+ACTIVATE = ". .venv/bin/activate"
+BIN = Path(sys.executable).parent
 
 
 def test_readme_has_blocks_and_commands():
@@ -125,3 +134,44 @@ def test_setup_commands_are_the_ones_ci_runs(tmp_path, monkeypatch):
     assert list((tmp_path / "results").glob("*.csv"))
     # the user who runs the main job sees no warning (issue 15)
     assert err.getvalue() == "" and caught == []
+
+
+def test_readme_says_to_activate_the_environment_before_bare_commands():
+    """Issue 22 item 10: after the set-up the README used bare ``supercoil`` and ``python``
+    without a word on ``.venv`` (the repository's ``supercoil/`` then shadows the install:
+    "No module named 'pint'")."""
+    lines = README.splitlines()
+    activate = lines.index("    " + ACTIVATE)
+    setup = max(i for i, line in enumerate(lines) if line.startswith("    python3 -m venv"))
+    first_bare = min(i for i, line in enumerate(lines)
+                     if re.match(r"^    (supercoil|python -c) ", line))
+    assert setup < activate < first_bare
+    assert ".venv/bin/supercoil" in "\n".join(lines[setup:first_bare])  # the alternative
+
+
+def _activated_env():
+    """The environment of a shell after ``. .venv/bin/activate`` of this interpreter's venv."""
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    env.update(PATH=f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}",
+               VIRTUAL_ENV=str(BIN.parent), MPLBACKEND="Agg")
+    return env
+
+
+@pytest.mark.skipif(not (BIN / "supercoil").is_file() or sys.prefix == sys.base_prefix,
+                    reason="needs the suite to run in a virtual environment with the "
+                    "supercoil console script (the set-up commands make one)")
+@pytest.mark.parametrize("command", [c for c in COMMANDS
+                                     if c.split()[1] not in PARSE_ONLY],
+                         ids=[c.split()[1] for c in COMMANDS if c.split()[1] not in PARSE_ONLY])
+def test_command_runs_as_written_from_an_activated_environment(command, tmp_path):
+    python_c = command.startswith("python -c ")
+    # python -c lines in the repository folder: the shadowing case of issue 22
+    cwd = ROOT if python_c else tmp_path
+    proc = subprocess.run(["bash", "-c", command], cwd=cwd, env=_activated_env(),
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    if python_c:
+        assert Path(proc.stdout.strip()).is_file()
+    elif "--out" in command.split():
+        out = command.split()[command.split().index("--out") + 1]
+        assert any(p.suffix == ".csv" for p in (tmp_path / out).rglob("*"))

@@ -151,8 +151,10 @@ def run(args) -> int:
         curves = traces.rotation_curves(trace, settle, calibration=calibration,
                                         errors=args.errors,
                                         check_settled=not args.no_check_settled)
-    for w in caught:
-        print(f"supercoil curves: warning: {w.message}", file=sys.stderr)
+    from ._common import flag_text
+
+    for w in caught:  # keyword hints (calibration=, check_settled=False) as flags
+        print(f"supercoil curves: warning: {flag_text(str(w.message))}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     csv = write_csv(curves, out / "rotation_curves.csv")
     write_csv(plateaus, out / "plateaus.csv")

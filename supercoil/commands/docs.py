@@ -6,8 +6,9 @@
                                                       # numbers and figures (docs_figures)
 
 ``build`` needs the documentation extra (``pip install '.[docs]'``) and a source
-checkout (the ``docs/`` folder next to the package, or ``--source``); it builds
-warning-free or fails. ``dataset`` without a name lists the data sets.
+checkout (``docs/`` of the working folder, else of the checkout the package is
+in, or ``--source``); it builds warning-free or fails. ``dataset`` without a name
+lists the data sets.
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ def register(sub):
     b = actions.add_parser("build", help="build the HTML site with sphinx-build -W")
     b.add_argument("--out", default="docs_html", help="output folder (default: docs_html)")
     b.add_argument("--source", default=None,
-                   help="the docs/ folder (default: docs/ of the checkout this package is in)")
+                   help="the docs/ folder (default: docs/ of the working folder, else of the "
+                   "checkout this package is in)")
     d = actions.add_parser("dataset", help="write a shipped sample data set as CSV")
     d.add_argument("name", nargs="?", help="data set name; omit to list them")
     d.add_argument("--out", default=".", help="output folder (default: .)")
@@ -45,8 +47,9 @@ def run(args) -> int:
         from supercoil.commands import docs_figures
 
         return docs_figures.run(args)
-    args._parser.print_help()
-    return 0
+    args._parser.print_help(sys.stderr)  # a missing action is a usage error, as in supercoil
+    print("supercoil docs: error: an ACTION is required", file=sys.stderr)
+    return 2
 
 
 def _dataset(args) -> int:
@@ -64,10 +67,16 @@ def _dataset(args) -> int:
 
 
 def _build(args) -> int:
-    source = Path(args.source) if args.source else Path(__file__).resolve().parents[2] / "docs"
+    from supercoil.commands._common import source_checkout
+
+    # default: docs/ of the working folder (the repository, after ``pip install .``), else
+    # docs/ of the checkout the package is in (an editable install); issue 22
+    root = source_checkout(None, needs=("docs/conf.py",)) if not args.source else None
+    source = Path(args.source) if args.source else (root or Path.cwd()) / "docs"
     if not (source / "conf.py").is_file():
-        print(f"supercoil docs: error: no Sphinx sources at {source} (docs/conf.py): the "
-              "documentation builds from a source checkout; pass --source", file=sys.stderr)
+        print(f"supercoil docs build: error: no Sphinx sources at {source} (docs/conf.py): "
+              "the documentation builds from a source checkout; run the command in the "
+              "repository, or pass --source", file=sys.stderr)
         return 2
     missing = [name for name in ("sphinx", "numpydoc", "myst_parser")
                if importlib.util.find_spec(name) is None]

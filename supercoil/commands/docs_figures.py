@@ -41,6 +41,8 @@ BLOCK = re.compile(r"<!-- generated: (?P<name>[\w-]+) -->\n(?P<body>.*?)\n?"
                    r"<!-- end generated: (?P=name) -->", re.S)
 #: the main job: the README's set-up command (li-zhao), and the free-energy model beside it
 MAIN_JOB_MODELS = ("li-zhao", "free-energy")
+#: what a source checkout holds (``--root``)
+CHECKOUT = ("README.md", "examples", "docs")
 
 
 def add_parser(actions):
@@ -54,7 +56,8 @@ def add_parser(actions):
     f.add_argument("--skip-bench", action="store_true",
                    help="keep docs/generated/headline.md and the bench figures as they are")
     f.add_argument("--root", default=None,
-                   help="the source checkout (default: the one this package is in)")
+                   help="the source checkout (default: the working folder if it is one, else "
+                   "the checkout this package is in)")
     f.add_argument("--work", default=None,
                    help="folder for the scripts' outputs (default: a temporary folder)")
     return f
@@ -181,10 +184,17 @@ def fill_blocks(text: str, generated: Path) -> tuple[str, list[str]]:
 
 def run(args) -> int:
     """The ``figures`` action of ``supercoil docs``."""
-    root = Path(args.root) if args.root else Path(__file__).resolve().parents[2]
-    if not ((root / "README.md").is_file() and (root / "examples").is_dir()):
-        print(f"supercoil docs figures: error: {root} is not a source checkout (README.md and "
-              "examples/); pass --root", file=sys.stderr)
+    from supercoil.commands._common import is_source_checkout, source_checkout
+
+    # default: the working folder if it is the checkout (``pip install .`` puts the package
+    # outside it), else the checkout the package is in (an editable install); issue 22
+    root = source_checkout(args.root, needs=CHECKOUT)
+    if root is None or not is_source_checkout(root, CHECKOUT):
+        where = (f"{root} is not" if root is not None
+                 else "neither the working folder nor the package's folder is")
+        print(f"supercoil docs figures: error: {where} a source checkout (README.md, "
+              "examples/ and docs/): run the command in the repository, or pass --root",
+              file=sys.stderr)
         return 2
 
     def log(msg):

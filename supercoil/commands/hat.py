@@ -76,7 +76,8 @@ def register(sub):
     p = sub.add_parser(
         "hat",
         help="DNA hat curves: extension and torque versus turns at fixed forces",
-        description="Hat curves of a DNA molecule in a magnetic tweezers (docs/theory/models.md): "
+        description="Hat curves of a DNA molecule in a magnetic tweezers (documentation: "
+        "theory page Models): "
         "by default the paper's construction (li-zhao: Marko-Siggia plectoneme equilibrium, "
         "Moroz-Nelson tail corrections); --model selects any registered model.",
     )
@@ -102,7 +103,8 @@ def register(sub):
                    help="DNA model (default li-zhao, the paper's); any registered model, "
                    "see supercoil.available_models()")
     p.add_argument("--end-loop", action="store_true",
-                   help="add the plectoneme end loop (docs/theory/end-loop.md; models "
+                   help="add the plectoneme end loop (documentation: theory page The plectoneme "
+                   "end loop; models "
                    "free-energy and marko2007)")
     p.add_argument("--interaction", default="hard-core", metavar="NAME",
                    help="inter-strand interaction of the plectoneme: hard-core (the paper's "
@@ -207,9 +209,11 @@ def _buckling_table(dna, force, thermal, mi, provenance_dict):
 
 def _print_warnings(messages):
     """Each warning once, in plain words, with what to do about the denaturation one."""
+    from supercoil.commands._common import flag_text
+
     for text in messages:
         hint = f"; {DENATURATION_HINT}" if "denatur" in text else ""
-        print(f"supercoil hat: note: {text}{hint}", file=sys.stderr)
+        print(f"supercoil hat: note: {flag_text(text)}{hint}", file=sys.stderr)
 
 
 def run(args) -> int:

@@ -26,7 +26,7 @@ def register(sub):
         "rod",
         help="double helix of a twisted elastic rod (smooth or rough surface)",
         description="Double helix of a rod twisted by N turns and slacked "
-        "(docs/theory/smooth.md, docs/theory/rough.md). "
+        "(documentation: theory pages Smooth and Rough). "
         "Writes the table as CSV (units in the headers) and a PNG plot into --out.",
     )
     p.add_argument("--params", default="silicone_rubber_rod",

@@ -173,6 +173,31 @@ def _quiet():
         yield
 
 
+def _evaluate(row, q, force, model, set_name, interaction):
+    """``(predicted, note, low, high)`` of one published row for one config."""
+    import warnings
+
+    from supercoil.exceptions import SupercoilError, SupercoilWarning
+
+    dna = _molecule(set_name, row)
+    try:
+        with warnings.catch_warnings(record=True) as rec:
+            warnings.simplefilter("always", SupercoilWarning)
+            pred, note = _predict(q, force, dna, model, interaction, row["unit"])
+        if rec:
+            note += "; warned: " + str(rec[0].message)[:120]
+    except SupercoilError as exc:
+        pred, note = np.nan, f"{type(exc).__name__}: {exc}"[:200]
+    low = high = np.nan
+    notes = _conditions(row, set_name, model, interaction)
+    if q in LENGTH_DEPENDENT and not np.isfinite(row["dna_length"]) and np.isfinite(pred):
+        # the source lacks a condition the prediction depends on: no comparison, the
+        # prediction's range over the bundled lengths instead
+        low, high, why = _bracket(q, force, set_name, row, model, interaction)
+        pred, note = np.nan, "; ".join(x for x in (note, why) if x)
+    return pred, "; ".join(x for x in (note, *notes) if x), low, high
+
+
 def validate(configs=DEFAULT_CONFIGS, published=None):
     """Each model's prediction of every published row, with the relative error.
 
@@ -198,9 +223,6 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
         a salt the source does not state, or one the model does not take, is said in
         ``note``.
     """
-    import warnings
-
-    from supercoil.exceptions import SupercoilError, SupercoilWarning
     from supercoil.tables import make_table, provenance
 
     pub = load_published() if published is None else published
@@ -217,23 +239,7 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
             note0 = (f"measured at {'zero force' if row['force'] == 0 else 'an unstated force'};"
                      f" evaluated at {force:g} pN; ")
         for model, set_name, interaction in configs:
-            dna = _molecule(set_name, row)
-            try:
-                with warnings.catch_warnings(record=True) as rec:
-                    warnings.simplefilter("always", SupercoilWarning)
-                    pred, note = _predict(q, force, dna, model, interaction, row["unit"])
-                if rec:
-                    note += "; warned: " + str(rec[0].message)[:120]
-            except SupercoilError as exc:
-                pred, note = np.nan, f"{type(exc).__name__}: {exc}"[:200]
-            low = high = np.nan
-            notes = _conditions(row, set_name, model, interaction)
-            if q in LENGTH_DEPENDENT and not np.isfinite(row["dna_length"]) and np.isfinite(pred):
-                # the source lacks a condition the prediction depends on: no comparison,
-                # the prediction's range over the bundled lengths instead
-                low, high, why = _bracket(q, force, set_name, row, model, interaction)
-                pred, note = np.nan, "; ".join(x for x in (note, why) if x)
-            note = "; ".join(x for x in (note, *notes) if x)
+            pred, note, low, high = _evaluate(row, q, force, model, set_name, interaction)
             measured = float(row["value"])
             for k, v in (("quantity", q), ("force", force), ("salt", row["salt"]),
                          ("measured", measured), ("uncertainty", row["uncertainty"]),

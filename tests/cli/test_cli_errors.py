@@ -186,3 +186,58 @@ def test_curves_calibration_error_names_the_flag(tmp_path, capsys):
                  str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     assert "--calibration" in err and "calibration=" not in err
+
+
+def _fake_checkout(root):
+    (root / "examples").mkdir(parents=True)
+    (root / "docs").mkdir()
+    (root / "docs" / "conf.py").write_text("")
+    (root / "README.md").write_text("# x\n")
+    return root
+
+
+def test_docs_figures_defaults_the_root_to_the_working_checkout(tmp_path, monkeypatch,
+                                                                capsys):
+    """``supercoil docs figures --skip-bench`` exited 2 asking for --root after
+    ``pip install .`` (the package then lives outside the checkout)."""
+    from supercoil.commands import docs_figures
+
+    root = _fake_checkout(tmp_path / "repo")
+    seen = {}
+
+    def run_scripts(r, work, quick, skip_bench, log):
+        seen.update(root=r, skip_bench=skip_bench)
+        raise RuntimeError("stop here")
+
+    monkeypatch.setattr(docs_figures, "run_scripts", run_scripts)
+    monkeypatch.chdir(root)
+    assert main(["docs", "figures", "--skip-bench"]) == 2
+    assert seen == {"root": root, "skip_bench": True}
+    err = capsys.readouterr().err
+    assert "stop here" in err and "--root" not in err
+
+
+def test_docs_build_defaults_the_source_to_the_working_checkout(tmp_path, monkeypatch, capsys):
+    """``supercoil docs build`` needed ``--source docs`` (after ``pip install .`` the
+    package's own folder is no checkout): it builds the working folder's docs/."""
+    import importlib.util
+    import sys
+    import types
+
+    from supercoil.commands._common import source_checkout
+
+    root = _fake_checkout(tmp_path / "repo")
+    monkeypatch.chdir(root)
+    assert source_checkout(None, needs=("docs/conf.py",)) == root
+    assert str(source_checkout("elsewhere")) == "elsewhere"  # a given --root wins
+    calls = []
+    build = types.ModuleType("sphinx.cmd.build")
+    build.build_main = lambda argv: calls.append(argv) or 0
+    for name, module in (("sphinx", types.ModuleType("sphinx")),
+                         ("sphinx.cmd", types.ModuleType("sphinx.cmd")),
+                         ("sphinx.cmd.build", build)):
+        monkeypatch.setitem(sys.modules, name, module)
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name: object())
+    assert main(["docs", "build", "--out", str(tmp_path / "html")]) == 0
+    assert calls and calls[0][-2:] == [str(root / "docs"), str(tmp_path / "html")]
+    capsys.readouterr()
