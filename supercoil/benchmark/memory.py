@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-__all__ = ["loader_timing", "plectoneme_memory", "run", "write_rotation_csv"]
+__all__ = ["loader_timing", "plectoneme_memory", "rod_scene_cost", "run", "write_rotation_csv"]
 
 
 def write_rotation_csv(path, n_rows, seed=0):
@@ -100,6 +100,39 @@ def plectoneme_memory(n_forces=10**6):
     del eq
     return {"forces": n_forces, "peak_bytes": peak - base, "output_bytes": output,
             "bytes_per_force": extra / n_forces}
+
+
+def rod_scene_cost(scene, n_turns=10**7):
+    """Wall time (s) and peak bytes per element beyond the output of a rod scene.
+
+    ``scene`` is ``"smooth"`` (:func:`supercoil.smooth_helix` at 10 cm of slack) or
+    ``"spinning"`` (:func:`supercoil.twist_spinning` at 2 N), on ``n_turns`` turns from 1
+    to 40 of the silicone-rubber rod (issue 20, item 13; target: within 5x of
+    :func:`supercoil.hat_curve` at the same size and <= 64 bytes per element). The
+    output is what the record holds when the call returns (traced with :mod:`tracemalloc`).
+    """
+    import supercoil as sc
+
+    rod = sc.load_parameters("silicone_rubber_rod")
+    u = sc.ureg
+    call = {"smooth": lambda N: sc.smooth_helix(rod, N, 10 * u.cm),
+            "spinning": lambda N: sc.twist_spinning(rod, N, 2 * u.N)}[scene]
+    call(np.linspace(1, 40, 100))  # warm the imports and caches
+    turns = np.linspace(1, 40, n_turns)
+    t0 = time.perf_counter()
+    res = call(turns)
+    seconds = time.perf_counter() - t0
+    del res
+    tracemalloc.start()
+    try:
+        base, _ = tracemalloc.get_traced_memory()
+        res = call(turns)
+        current, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    del res
+    return {"scene": scene, "elements": n_turns, "seconds": seconds,
+            "output_bytes": current - base, "bytes_per_element": (peak - current) / n_turns}
 
 
 def run(sizes=(10**6,), log=print):

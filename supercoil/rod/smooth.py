@@ -157,12 +157,19 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
     n_b = np.broadcast_to(np.asarray(n, float), shape)
     S_b = np.broadcast_to(np.asarray(S, float), shape)
 
+    n_max = max(float(np.max(n_b)), -float(np.min(n_b))) if n_b.size else 0.0
     with np.errstate(over="ignore"):
-        check_finite({"pitch [mm]": st["pitch"] * 1e3, "omega [1/mm]": st["omega"],
-                              "tension [N]": st["tension"], "torque [N mm]": st["torque"] * 1e3,
-                              "normal_force [N/m]": st["normal_force"]},
-                             f"turns up to {float(np.max(np.abs(n_b), initial=0)):.6g}")
-    warn_hard_contact(st["alpha"], "smooth helix")
+        # one field at a time: one temporary of the input's size, not five (issue 20, item 13)
+        for name, key, scale in (("pitch [mm]", "pitch", 1e3), ("omega [1/mm]", "omega", 1.0),
+                                 ("tension [N]", "tension", 1.0),
+                                 ("torque [N mm]", "torque", 1e3),
+                                 ("normal_force [N/m]", "normal_force", 1.0)):
+            check_finite({name: st[key] * scale if scale != 1.0 else st[key]},
+                         f"turns up to {n_max:.6g}")
+    # the contact width grows with the tilt: the largest tilt decides the warning
+    alpha = st["alpha"]
+    warn_hard_contact(alpha.reshape(-1)[[int(np.argmax(alpha))]] if np.size(alpha) else alpha,
+                      "smooth helix")
     fields = {k: si_value(st[k]) for k in SmoothHelix.FIELDS[2:]}
     return SmoothHelix(turns=si_value(n_b), slack=si_value(S_b), **fields,
                        provenance=provenance(rod, scene="smooth_helix"))

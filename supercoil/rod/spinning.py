@@ -106,7 +106,7 @@ def twist_spinning(rod, turns, head_tension):
     st = _ts.spinning_state(np.abs(n), Tp, r, L, B, C)
     _sc.check_tilt(st["alpha"], "twist-spinning helix")
     shape = st["alpha"].shape
-    a0 = np.broadcast_to(_sc.initial_tilt(np.abs(n), r, L, B, C), shape)
+    a0 = np.broadcast_to(_ts.slacking_tilt(np.abs(n), r, L, B, C), shape)
     with np.errstate(over="ignore", divide="ignore"):  # results checked below
         p0 = 2 * np.pi * r / np.tan(a0)
     sign = np.broadcast_to(np.sign(n), shape)

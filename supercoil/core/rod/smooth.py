@@ -22,10 +22,106 @@ from __future__ import annotations
 import numpy as np
 
 from supercoil.core.geometry import curvature, pitch_from_tilt, torsion
+from supercoil.core.numerics import bisect_increasing, safe_newton
 from supercoil.core.rod import contact as sc
 from supercoil.exceptions import NoHelixError
 
 TWO_PI = 2.0 * np.pi
+
+#: Elements per block of the smooth and twist-spinning solvers: their temporaries (a few
+#: tens of arrays of the block, 64 kB each) stay in the CPU cache, and the memory beyond
+#: the output is bounded by the block, not by the input (issue 20, item 13).
+BLOCK = 8192
+
+#: Half-width of the window around the Newton estimate, relative, in which
+#: :func:`bisect_from_estimate` evaluates the function (2^-44 = 5.7e-14: some 200
+#: times the rounding noise of the tilt equations' roots, and 10 halvings to collapse).
+WINDOW = 2.0**-44
+
+
+def bisect_from_estimate(fun, fun_df, args, lo, hi):
+    """:func:`~supercoil.core.numerics.bisect_increasing` of ``fun(x, *args)``, replayed.
+
+    The same result, bit for bit, as ``bisect_increasing(lambda x: fun(x, *args), lo,
+    hi)`` (the bisection halves the same brackets and takes the same midpoint), for
+    about a fifth of the evaluations of ``fun``:
+
+    1. a safeguarded Newton iteration (``fun_df(x, *args) -> (f, df)``) estimates the
+       root x0, and ``fun`` is evaluated at the window ends ``x0 (1 -+ WINDOW)``;
+    2. where ``fun(x0 (1 - WINDOW)) <= 0 < fun(x0 (1 + WINDOW))`` (the sign change lies
+       inside the window), the bisection's midpoints outside the window are decided by
+       their side of it, without evaluating ``fun`` (``fun`` increases, and its rounding
+       noise is some 200 times narrower than the window);
+    3. the bisection then runs as before from the bracket reached, evaluating ``fun``
+       (an element whose bracket has collapsed to adjacent floats keeps it: its
+       midpoint is one of its ends, whose sign is known).
+
+    Where the check of step 2 fails (the estimate missed, e.g. a root near the
+    smallest subnormal) the element gets the plain bisection. 1-D arrays ``lo``,
+    ``hi`` and ``args`` of one length.
+    """
+    with np.errstate(all="ignore"):
+        x0 = safe_newton(lambda x: fun_df(x, *args), 0.5 * (lo + hi), lo, hi, 1e-11,
+                         maxiter=40)
+        wl, wh = x0 * (1.0 - WINDOW), x0 * (1.0 + WINDOW)
+        ok = (np.isfinite(x0) & (wl > lo) & (wh < hi)
+              & ~(fun(wl, *args) > 0) & (fun(wh, *args) > 0))
+    out = np.empty(lo.shape)
+    if not np.all(ok):
+        bad = ~ok
+        sub = _take(args, bad)
+        out[bad] = bisect_increasing(lambda x: fun(x, *sub), lo[bad], hi[bad])
+        if not np.any(ok):
+            return out
+        lo, hi, wl, wh = lo[ok], hi[ok], wl[ok], wh[ok]
+        args = _take(args, ok)
+    lo, hi = lo.copy(), hi.copy()
+    # step 2: the halvings whose midpoint lies outside the window (lo <= wl < wh <= hi
+    # throughout, so a bracket cannot collapse here)
+    for _ in range(1100):
+        mid = 0.5 * (lo + hi)
+        down, up = mid <= wl, mid >= wh
+        if not np.any(down | up):
+            break
+        np.copyto(lo, mid, where=down)
+        np.copyto(hi, mid, where=up)
+    # step 3: the bisection from there, on the whole block for the ~10 halvings most
+    # elements need, then on the few whose bracket had reached the window early
+    for _ in range(12):
+        mid = 0.5 * (lo + hi)
+        up = fun(mid, *args) > 0
+        np.copyto(hi, mid, where=up)
+        np.copyto(lo, mid, where=~up)
+    mid = 0.5 * (lo + hi)
+    left = ~((mid == lo) | (mid == hi))
+    if np.any(left):
+        sub = _take(args, left)
+        mid[left] = bisect_increasing(lambda x: fun(x, *sub), lo[left], hi[left])
+    if out.size == mid.size:
+        return mid
+    out[ok] = mid
+    return out
+
+
+def _take(args, mask):
+    """The arguments at ``mask``: arrays indexed, scalars as they are."""
+    return tuple(a[mask] if np.ndim(a) else a for a in args)
+
+
+def _h(a, a_coef, S, n, r):
+    """``cos(2a) F(a)`` of the module doc (sign of F), as :func:`solve_tilt` bisects it."""
+    c = np.cos(2.0 * a)
+    s2 = np.sin(2.0 * a)
+    return a_coef * sc.y_of_alpha(a) * s2 + c * (S * s2 / (2.0 * r) - TWO_PI * n)
+
+
+def _h_df(a, a_coef, S, n, r):
+    """:func:`_h` and its derivative in alpha (for the Newton estimate)."""
+    c, s = np.cos(2.0 * a), np.sin(2.0 * a)
+    k, m = S / (2.0 * r), TWO_PI * n
+    f = a_coef * (1.0 - c) * s + c * (k * s - m)
+    df = 2.0 * (a_coef * (s * s + c - c * c) + k * (c * c - s * s) + m * s)
+    return f, df
 
 
 def check_inputs(turns_abs, slack, L):
@@ -55,21 +151,33 @@ def check_inputs(turns_abs, slack, L):
 
 
 def solve_tilt(turns_abs, slack, r, L, B, C):
-    """Tilt alpha (rad) of the uniform helix for |N| and S (broadcast), see module doc."""
+    """Tilt alpha (rad) of the uniform helix for |N| and S (broadcast), see module doc.
+
+    The bisection of ``cos(2a) F(a)`` on [0, pi/4], computed in blocks of
+    :data:`BLOCK` by :func:`bisect_from_estimate` (the same roots, bit for bit).
+    """
     check_inputs(turns_abs, slack, L)
     n, S = np.broadcast_arrays(np.asarray(turns_abs, float), np.asarray(slack, float))
+    out = np.empty(n.shape)
+    flat = out.reshape(-1)
+    for start in range(0, n.size, BLOCK):
+        flat[start:start + BLOCK] = _solve_block(n.flat[start:start + BLOCK],
+                                                 S.flat[start:start + BLOCK], r, L, B, C)
+    return out[()] if out.ndim == 0 else out
+
+
+def _solve_block(n, S, r, L, B, C):
+    """The tilt of one block (1-D |N| and S), unchecked."""
     a_coef = B * L / (2.0 * C * r)
-
-    def h(a):
-        c = np.cos(2.0 * a)
-        s2 = np.sin(2.0 * a)
-        return a_coef * sc.y_of_alpha(a) * s2 + c * (S * s2 / (2.0 * r) - TWO_PI * n)
-
-    return sc.bisect_increasing(h, np.zeros(n.shape), np.full(n.shape, sc.QUARTER_PI))
+    return bisect_from_estimate(_h, _h_df, (a_coef, S, n, r), np.zeros(n.shape),
+                                np.full(n.shape, sc.QUARTER_PI))
 
 
 def smooth_state(turns, slack, r, L, B, C, cos2a_min=sc.COS2A_MIN):
     """The uniform helix for signed turns N and slack S (SI floats, broadcast).
+
+    Computed in blocks of :data:`BLOCK` elements (temporaries bounded by the block;
+    the same values, bit for bit, as on the whole array).
 
     Returns
     -------
@@ -87,15 +195,39 @@ def smooth_state(turns, slack, r, L, B, C, cos2a_min=sc.COS2A_MIN):
         cos 2 alpha < ``cos2a_min`` (alpha -> pi/4, large |N| r / L).
     """
     n = np.asarray(turns, float)
-    sign = np.sign(n)
-    alpha = solve_tilt(np.abs(n), slack, r, L, B, C)
-    if alpha.size:  # (an empty input gives empty results)
-        sc.check_tilt(alpha, f"smooth helix, |N| r / L up to {np.max(np.abs(n)) * r / L:.3g}",
+    S = np.asarray(slack, float)
+    check_inputs(np.abs(n), S, L)
+    shape = np.broadcast_shapes(n.shape, S.shape)
+    n_b, S_b = np.broadcast_to(n, shape), np.broadcast_to(S, shape)
+    out = {k: np.empty(shape) for k in STATE_FIELDS}
+    flat = {k: v.reshape(-1) for k, v in out.items()}
+    a_max = -np.inf
+    for start in range(0, n_b.size, BLOCK):
+        stop = start + BLOCK
+        part = _state_block(n_b.flat[start:stop], S_b.flat[start:stop], r, L, B, C)
+        a_max = max(a_max, float(np.max(part["alpha"])))
+        for k, v in flat.items():
+            v[start:stop] = part[k]
+        del part
+    if n_b.size:  # (an empty input gives empty results)
+        # the tilt limit on the largest tilt: cos 2 alpha decreases with alpha
+        n_max = max(float(np.max(n)), -float(np.min(n)))
+        sc.check_tilt(np.float64(a_max), f"smooth helix, |N| r / L up to {n_max * r / L:.3g}",
                       cos2a_min)
-    S = np.broadcast_to(np.asarray(slack, float), alpha.shape)
-    sign = np.broadcast_to(sign, alpha.shape)
+    return {k: v[()] if v.ndim == 0 else v for k, v in out.items()}
+
+
+#: The fields of :func:`smooth_state`, in order.
+STATE_FIELDS = ("alpha", "pitch", "omega", "curvature", "torsion", "tension", "torque",
+                "normal_force", "twist", "writhe", "linking_number", "superhelical_turns")
+
+
+def _state_block(n, S, r, L, B, C):
+    """:func:`smooth_state` of one block (1-D signed turns and slack), unchecked."""
+    sign = np.sign(n)
+    alpha = _solve_block(np.abs(n), S, r, L, B, C)
     tau = torsion(alpha, r)
-    omega = (TWO_PI * np.broadcast_to(np.abs(n), alpha.shape) - tau * S) / L
+    omega = (TWO_PI * np.abs(n) - tau * S) / L
     twist = omega * L / TWO_PI
     writhe = tau * S / TWO_PI
     return {

@@ -78,6 +78,7 @@ from __future__ import annotations
 import numpy as np
 
 from supercoil.core.rod import contact as sc
+from supercoil.core.rod.smooth import BLOCK, bisect_from_estimate
 from supercoil.exceptions import NoHelixError
 
 TWO_PI = 2.0 * np.pi
@@ -91,11 +92,60 @@ def spinning_tilt(turns_abs, head_tension, r, L, B, C):
     if np.any(Tp < 0) or not np.all(np.isfinite(Tp)):
         raise NoHelixError("head tension T' must be finite and >= 0 (a push buckles the head)")
 
-    def G(a):
-        return (B * np.sin(a) ** 2 * np.sin(2 * a) / r**2 + 0.5 * Tp * np.sin(a)
-                - TWO_PI * C * n * np.cos(2 * a) / r)
+    out = np.empty(n.shape)
+    flat = out.reshape(-1)
+    for start in range(0, n.size, BLOCK):  # blocks: bounded temporaries (issue 20, item 13)
+        nb, Tb = n.flat[start:start + BLOCK], Tp.flat[start:start + BLOCK]
+        flat[start:start + BLOCK] = bisect_from_estimate(
+            _G, _G_df, (nb, Tb, r, B, C), np.zeros(nb.shape), np.full(nb.shape, sc.QUARTER_PI))
+    return out[()] if out.ndim == 0 else out
 
-    return sc.bisect_increasing(G, np.zeros(n.shape), np.full(n.shape, sc.QUARTER_PI))
+
+def _G(a, n, Tp, r, B, C):
+    """[f4] as G(alpha) of the module doc (n = |N| / L), as it is bisected."""
+    return (B * np.sin(a) ** 2 * np.sin(2 * a) / r**2 + 0.5 * Tp * np.sin(a)
+            - TWO_PI * C * n * np.cos(2 * a) / r)
+
+
+def _G_df(a, n, Tp, r, B, C):
+    """:func:`_G` and its derivative in alpha (for the Newton estimate)."""
+    sa, ca, s2, c2 = np.sin(a), np.cos(a), np.sin(2 * a), np.cos(2 * a)
+    f = B * sa**2 * s2 / r**2 + 0.5 * Tp * sa - TWO_PI * C * n * c2 / r
+    df = (B * (2.0 * sa * ca * s2 + 2.0 * sa**2 * c2) / r**2 + 0.5 * Tp * ca
+          + 2.0 * TWO_PI * C * n * s2 / r)
+    return f, df
+
+
+def _h0(a, rhs):
+    """[eq ini] as :func:`supercoil.core.rod.contact.initial_tilt` bisects it."""
+    return sc.y_of_alpha(a) * np.sin(2.0 * a) - rhs * np.cos(2.0 * a)
+
+
+def _h0_df(a, rhs):
+    s2, c2 = np.sin(2.0 * a), np.cos(2.0 * a)
+    return (1.0 - c2) * s2 - rhs * c2, 2.0 * (s2 * s2 + (1.0 - c2) * c2 + rhs * s2)
+
+
+def slacking_tilt(turns_abs, r, L, B, C):
+    """:func:`supercoil.core.rod.contact.initial_tilt` (alpha_0 of [eq ini]) in blocks.
+
+    The same tilts, bit for bit, by :func:`supercoil.core.rod.smooth.bisect_from_estimate`.
+
+    Raises
+    ------
+    NoHelixError
+        If some ``|N_0| <= 0``.
+    """
+    n = np.asarray(turns_abs, float)
+    if np.any(~(n > 0)):
+        sc.initial_tilt(n, r, L, B, C)  # raises, with its message
+    out = np.empty(n.shape)
+    flat = out.reshape(-1)
+    for start in range(0, n.size, BLOCK):
+        rhs = (C / B) * 4.0 * np.pi * r * n.flat[start:start + BLOCK] / L
+        flat[start:start + BLOCK] = bisect_from_estimate(
+            _h0, _h0_df, (rhs,), np.zeros(rhs.shape), np.full(rhs.shape, sc.QUARTER_PI))
+    return out[()] if out.ndim == 0 else out
 
 
 def spinning_state(turns_abs, head_tension, r, L, B, C):

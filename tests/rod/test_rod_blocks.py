@@ -1,0 +1,67 @@
+"""smooth_helix and twist_spinning in blocks: the values of the whole-array solver, bit for bit.
+
+tests/rod/data/smooth_spinning_reference.json holds every field of both records on a
+12 x 4 and a 12 x 5 grid (turns from 1e-3 to 55.5, both signs; slack 0-33.3 cm; head
+tension 0-17 N), written with repr() by the implementation before issue 20, item 13
+(commit d9eedab: one bisection over the whole array).
+"""
+
+import json
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import supercoil as sc
+from supercoil.core.rod import smooth as sm
+
+u = sc.ureg
+REF = json.loads((Path(__file__).parent / "data" / "smooth_spinning_reference.json").read_text())
+
+
+def _records():
+    rod = sc.load_parameters("silicone_rubber_rod")
+    N = np.array(REF["turns"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.ValidityWarning)  # the largest tilts (b > r)
+        h = sc.smooth_helix(rod, N[:, None], np.array(REF["slack_cm"])[None, :] * u.cm)
+        s = sc.twist_spinning(rod, N[:, None], np.array(REF["head_tension_N"])[None, :] * u.N)
+    return {"smooth": h, "spinning": s}
+
+
+def test_blocked_solvers_reproduce_the_previous_values_bitwise():
+    for name, rec in _records().items():
+        for field, text in REF[name].items():
+            want = np.array([float(v) for v in text])
+            got = np.ravel(np.broadcast_to(rec.si(field), np.shape(rec.si("alpha"))))
+            np.testing.assert_array_equal(got, want, err_msg=f"{name}.{field}")
+
+
+def test_block_boundaries_do_not_change_values():
+    rod = sc.load_parameters("silicone_rubber_rod")
+    N = np.linspace(1, 40, 2 * sm.BLOCK + 7)
+    big_h = sc.smooth_helix(rod, N, 10 * u.cm)
+    big_s = sc.twist_spinning(rod, N, 2 * u.N)
+    for i in (0, sm.BLOCK - 1, sm.BLOCK, sm.BLOCK + 1, 2 * sm.BLOCK + 6):
+        one_h = sc.smooth_helix(rod, N[i], 10 * u.cm)
+        one_s = sc.twist_spinning(rod, N[i], 2 * u.N)
+        for f in ("alpha", "tension", "normal_force", "linking_number"):
+            assert big_h.si(f)[i] == one_h.si(f), (f, i)
+        for f in ("alpha", "beta", "pitch", "alpha_slacking", "pitch_increase"):
+            assert big_s.si(f)[i] == one_s.si(f), (f, i)
+
+
+def test_estimate_steered_bisection_equals_plain_bisection_where_newton_misses():
+    # a root near the smallest normal float: the window check fails, the plain bisection runs
+    from supercoil.core.numerics import bisect_increasing
+
+    def fun(x, c):
+        return x - c
+
+    def fun_df(x, c):
+        return x - c + 1e300 * (x > 0), np.ones_like(x)  # a useless Newton estimate
+
+    c = np.array([1e-300, 0.3, 0.7])
+    lo, hi = np.zeros(3), np.ones(3)
+    got = sm.bisect_from_estimate(fun, fun_df, (c,), lo, hi)
+    np.testing.assert_array_equal(got, bisect_increasing(lambda x: x - c, lo, hi))
