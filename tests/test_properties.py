@@ -81,8 +81,16 @@ SALTY = DNA.replace(salt=150 * u.mM)
 #: the package's own models (tests may register toy models of their own)
 MODELS = [m for m in sc.available_models()
           if type(sc.dna.models.get_model(m)).__module__.startswith("supercoil.")]
+
+
+def _interactions(model):
+    """The interactions a model takes (the default alone for one without a helix state)."""
+    uses = sc.dna.models.get_model(model).uses_interaction
+    return ("hard-core", "screened") if uses else ("hard-core",)
+
+
 for _model in MODELS:  # every model and interaction of the package
-    for _inter in (("hard-core", "screened") if _model != "marko2007" else ("hard-core",)):
+    for _inter in _interactions(_model):
         if (_model, _inter) == ("li-zhao", "hard-core"):
             continue  # the default, above
         FUNCTIONS[f"hat_curve {_model} {_inter}"] = (
@@ -431,7 +439,7 @@ DNA_CALLS = {
         d, [0.5, 2] * u.pN, points_per_force=5, seed=1),
 }
 for _model in MODELS:
-    for _inter in (("hard-core", "screened") if _model != "marko2007" else ("hard-core",)):
+    for _inter in _interactions(_model):
         _kw = {"model": _model, "interaction": _inter}
         DNA_CALLS[f"hat_curve {_model} {_inter}"] = (
             lambda d, kw=_kw: sc.hat_curve(d, [0.5, 2] * u.pN, [0, 10, 30], **kw))
@@ -451,13 +459,9 @@ MAGNITUDES = (1e-300, 1e-30, 1e-3, 1e3, 1e30, 1e300)
 
 def known_model_defect(field, value, call):
     """Outcomes still wrong in modules outside issue 20's DNA-surface fixes (listed in the
-    round-3 note): the free-energy model's effective tension turns NaN (with raw sqrt
-    warnings) for A <= 1e-3 nm or t >= 1e30 K; marko2007 overflows (raw warning) at
+    round-3 note): marko2007 overflows (raw warning) at
     C_t = 1e300 nm; at t = 1e300 K li-zhao warns raw and the Moroz-Nelson C_eff is NaN;
     the simulation at L = 1e-300 nm or t = 1e300 K warns raw before its named error."""
-    if "free-energy" in call:
-        return (field == "bending_persistence" and value <= 1e-3) or (
-            field == "temperature" and value >= 1e30)
     if "marko2007" in call:
         return field == "twist_persistence" and value == 1e300
     if call in ("hat_curve li-zhao hard-core", "buckling_turns li-zhao hard-core",
@@ -516,7 +520,6 @@ def test_the_extreme_molecules_of_the_default_model(field, value):
 @pytest.mark.xfail(strict=True, reason="known model defects outside issue 20's DNA-surface "
                                        "fixes (known_model_defect); strict: a fix shows here")
 @pytest.mark.parametrize("case", [
-    ("bending_persistence", 1e-3, "hat_curve free-energy hard-core"),
     ("temperature", 1e300, "effective_twist_rigidity")])
 def test_the_known_model_defects_are_still_there(case):
     field, value, call = case

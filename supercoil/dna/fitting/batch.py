@@ -25,13 +25,13 @@ from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.fit import (
     DEFAULT_VARY,
     FitSpec,
-    checked_sigma,
     emit,
     prepare,
     run_fit,
 )
 from supercoil.dna.fitting.prepare import strip_molecule_keys
 from supercoil.dna.fitting.progress import Progress
+from supercoil.dna.fitting.weights import checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION
 from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL

@@ -31,7 +31,8 @@ import math
 import numpy as np
 from scipy import stats
 
-__all__ = ["P_THRESHOLD", "chi_square_test", "plausibility_messages", "runs_test"]
+__all__ = ["P_THRESHOLD", "bound_records", "chi_square_test", "plausibility_messages",
+           "runs_test"]
 
 #: p-value below which a goodness-of-fit test warns (a correct fit warns in 1 of 1000)
 P_THRESHOLD = 1e-3
@@ -107,3 +108,18 @@ def goodness_messages(weighting, chi2, nfree, residuals, data):
                 f"expected for independent residuals, z = {z:.2f}, p = {p:.2g}): the model "
                 "does not describe the shape of the data"], info
     return [], info
+
+
+def bound_records(params, u):
+    """``("BoundWarning", message)`` for each fitted parameter that ends on a bound."""
+    out = []
+    lb, ub = params.bounds_vector()
+    for j, p in enumerate(params.free_params()):
+        for bound, side in ((lb[j], "lower"), (ub[j], "upper")):
+            if np.isfinite(bound) and abs(u[j] - bound) <= 1e-6 * max(1.0, abs(bound)):
+                f = p.factor
+                out.append(("BoundWarning",
+                            f"{p.name} = {p.value * f:.6g} {p.unit} sits on its {side} bound "
+                            f"({bound * p.scale * f:.6g} {p.unit}); its standard error is not "
+                            "meaningful"))
+    return out

@@ -33,6 +33,7 @@ from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
+from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
@@ -70,46 +71,6 @@ class FitSpec:
     vary: list
     #: what the preparation decided for the user (a dropped parameter, ...): the report's notes
     notes: list = dataclasses.field(default_factory=list)
-
-
-def checked_sigma(sigma, rot):
-    """``sigma`` if it is a scalar or one value per data row; else ValueError naming the shapes.
-
-    A sigma per force (or any other length) is not guessed: with as many rows
-    as forces it would be ambiguous. Map it onto the rows, e.g.
-    ``per_force[np.searchsorted(forces, data["force"])]``.
-    """
-    shape = np.shape(getattr(sigma, "magnitude", sigma))
-    if shape not in ((), (rot.n,)):
-        raise ValueError(f"sigma has shape {shape}; give a scalar or one value per data row "
-                         f"(shape ({rot.n},)); for one sigma per force, map it onto the rows "
-                         "(e.g. s[np.searchsorted(forces, data['force'])])")
-    return sigma
-
-
-#: smallest stated sigma, in contour lengths: weighted residuals |z - model| / sigma
-#: of at most L / sigma = 1e150, whose squares sum within the float range (~1.8e308)
-SIGMA_MIN_PER_LENGTH = 1e-150
-
-
-def check_sigma_scale(rot, length):
-    """FitError naming sigma if a stated standard error is outside ``[1e-150 L, L]``.
-
-    Above the contour length L (larger than any extension) the data would
-    determine nothing: the optimiser stopped at its start (measured: sigma =
-    1e7 nm for 0.7 um extensions). Below 1e-150 L the weights 1/sigma (1e-300
-    nm: inf) leave the float range ("cannot start the fit: None" on main).
-    """
-    if rot.weighting == "unit":
-        return
-    lo, hi = float(np.min(rot.sigma)), float(np.max(rot.sigma))
-    if not (lo >= SIGMA_MIN_PER_LENGTH * length and hi <= length):
-        bad, limit = (lo, f"below 1e-150 L = {SIGMA_MIN_PER_LENGTH * length * 1e9:.3g} nm"
-                      ) if lo < SIGMA_MIN_PER_LENGTH * length else (
-                          hi, f"above the contour length L = {length * 1e9:.6g} nm")
-        raise FitError(f"sigma ({rot.weighting}) of {bad * 1e9:.6g} nm is {limit}: the "
-                       "standard error of an extension lies in [1e-150 L, L] (its weights "
-                       "1/sigma leave the float range below; the data determine nothing above)")
 
 
 def resolve_model(model, interaction):
@@ -310,7 +271,7 @@ def run_fit(spec: FitSpec) -> dict:
     stderr = np.sqrt(np.clip(np.diag(cov), 0, None))
     stderr[undetermined] = np.inf
     spec.params.set_vector(u, stderr)
-    records += _bound_records(spec.params, u)
+    records += _diag.bound_records(spec.params, u)
     pts, z0_pts = prob.points(u)
     dna, model, inter, n0, z0 = prob.unpack(u)
     best = np.asarray(pts.extension, dtype=float) + z0_pts
@@ -339,20 +300,6 @@ def run_fit(spec: FitSpec) -> dict:
         "channels": channels, "notes": list(spec.notes) + start_notes,
         "seconds": time.perf_counter() - t0,
     }
-
-
-def _bound_records(params, u):
-    out = []
-    lb, ub = params.bounds_vector()
-    for j, p in enumerate(params.free_params()):
-        for bound, side in ((lb[j], "lower"), (ub[j], "upper")):
-            if np.isfinite(bound) and abs(u[j] - bound) <= 1e-6 * max(1.0, abs(bound)):
-                f = p.factor
-                out.append(("BoundWarning",
-                            f"{p.name} = {p.value * f:.6g} {p.unit} sits on its {side} bound "
-                            f"({bound * p.scale * f:.6g} {p.unit}); its standard error is not "
-                            "meaningful"))
-    return out
 
 
 def _validity_records(spec, pts, n0, model, dna):
