@@ -38,7 +38,8 @@ class Ensemble(DNAModel):
 
     Options (not fitted): ``finite_size`` (the sum over domains; False: the
     thermodynamic-limit coexistence), ``physical_loop`` (end loop of
-    docs/theory/end-loop.md; False: a constant nucleation), ``exact_wlc``
+    docs/theory/end-loop.md; default False: a constant nucleation, which fitted
+    measured curves better, docs/theory/ensemble.md#5-fit), ``exact_wlc``
     (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
     False: first order), ``melting`` (the melted phase in the tail),
     ``multi_domain`` (up to two domains; False: one).
@@ -48,40 +49,41 @@ class Ensemble(DNAModel):
     summary: ClassVar[str] = ("phase ensemble: melting WLC tail + plectoneme domains with "
                               "torque-dependent stiffness, summed at fixed turns")
     uses_interaction: ClassVar[bool] = False
-    OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": True, "exact_wlc": True,
+    OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
                                "resummed": True, "melting": True, "multi_domain": True}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
-            "twist_bend_softening", "", 1.0, 0.5, 8.0,
+            "twist_bend_softening", "", 1.79, 0.5, 8.0,
             "factor k on the Moroz-Nelson term of 1/c_s (1: Moroz-Nelson; >1 stands for "
             "twist-bend coupling)",
-            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; the fit gives ~4 ("
+            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; default 1.79 from the "
+            "constant-nucleation fit ("
             + _FIT + ")"),
         "plectoneme_twist_persistence_ref": _p(
-            "plectoneme_twist_persistence_ref", "nm", 12.7e-9, 3e-9, 60e-9,
+            "plectoneme_twist_persistence_ref", "nm", 13.6e-9, 3e-9, 60e-9,
             "P0: the plectoneme's effective twist stiffness at the reference torque", _FIT),
         "plectoneme_stiffness_exponent": _p(
-            "plectoneme_stiffness_exponent", "", 0.22, -0.5, 0.9,
+            "plectoneme_stiffness_exponent", "", 0.26, -0.5, 0.9,
             "a of P(M) = P0 (|M|/M0)^a (0: Marko 2007's constant P)", _FIT),
         "reference_torque": _p(
             "reference_torque", "pN*nm", 10e-21, 1e-21, 50e-21,
             "M0 of P(M) (a convention: P0 and M0 are degenerate)", "choice"),
         "domain_nucleation": _p(
-            "domain_nucleation", "pN*nm", 22e-21, -100e-21, 150e-21,
+            "domain_nucleation", "pN*nm", 79.8e-21, -100e-21, 150e-21,
             "extra free energy per plectoneme domain beyond its end loop", _FIT),
         "end_loop_writhe": _p(
             "end_loop_writhe", "", 1.0, 0.5, 1.5,
             "turns of linking absorbed as writhe by each domain's end loop",
             "one closed loop, docs/theory/end-loop.md#2-loop"),
         "melting_free_energy": _p(
-            "melting_free_energy", "pN*nm", 4.2e-21, 0.5e-21, 25e-21,
+            "melting_free_energy", "pN*nm", 4.19e-21, 0.5e-21, 25e-21,
             "free energy of melting one base pair at zero force and torque", _FIT),
         "melting_cooperativity": _p(
-            "melting_cooperativity", "pN*nm", 120e-21, 0.0, 250e-21,
+            "melting_cooperativity", "pN*nm", 49.5e-21, 0.0, 250e-21,
             "boundary free energy of one melted bubble (both ends)", _FIT),
         "melted_extension": _p(
-            "melted_extension", "", 0.0, -0.5, 0.9,
-            "extension per B-DNA contour length of the melted phase", "choice (0)"),
+            "melted_extension", "", 0.07, -0.5, 1.5,
+            "extension per B-DNA contour length of the melted phase", _FIT),
         "positional_length": _p(
             "positional_length", "nm", 1e-9, 0.1e-9, 100e-9,
             "b: microscopic length of a domain's positional and length entropy (degenerate "
