@@ -4,7 +4,7 @@ Every DNA model's kernel (``li_zhao``'s :mod:`supercoil.core.dna.hat`,
 :mod:`supercoil.core.dna.free_energy`, :mod:`supercoil.core.dna.marko2007`, and any
 plug-in) returns :class:`HatPoints` with the phase codes below; the public layer
 (:mod:`supercoil.dna.validity`) applies the shared force limits. Defined once here, so that no
-model's kernel holds another model's types (docs/theory/models.md#the-model-contract).
+model's kernel holds another model's types (docs/theory/models.md#the-interface).
 """
 
 from __future__ import annotations
