@@ -61,6 +61,11 @@ _ALPHA_HI = 0.25 * np.pi
 _TABLE_POINTS = 241
 #: smallest tabulated tension (N) of a branch on which T only tends to zero
 T_FLOOR = 1e-15
+_FD_STEP = 1e-7  # forward-difference step of the Newton Jacobian (rad, and in log R)
+_NEWTON_TOL = 1e-13  # last Newton step (rad, and in log R) below which it has converged
+_NEWTON_MAXITER = 12
+_RESIDUAL_TOL = 1e-10  # relative residuals of (GE2) and the tension accepted at the end
+_TILT_SLACK = 1e-3  # rad: Newton's tilt may leave the bracket's tilts by this (an extremum)
 
 
 class Branch(NamedTuple):
@@ -217,7 +222,8 @@ def _no_state(force, covered, branch, contact):
         "each other; no contact state allowed)")
 
 
-def _solve_free(flat, B, partials, branch, xatol):
+def _solve_free_direct(flat, B, partials, branch, xatol):
+    """Reference: nested bracketed solve, T(alpha(R), R) = F for log R (module doc)."""
     T_t = branch.tension
     k = np.clip(np.searchsorted(-T_t, -flat, side="left") - 1, 0, T_t.size - 2)
     u_lo = np.log(branch.radius[k])
@@ -228,16 +234,105 @@ def _solve_free(flat, B, partials, branch, xatol):
         a = solve_tilt(R, B, partials)
         return tension(a, R, B, partials) - target
 
-    res = find_root(g, (u_lo, u_hi), args=(flat,), tolerances=dict(xatol=xatol, xrtol=0.0),
-                    maxiter=200)
-    if not np.all(res.success):  # pragma: no cover - bracketed, cannot fail
-        raise NoEquilibriumError("plectoneme equilibrium: root finding did not converge")
-    R = np.exp(res.x)
+    # within rounding of a node's tension, T recomputed at the node (exp(log R) a few ulp
+    # off) may lie on the wrong side: no sign change, the root is that node
+    g_lo, g_hi = g(u_lo, flat), g(u_hi, flat)
+    inside = (g_lo >= 0.0) & (g_hi <= 0.0)
+    u = np.where(np.abs(g_lo) <= np.abs(g_hi), u_lo, u_hi)
+    if np.any(inside):
+        res = find_root(g, (u_lo[inside], u_hi[inside]), args=(flat[inside],),
+                        tolerances=dict(xatol=xatol, xrtol=0.0), maxiter=200)
+        if not np.all(res.success):  # pragma: no cover - bracketed, cannot fail
+            raise NoEquilibriumError("plectoneme equilibrium: root finding did not converge")
+        u[inside] = res.x
+    R = np.exp(u)
     alpha = solve_tilt(R, B, partials)
     return alpha, R, torque(alpha, R, B, partials)
 
 
-def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14):
+def _h_t_m(alpha, R, B, partials):
+    """``(h, T, M, scale of h)`` at (alpha, R) from one call of ``partials``."""
+    X, Y, w, kappa = _xy(alpha, R, B, partials)
+    s2, c2 = np.sin(2.0 * alpha), np.cos(2.0 * alpha)
+    h = 0.5 * s2 * X + R * c2 * Y
+    M = R * X / c2
+    T = -0.5 * B * kappa * kappa + M * 0.5 * s2 / R - w
+    return h, T, M, np.abs(0.5 * s2 * X) + np.abs(R * c2 * Y)
+
+
+def _solve_free_newton(flat, B, partials, branch):
+    """Newton on ``(h, T - F) = 0`` in ``(alpha, log R)`` (module doc, Method).
+
+    Returns ``(alpha, R, M, ok)``; where ``ok`` is False the iteration left the table's
+    bracket or did not converge, and the caller falls back to the direct solve.
+    """
+    T_t, a_t, u_t = branch.tension, branch.alpha, np.log(branch.radius)
+    k = np.clip(np.searchsorted(-T_t, -flat, side="left") - 1, 0, T_t.size - 2)
+    s = np.clip((T_t[k] - flat) / (T_t[k] - T_t[k + 1]), 0.0, 1.0)
+    u = u_t[k] + s * (u_t[k + 1] - u_t[k])
+    a = a_t[k] + s * (a_t[k + 1] - a_t[k])
+    n = flat.size
+    live = np.arange(n)
+    done = np.zeros(n, bool)
+    for _ in range(_NEWTON_MAXITER):
+        if live.size == 0:
+            break
+        al, ul, F = a[live], u[live], flat[live]
+        A = np.concatenate([al, al + _FD_STEP, al])
+        U = np.concatenate([ul, ul, ul + _FD_STEP])
+        h, T, _, _ = _h_t_m(A, np.exp(U), B, partials)
+        m = live.size
+        h0, h_a, h_u = h[:m], (h[m:2 * m] - h[:m]) / _FD_STEP, (h[2 * m:] - h[:m]) / _FD_STEP
+        g0 = T[:m] - F
+        g_a, g_u = (T[m:2 * m] - T[:m]) / _FD_STEP, (T[2 * m:] - T[:m]) / _FD_STEP
+        with np.errstate(divide="ignore", invalid="ignore"):
+            det = h_a * g_u - h_u * g_a
+            da = -(g_u * h0 - h_u * g0) / det
+            du = -(h_a * g0 - g_a * h0) / det
+        a[live] = al + da
+        u[live] = ul + du
+        bad = ~(np.isfinite(da) & np.isfinite(du))
+        conv = (np.abs(da) < _NEWTON_TOL) & (np.abs(du) < _NEWTON_TOL)
+        done[live[conv & ~bad]] = True
+        live = live[~(conv | bad)]
+    R = np.exp(u)
+    with np.errstate(invalid="ignore", over="ignore"):
+        h, T, M, h_scale = _h_t_m(a, R, B, partials)
+        span = np.abs(a_t[k + 1] - a_t[k]) + _TILT_SLACK
+        ok = (done & (u >= u_t[k] - 1e-12) & (u <= u_t[k + 1] + 1e-12)
+              & (a > 0.0) & (a < _ALPHA_HI)
+              & (a >= np.minimum(a_t[k], a_t[k + 1]) - span)
+              & (a <= np.maximum(a_t[k], a_t[k + 1]) + span)
+              & (np.abs(h) <= _RESIDUAL_TOL * h_scale)
+              & (np.abs(T - flat) <= _RESIDUAL_TOL * np.abs(flat)))
+    return a, R, M, ok
+
+
+def _solve_free(flat, B, partials, branch, xatol, method):
+    alpha, R, M = np.empty(flat.shape), np.empty(flat.shape), np.empty(flat.shape)
+    # a force equal to a node's tension is that node: recomputed there, T may lie a few
+    # ulp on the wrong side of the target and the node's bracket hold no sign change
+    # (the direct solve failed there); the fold's first node is also a double root
+    T_t = branch.tension
+    j = np.minimum(np.searchsorted(-T_t, -flat, side="left"), T_t.size - 1)
+    node = T_t[j] == flat
+    if np.any(node):
+        alpha[node], R[node] = branch.alpha[j[node]], branch.radius[j[node]]
+        M[node] = torque(alpha[node], R[node], B, partials)
+    rest = ~node
+    if method == "direct":
+        alpha[rest], R[rest], M[rest] = _solve_free_direct(flat[rest], B, partials, branch,
+                                                           xatol)
+        return alpha, R, M
+    a, r, m, ok = _solve_free_newton(flat[rest], B, partials, branch)
+    if not np.all(ok):  # safeguard: the bracketed reference where Newton failed
+        a[~ok], r[~ok], m[~ok] = _solve_free_direct(flat[rest][~ok], B, partials, branch,
+                                                    xatol)
+    alpha[rest], R[rest], M[rest] = a, r, m
+    return alpha, R, M
+
+
+def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, method="newton"):
     """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
 
     Each force is solved on the free branch (if it lies in its range) and on the contact
@@ -259,7 +354,11 @@ def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14):
         From :func:`supercoil.core.dna.contact.contact_table`; None: no contact states
         (forces beyond the free branch raise).
     xatol : float
-        Absolute tolerance on log R.
+        Absolute tolerance on log R of the direct solve.
+    method : {"newton", "direct"}
+        ``"newton"`` (default): Newton on the 2x2 system from the table, falling back to
+        the direct solve where it fails; ``"direct"``: the nested bracketed solve, the
+        reference (module docstring, Method).
 
     Raises
     ------
@@ -268,6 +367,8 @@ def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14):
     """
     from supercoil.core.dna import contact as _ct
 
+    if method not in ("newton", "direct"):
+        raise ValueError(f"method must be 'newton' or 'direct', got {method!r}")
     force = np.asarray(force, dtype=float)
     if not np.all(np.isfinite(force)):
         raise ValueError(f"force must be finite, got {force!r}")
@@ -281,7 +382,8 @@ def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14):
     R = np.empty(flat.shape)
     M = np.full(flat.shape, np.inf)
     if np.any(free):
-        alpha[free], R[free], M[free] = _solve_free(flat[free], B, partials, branch, xatol)
+        alpha[free], R[free], M[free] = _solve_free(flat[free], B, partials, branch, xatol,
+                                                    method)
     if np.any(touch):
         a_c, M_c = _ct.solve_contact(flat[touch], B, partials, contact)
         better = M_c < M[touch]  # the lower torque is the equilibrium
