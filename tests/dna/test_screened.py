@@ -498,7 +498,7 @@ def test_newton_equilibrium_matches_the_direct_solve(dna150, salt, kw):
     F = _forces_on_branch(br)
     ref = eq.solve_equilibrium(F, B, f, br, method="direct")
     new = eq.solve_equilibrium(F, B, f, br)
-    for x, y in zip(new, ref):  # alpha, R, torque
+    for x, y in zip(new, ref, strict=True):  # alpha, R, torque
         np.testing.assert_allclose(x, y, rtol=1e-10, atol=0.0)
 
 
@@ -519,7 +519,7 @@ def test_direct_and_newton_solve_at_a_node_and_at_the_branch_top(dna150, method)
     B, f, br = _kernel(dna150)
     assert not br.fold
     F = np.array([br.tension[7], br.tension[0] * (1 - 1e-15), br.tension[0]])
-    alpha, R, M = eq.solve_equilibrium(F, B, f, br, method=method)
+    alpha, R, _ = eq.solve_equilibrium(F, B, f, br, method=method)
     assert R[0] == pytest.approx(br.radius[7], rel=1e-12)
     assert R[1:] == pytest.approx(br.radius[0], rel=1e-12)
     ge2 = eq.tilt_residual(alpha, R, B, f)
@@ -566,7 +566,7 @@ def test_free_energy_coexistence_and_hat_points_through_newton_match_direct(
     b_ref, p_ref = run()
     np.testing.assert_allclose(b_new.turns, b_ref.turns, rtol=1e-8)
     np.testing.assert_allclose(b_new.slope, b_ref.slope, rtol=1e-8)
-    for x, y in zip(p_new, p_ref):
+    for x, y in zip(p_new, p_ref, strict=True):
         np.testing.assert_allclose(x.extension, y.extension, rtol=1e-8)
         np.testing.assert_allclose(x.torque, y.torque, rtol=1e-8, atol=1e-8 * np.max(
             np.abs(y.torque)))
