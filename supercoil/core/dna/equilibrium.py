@@ -64,6 +64,7 @@ T_FLOOR = 1e-15
 _FD_STEP = 1e-7  # forward-difference step of the Newton Jacobian (rad, and in log R)
 _NEWTON_TOL = 1e-13  # last Newton step (rad, and in log R) below which it has converged
 _NEWTON_MAXITER = 12
+_CHORD_STEP = 1e-6  # after a step below this the Jacobian is kept (chord iteration)
 _RESIDUAL_TOL = 1e-10  # relative residuals of (GE2) and the tension accepted at the end
 _TILT_SLACK = 1e-3  # rad: Newton's tilt may leave the bracket's tilts by this (an extremum)
 
@@ -260,6 +261,22 @@ def _h_t_m(alpha, R, B, partials):
     return h, T, M, np.abs(0.5 * s2 * X) + np.abs(R * c2 * Y)
 
 
+def _start(flat, branch, k):
+    """Start ``(alpha, log R)``: 4-point Lagrange interpolation in T through the table
+    nodes around the bracket ``k`` (clipped into the bracket)."""
+    T_t, a_t, u_t = branch.tension, branch.alpha, np.log(branch.radius)
+    j = np.clip(k - 1, 0, max(T_t.size - 4, 0))[:, None] + np.arange(min(4, T_t.size))
+    x = T_t[j]
+    basis = np.ones(j.shape)
+    for m in range(j.shape[1]):
+        for q in range(j.shape[1]):
+            if q != m:
+                basis[:, m] *= (flat - x[:, q]) / (x[:, m] - x[:, q])
+    u = np.clip(np.sum(basis * u_t[j], axis=1), u_t[k], u_t[k + 1])
+    a = np.sum(basis * a_t[j], axis=1)
+    return a, u
+
+
 def _solve_free_newton(flat, B, partials, branch):
     """Newton on ``(h, T - F) = 0`` in ``(alpha, log R)`` (module doc, Method).
 
@@ -268,23 +285,29 @@ def _solve_free_newton(flat, B, partials, branch):
     """
     T_t, a_t, u_t = branch.tension, branch.alpha, np.log(branch.radius)
     k = np.clip(np.searchsorted(-T_t, -flat, side="left") - 1, 0, T_t.size - 2)
-    s = np.clip((T_t[k] - flat) / (T_t[k] - T_t[k + 1]), 0.0, 1.0)
-    u = u_t[k] + s * (u_t[k + 1] - u_t[k])
-    a = a_t[k] + s * (a_t[k + 1] - a_t[k])
+    a, u = _start(flat, branch, k)
     n = flat.size
     live = np.arange(n)
     done = np.zeros(n, bool)
+    jac = np.zeros((4, n))  # h_a, h_u, g_a, g_u (forward differences)
+    fresh = np.ones(n, bool)  # a new Jacobian at the next step (else the last one: chord)
     for _ in range(_NEWTON_MAXITER):
         if live.size == 0:
             break
         al, ul, F = a[live], u[live], flat[live]
-        A = np.concatenate([al, al + _FD_STEP, al])
-        U = np.concatenate([ul, ul, ul + _FD_STEP])
+        m, nj = live.size, live[fresh[live]]
+        aj, uj = a[nj], u[nj]
+        A = np.concatenate([al, aj + _FD_STEP, aj])
+        U = np.concatenate([ul, uj, uj + _FD_STEP])
         h, T, _, _ = _h_t_m(A, np.exp(U), B, partials)
-        m = live.size
-        h0, h_a, h_u = h[:m], (h[m:2 * m] - h[:m]) / _FD_STEP, (h[2 * m:] - h[:m]) / _FD_STEP
-        g0 = T[:m] - F
-        g_a, g_u = (T[m:2 * m] - T[:m]) / _FD_STEP, (T[2 * m:] - T[:m]) / _FD_STEP
+        h0, g0 = h[:m], T[:m] - F
+        base = fresh[live]
+        c = nj.size
+        jac[0, nj] = (h[m:m + c] - h0[base]) / _FD_STEP
+        jac[1, nj] = (h[m + c:] - h0[base]) / _FD_STEP
+        jac[2, nj] = (T[m:m + c] - T[:m][base]) / _FD_STEP
+        jac[3, nj] = (T[m + c:] - T[:m][base]) / _FD_STEP
+        h_a, h_u, g_a, g_u = jac[:, live]
         with np.errstate(divide="ignore", invalid="ignore"):
             det = h_a * g_u - h_u * g_a
             da = -(g_u * h0 - h_u * g0) / det
@@ -292,7 +315,9 @@ def _solve_free_newton(flat, B, partials, branch):
         a[live] = al + da
         u[live] = ul + du
         bad = ~(np.isfinite(da) & np.isfinite(du))
-        conv = (np.abs(da) < _NEWTON_TOL) & (np.abs(du) < _NEWTON_TOL)
+        step = np.maximum(np.abs(da), np.abs(du))
+        conv = step < _NEWTON_TOL
+        fresh[live] = step > _CHORD_STEP
         done[live[conv & ~bad]] = True
         live = live[~(conv | bad)]
     R = np.exp(u)
