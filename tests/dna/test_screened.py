@@ -570,3 +570,17 @@ def test_free_energy_coexistence_and_hat_points_through_newton_match_direct(
         np.testing.assert_allclose(x.extension, y.extension, rtol=1e-8)
         np.testing.assert_allclose(x.torque, y.torque, rtol=1e-8, atol=1e-8 * np.max(
             np.abs(y.torque)))
+
+
+@pytest.mark.parametrize("salt", [5.0, 10.0])
+def test_fold_peak_with_newton_tilts_is_the_maximum_of_the_tension(dna150, salt, monkeypatch):
+    # the fold's refined maximum of T(R) with tilts by Newton from the grid (_tilt_near)
+    # is the one found with bracketed tilts: the same T_max; R to the flatness of a maximum
+    B, f, br = _kernel(_at_salt(dna150, salt))
+    assert br.fold
+    monkeypatch.setattr(eq, "_tilt_near", lambda R, a0, B, p: eq.solve_tilt(R, B, p))
+    ref = eq.branch_table(B, f, 1e-9, 1e-6)
+    assert br.tension[0] == pytest.approx(ref.tension[0], rel=1e-13)
+    assert br.radius[0] == pytest.approx(ref.radius[0], rel=1e-6)
+    R = br.radius[0] * np.array([1 - 1e-3, 1 + 1e-3])
+    assert np.all(eq.tension(eq.solve_tilt(R, B, f), R, B, f) < br.tension[0])

@@ -156,11 +156,33 @@ def solve_tilt(R, B, partials, strict=True):
     return np.where(bad, np.nan, res.x)
 
 
-def _peak(B, partials, u):
-    """Refined maximum of T(log R) bracketed by the three grid points ``u``."""
+def _tilt_near(R, a0, B, partials):
+    """Root of (GE2) in alpha near ``a0`` by Newton (forward-difference slope), or by
+    :func:`solve_tilt` where Newton leaves (0, pi/4) or does not settle in 8 steps."""
+    a = np.full(np.shape(R), a0, dtype=float)
+    for _ in range(8):
+        h = tilt_residual(np.stack([a, a + _FD_STEP]), np.stack([R, R]), B, partials)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = -h[0] * _FD_STEP / (h[1] - h[0])
+        a = a + step
+        if not np.all(np.isfinite(a) & (a > 0.0) & (a < _ALPHA_HI)):
+            break
+        if np.all(np.abs(step) < _NEWTON_TOL):
+            return a
+    return solve_tilt(R, B, partials)
+
+
+def _peak(B, partials, u, alpha0=None):
+    """Refined maximum of T(log R) bracketed by the three grid points ``u``.
+
+    With ``alpha0`` (the tilt at ``u[1]``) each evaluation's tilt is found by Newton
+    from it (:func:`_tilt_near`; 0.11 s -> 0.01 s at 10 mM), else by :func:`solve_tilt`.
+    """
     def neg_t(x):
         R = np.exp(x)
-        return -tension(solve_tilt(R, B, partials), R, B, partials)
+        a = solve_tilt(R, B, partials) if alpha0 is None else _tilt_near(R, alpha0, B,
+                                                                          partials)
+        return -tension(a, R, B, partials)
 
     res = find_minimum(neg_t, (u[0], u[1], u[2]), tolerances=dict(xatol=1e-12, xrtol=0.0))
     R = float(np.exp(res.x))
@@ -209,7 +231,7 @@ def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOO
         R = R.copy()
         alpha = alpha.copy()
         T = T.copy()
-        R[0], alpha[0], T[0] = _peak(B, partials, u)
+        R[0], alpha[0], T[0] = _peak(B, partials, u, alpha[0])
     if T[0] <= 0.0 or R.size < 2:
         raise NoEquilibriumError("no stable plectoneme branch with positive tension")
     for arr in (R, alpha, T):
