@@ -344,7 +344,8 @@ def _solve_free_newton(flat, B, partials, branch):
         aj, uj = a[nj], u[nj]
         A = np.concatenate([al, aj + _FD_STEP, aj])
         U = np.concatenate([ul, uj, uj + _FD_STEP])
-        h, T, _, _ = _h_t_m(A, np.exp(U), B, partials)
+        with np.errstate(all="ignore"):  # a wild iterate is caught below (fallback)
+            h, T, _, _ = _h_t_m(A, np.exp(U), B, partials)
         h0, g0 = h[:m], T[:m] - F
         base = fresh[live]
         c = nj.size
@@ -359,14 +360,18 @@ def _solve_free_newton(flat, B, partials, branch):
             du = -(h_a * g0 - g_a * h0) / det
         a[live] = al + da
         u[live] = ul + du
-        bad = ~(np.isfinite(da) & np.isfinite(du))
+        # leaving the bracket (by more than its width) or (0, pi/4): the direct solve
+        kl = k[live]
+        width = u_t[kl + 1] - u_t[kl]
+        bad = ~(np.isfinite(da) & np.isfinite(du) & (a[live] > 0.0) & (a[live] < _ALPHA_HI)
+                & (u[live] > u_t[kl] - width) & (u[live] < u_t[kl + 1] + width))
         step = np.maximum(np.abs(da), np.abs(du))
         conv = step < _NEWTON_TOL
         fresh[live] = step > _CHORD_STEP
         done[live[conv & ~bad]] = True
         live = live[~(conv | bad)]
     R = np.exp(u)
-    with np.errstate(invalid="ignore", over="ignore"):
+    with np.errstate(all="ignore"):  # forces not done are not used (fallback)
         h, T, M, h_scale = _h_t_m(a, R, B, partials)
         span = np.abs(a_t[k + 1] - a_t[k]) + _TILT_SLACK
         ok = (done & (u >= u_t[k] - 1e-12) & (u <= u_t[k + 1] + 1e-12)
