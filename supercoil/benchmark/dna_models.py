@@ -98,3 +98,35 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
             for model in models:
                 add(f"{label} at {force * 1e12:g} pN", model, n, t[model])
     return rows
+
+
+def screened_equilibrium_cost(dna=None, n_forces=1000, repeat=3):
+    """CPU time per force of the screened equilibrium: Newton (default) against the direct
+    nested solve it replaced (``method="direct"``, the reference), forces 0.05-5 pN.
+
+    Rows as :func:`model_cost` (``ratio_to_li_zhao`` here: time over the direct solve's).
+    """
+    import supercoil as sc
+    from supercoil.core.dna import equilibrium as eq
+    from supercoil.dna.interactions import Screened
+    from supercoil.dna.interactions import screened as scm
+
+    d = (dna or sc.load_parameters("dna_150mM_nacl")).si
+    inter = Screened()
+    _, lam, pref = inter._functions(d)
+    B = d.bending_rigidity
+    f = scm._partials_function(B, d.kT, lam, pref, inter.values["confinement"])
+    branch, contact = inter.branch(d), inter.contact_branch(d)
+    forces = np.geomspace(0.05e-12, 5e-12, n_forces)
+    methods = ("direct", "newton")
+    t = interleaved_cpu({m: lambda m=m: eq.solve_equilibrium(forces, B, f, branch, contact,
+                                                             method=m) for m in methods},
+                        samples=repeat)
+    rows = {k: [] for k in UNITS}
+    for m in methods:
+        for key, v in (("measurement", f"screened equilibrium, {n_forces} forces 0.05-5 pN"),
+                       ("model", m), ("points", n_forces), ("time", t[m]),
+                       ("per_item", t[m] / n_forces), ("rate", n_forces / t[m]),
+                       ("ratio_to_li_zhao", t[m] / t["direct"])):
+            rows[key].append(v)
+    return rows

@@ -520,3 +520,120 @@ def test_the_shipped_10mM_set_jumps_to_contact_at_5_03_pN():
         jump = brentq(lambda f, radius=radius: radius(f) - 1.5, 4.5, 5.5, xtol=1e-5)
         assert jump == pytest.approx(force, abs=1e-3)
         assert radius(jump - 1e-3) > 2.4 and radius(jump + 1e-3) == pytest.approx(1.0)
+
+
+# ---- the Newton solver against the direct nested solve (issue 24) ------------------
+
+
+def _kernel(dna, **kw):
+    inter = Screened(**kw)
+    si, lam, pref = inter._functions(dna)
+    B = si.bending_rigidity
+    from supercoil.dna.interactions import screened as scm
+
+    f = scm._partials_function(B, si.kT, lam, pref, inter.values["confinement"])
+    return B, f, inter.branch(si)
+
+
+def _forces_on_branch(br, n=40):
+    lo = max(0.05e-12, (0.0 if br.ends_at_zero else br.tension[-1]) * (1 + 1e-9))
+    hi = min(50e-12, br.tension[0])
+    F = np.geomspace(lo, hi, n)
+    near_top = hi * (1.0 - 10.0 ** -np.arange(2.0, 13.0, 2.0))  # towards T_max (fold)
+    nodes = br.tension[(br.tension > lo) & (br.tension <= hi)][::5]
+    return np.concatenate([F, near_top, nodes])
+
+
+@pytest.mark.parametrize("salt", [5.0, 30.0, 150.0, 1000.0])
+@pytest.mark.parametrize("kw", [{}, {"confinement": 0.0}, {"charge_fraction": 0.4}])
+def test_newton_equilibrium_matches_the_direct_solve(dna150, salt, kw):
+    B, f, br = _kernel(_at_salt(dna150, salt), **kw)
+    F = _forces_on_branch(br)
+    ref = eq.solve_equilibrium(F, B, f, br, method="direct")
+    new = eq.solve_equilibrium(F, B, f, br)
+    for x, y in zip(new, ref, strict=True):  # alpha, R, torque
+        np.testing.assert_allclose(x, y, rtol=1e-10, atol=0.0)
+
+
+def test_newton_converges_without_the_fallback_inside_the_branch(dna150):
+    # the speed-up is real only if the fallback is rare: away from the fold and the
+    # branch ends every force converges by Newton alone
+    B, f, br = _kernel(dna150)
+    F = np.geomspace(0.01e-12, br.tension[0] * 0.99, 200)
+    ok = eq._solve_free_newton(F, B, f, br)[3]
+    assert np.all(ok)
+
+
+@pytest.mark.parametrize("method", ["newton", "direct"])
+def test_direct_and_newton_solve_at_a_node_and_at_the_branch_top(dna150, method):
+    # failed before: a force equal to a table node's tension, or within rounding below a
+    # hard-core-started branch's top, gave "root finding did not converge" (T recomputed
+    # at exp(log R) lay a few ulp on the wrong side: no sign change in the bracket)
+    B, f, br = _kernel(dna150)
+    assert not br.fold
+    F = np.array([br.tension[7], br.tension[0] * (1 - 1e-15), br.tension[0]])
+    alpha, R, _ = eq.solve_equilibrium(F, B, f, br, method=method)
+    assert R[0] == pytest.approx(br.radius[7], rel=1e-12)
+    assert R[1:] == pytest.approx(br.radius[0], rel=1e-12)
+    ge2 = eq.tilt_residual(alpha, R, B, f)
+    assert np.all(np.abs(ge2) < 1e-12 * np.abs(eq.torque(alpha, R, B, f) / R))
+
+
+@pytest.mark.parametrize("salt, kw", [(5.0, {}), (150.0, {}), (150.0, {"confinement": 0.0})])
+def test_newton_and_direct_raise_the_same_errors_beyond_the_branch(dna150, salt, kw):
+    B, f, br = _kernel(_at_salt(dna150, salt), **kw)
+    bad = [-1e-12, 0.0, br.tension[0] * (1 + 1e-9), 1e-9]
+    if not br.ends_at_zero:
+        bad.append(br.tension[-1] * 0.5)
+    for F in bad:
+        msgs = []
+        for method in ("newton", "direct"):
+            with pytest.raises(NoEquilibriumError) as err:
+                eq.solve_equilibrium(np.array([1e-12, F]), B, f, br, method=method)
+            msgs.append(str(err.value))
+        assert msgs[0] == msgs[1] and "pN" in msgs[0]
+    with pytest.raises(ValueError, match="method"):
+        eq.solve_equilibrium(np.array([1e-12]), B, f, br, method="chandrupatla")
+
+
+@pytest.mark.parametrize("c", [10.0, 150.0])
+def test_free_energy_coexistence_and_hat_points_through_newton_match_direct(
+        dna150, c, monkeypatch):
+    import functools
+
+    from supercoil.dna.models import get_model
+
+    si = _at_salt(dna150, c).si
+    model, inter = get_model("free-energy"), Screened()
+    F = np.array([0.3, 1.0, 2.5]) * 1e-12
+    N = np.linspace(-40.0, 40.0, 41)
+
+    def run():
+        b = model.buckling(F, si, True, inter)
+        pts = [model.points(N, np.full(N.shape, f), si, True, inter, None) for f in F]
+        return b, pts
+
+    b_new, p_new = run()
+    direct = functools.partial(eq.solve_equilibrium, method="direct")
+    monkeypatch.setattr(eq, "solve_equilibrium", direct)
+    b_ref, p_ref = run()
+    np.testing.assert_allclose(b_new.turns, b_ref.turns, rtol=1e-8)
+    np.testing.assert_allclose(b_new.slope, b_ref.slope, rtol=1e-8)
+    for x, y in zip(p_new, p_ref, strict=True):
+        np.testing.assert_allclose(x.extension, y.extension, rtol=1e-8)
+        np.testing.assert_allclose(x.torque, y.torque, rtol=1e-8, atol=1e-8 * np.max(
+            np.abs(y.torque)))
+
+
+@pytest.mark.parametrize("salt", [5.0, 10.0])
+def test_fold_peak_with_newton_tilts_is_the_maximum_of_the_tension(dna150, salt, monkeypatch):
+    # the fold's refined maximum of T(R) with tilts by Newton from the grid (_tilt_near)
+    # is the one found with bracketed tilts: the same T_max; R to the flatness of a maximum
+    B, f, br = _kernel(_at_salt(dna150, salt))
+    assert br.fold
+    monkeypatch.setattr(eq, "_tilt_near", lambda R, a0, B, p: eq.solve_tilt(R, B, p))
+    ref = eq.branch_table(B, f, 1e-9, 1e-6)
+    assert br.tension[0] == pytest.approx(ref.tension[0], rel=1e-13)
+    assert br.radius[0] == pytest.approx(ref.radius[0], rel=1e-6)
+    R = br.radius[0] * np.array([1 - 1e-3, 1 + 1e-3])
+    assert np.all(eq.tension(eq.solve_tilt(R, B, f), R, B, f) < br.tension[0])

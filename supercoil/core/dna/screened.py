@@ -124,15 +124,15 @@ def electrostatic_partials(alpha, radius, debye, prefactor):
     """``(w_el, dw_el/dalpha, dw_el/dR)`` in (J/m, J/m, J/m^2)."""
     alpha, radius, z, dz = _nodes(alpha, radius, debye)
     d, q, R = _distance(alpha, radius, z)
-    e = np.exp(-d / debye) / d
-    de_dd = -np.exp(-d / debye) * (1.0 / (debye * d) + 1.0 / (d * d))
-    sin_q = np.sin(q)
-    dd_dR = (4.0 * R * (1.0 + np.cos(q)) + 2.0 * R * q * sin_q) / (2.0 * d)
-    s2a = np.sin(2.0 * alpha)[..., None]
-    dd_da = (-4.0 * R * R * q * sin_q / s2a) / (2.0 * d)
+    inv_d = 1.0 / d
+    e = np.exp(-d / debye) * inv_d
+    # d/dd [exp(-d/lambda)/d] = -e (1/lambda + 1/d), times dd = d(d^2) / (2d); the
+    # constant 1/sin(2 alpha) of d(d^2)/dalpha taken out of the sum
+    g = e * (1.0 / debye + inv_d) * (0.5 * inv_d) * dz
+    q_sin_q = q * np.sin(q)
     I = 2.0 * np.sum(e * dz, axis=-1)
-    I_R = 2.0 * np.sum(de_dd * dd_dR * dz, axis=-1)
-    I_a = 2.0 * np.sum(de_dd * dd_da * dz, axis=-1)
+    I_R = -2.0 * np.sum(g * (4.0 * R * (1.0 + np.cos(q)) + 2.0 * R * q_sin_q), axis=-1)
+    I_a = 2.0 * np.sum(g * (4.0 * R * R * q_sin_q), axis=-1) / np.sin(2.0 * alpha)
     c = np.cos(alpha)
     k = prefactor / (2.0 * c)
     w = k * I
