@@ -223,3 +223,20 @@ def test_fit_to_synthetic_data_recovers_parameters():
     fit = least_squares(res, [16.0, 0.1, 1.5], bounds=([5, -0.5, 0.5], [40, 0.9, 6]),
                         x_scale=[5, 0.2, 1], diff_step=1e-5)
     np.testing.assert_allclose(fit.x, [13.0, 0.25, 2.0], rtol=1e-3)
+
+
+def test_forces_outside_the_evaluated_range_are_named_errors():
+    """At 0.01 pN and 1e30 pN the coexistence solve left the float range with raw numpy
+    warnings (found by the property sweep): now a ValidityError naming the force and range."""
+    import warnings
+
+    import supercoil as sc
+    from supercoil.exceptions import ValidityError
+
+    u = sc.ureg
+    dna = sc.load_parameters("dna_150mM_nacl")
+    for F in (0.01, 1e30):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            with pytest.raises(ValidityError, match=r"ensemble model at force .* outside \[kT/"):
+                sc.hat_curve(dna, F * u.pN, [0.0, 10.0], model="ensemble")

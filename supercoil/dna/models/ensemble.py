@@ -18,7 +18,7 @@ import numpy as np
 from supercoil.core.dna import ensemble as _en
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.dna.parameters import ModelParameter
-from supercoil.exceptions import ModelError
+from supercoil.exceptions import ModelError, ValidityError
 
 __all__ = ["Ensemble"]
 
@@ -27,6 +27,26 @@ _FIT = ("fit of this model to the averaged rotation curves of Qian et al., bioRx
         "sides), docs/theory/ensemble.md#5-fit")
 _BP = 0.34e-9  # rise per base pair of B-DNA, m
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
+#: the forces where the ensemble is evaluated: from kT/(4A) (0.02 pN for A = 50 nm; at
+#: 0.01 pN the coexistence solve leaves the float range, measured) to 1e6 pN (at 1e30 pN
+#: it does too); outside, a ValidityError naming the force and the limit
+FORCE_MIN_PER_KT_OVER_A = 0.25
+FORCE_MAX = 1e-6
+
+
+def check_forces(force, dna):
+    """ValidityError naming the force outside ``[kT/(4A), 1e6 pN]``."""
+    f = np.asarray(force, float)
+    if not f.size:
+        return
+    lo = FORCE_MIN_PER_KT_OVER_A * dna.kT / dna.bending_persistence
+    bad = (f < lo) | (f > FORCE_MAX)
+    if np.any(bad):
+        x = float(f[bad].flat[0])
+        raise ValidityError(
+            f"ensemble model at force {x * 1e12:.6g} pN: outside [kT/(4A) = {lo * 1e12:.4g} pN, "
+            f"{FORCE_MAX * 1e12:.0e} pN], where its phases are evaluated (below, the "
+            "worm-like-chain tail is not stretched: no coexistence to solve)")
 
 
 def _p(name, unit, default, lo, hi, description, source):
@@ -128,6 +148,7 @@ class Ensemble(DNAModel):
 
     def buckling(self, force, dna, thermal, interaction=None):
         """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
+        check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
         f = np.asarray(force, float)
         Mb = _en.coexistence_torque(f, par)
@@ -139,6 +160,7 @@ class Ensemble(DNAModel):
 
     def points(self, turns, force, dna, thermal, interaction=None, short_tail_length=None):
         """Ensemble averages: extension, torque, plectoneme length, phase, G."""
+        check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
         pt = _en.points(np.asarray(turns, float).ravel(), np.asarray(force, float).ravel(),
                         par)
@@ -154,6 +176,7 @@ class Ensemble(DNAModel):
 
     def free_energy(self, turns, force, dna, thermal, interaction=None):
         """G(N, F) = -kT ln Z in J (ensemble.md#32-fixed-turns)."""
+        check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
         return _en.points(np.asarray(turns, float).ravel(), np.asarray(force, float).ravel(),
                           par).free_energy
