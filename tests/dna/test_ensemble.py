@@ -240,3 +240,19 @@ def test_forces_outside_the_evaluated_range_are_named_errors():
             warnings.simplefilter("error")
             with pytest.raises(ValidityError, match=r"ensemble model at force .* outside \[kT/"):
                 sc.hat_curve(dna, F * u.pN, [0.0, 10.0], model="ensemble")
+
+
+def test_no_finite_state_is_a_named_error():
+    """A = 10 nm at 0.178 pN and -106 turns: every configuration failed and the ensemble
+    subtracted inf from inf (a raw numpy warning, found by the family stability map)."""
+    import warnings
+
+    import supercoil as sc
+    from supercoil.exceptions import ValidityError
+
+    u = sc.ureg
+    dna = sc.load_parameters("dna_150mM_nacl").replace(bending_persistence=10 * u.nm)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValidityError, match="no state of finite free energy"):
+            sc.hat_curve(dna, 0.178 * u.pN, [-105.672, 0.0], model="ensemble")

@@ -152,7 +152,12 @@ def _compare(data, base, models=None):
     return table, [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
 
 
-@pytest.mark.parametrize("truth", sc.available_models())
+#: the closed-form and one-solve models (an ensemble fit costs ~100x one of these; its
+#: parameter recovery is tested in tests/dna/test_ensemble.py)
+COMPARED = ("free-energy", "li-zhao", "marko2007", "toy-rod")
+
+
+@pytest.mark.parametrize("truth", COMPARED)
 def test_compare_models_prefers_the_model_that_made_the_data(base, true_dna, truth):
     """Every registered model (li-zhao, free-energy, marko2007 on main, the toy): data made
     by model X (5 nm noise, 180 points) are best described by X, by AIC and BIC."""
@@ -162,7 +167,7 @@ def test_compare_models_prefers_the_model_that_made_the_data(base, true_dna, tru
     else:
         data = sc.simulate_rotation_curves(true_dna, FORCES * u.pN, points_per_force=60,
                                            noise=5 * u.nm, seed=2, model=truth)
-    table, fit_warnings = _compare(data, base, sc.available_models())
+    table, fit_warnings = _compare(data, base, list(COMPARED))
     assert table["success"].all(), table["error"]
     assert table.loc[0, "model"] == truth
     assert (table["delta_aic"].iloc[1:] > 10).all() and (table["delta_bic"].iloc[1:] > 10).all()

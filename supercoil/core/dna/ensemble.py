@@ -160,6 +160,13 @@ def points(turns, force, par):
         ms.append(np.full(G.shape, m, float))
     G, z, M, Lpk, melt, mk = (np.concatenate(a, axis=1) for a in (Gs, zs, Ms, ls, ths, ms))
     Gmin = G.min(axis=1, keepdims=True)
+    none = ~np.isfinite(Gmin[:, 0])
+    if np.any(none):  # every configuration failed (its torque solve or z <= 0)
+        i = int(np.flatnonzero(none)[0])
+        raise ValidityError(
+            f"ensemble model at force {F[i] * 1e12:.6g} pN, turns {N[i]:.6g}: no state of "
+            "finite free energy (no configuration's torque solve succeeded with a positive "
+            "extension; the tail is too weakly stretched for this stiffness)")
     w = np.exp(-(G - Gmin) / par.kT)
     Z = w.sum(axis=1)
     w /= Z[:, None]
