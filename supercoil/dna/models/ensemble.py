@@ -32,10 +32,15 @@ SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: it does too); outside, a ValidityError naming the force and the limit
 FORCE_MIN_PER_KT_OVER_A = 0.25
 FORCE_MAX = 1e-6
+#: the longest molecule (m) whose domain-length entropies stay in floats (1e300 nm overflowed)
+LENGTH_MAX = 1.0
 
 
 def check_forces(force, dna):
-    """ValidityError naming the force outside ``[kT/(4A), 1e6 pN]``."""
+    """ValidityError naming the force outside ``[kT/(4A), 1e6 pN]`` or a length beyond 1 m."""
+    if dna.length > LENGTH_MAX:
+        raise ValidityError(f"ensemble model: length L = {dna.length:.6g} m is beyond "
+                            f"{LENGTH_MAX:g} m, where its domain entropies leave the float range")
     f = np.asarray(force, float)
     if not f.size:
         return
