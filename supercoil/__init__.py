@@ -154,23 +154,15 @@ __all__ = [  # noqa: RUF022 (new names appended at the end: parallel merges stay
 ]
 
 
-# --- modules moved in 0.2 (issue 20, item 14): the 0.1 attribute warns and gives the new
+# --- modules moved in 0.2: the 0.1 attribute warns and gives the new
 # module; `import supercoil.<old>` goes through the shim modules supercoil/<old>.py.
 # Not in __all__; removed in 0.3.
-_MOVED = {"fitting": "supercoil.dna.fitting", "hat": "supercoil.dna.hat",
-          "plectoneme": "supercoil.dna.plectoneme", "tweezers_data": "supercoil.dna.tweezers",
-          "rough": "supercoil.rod.rough", "smooth": "supercoil.rod.smooth",
-          "spinning": "supercoil.rod.spinning", "design": "supercoil.rod.design"}
 _lazy_getattr = __getattr__
 
 
-def __getattr__(name):  # the lazy loader above, plus the moved modules
-    new = _MOVED.get(name)
-    if new is None:
-        return _lazy_getattr(name)
-    import importlib
-    import warnings
+def __getattr__(name):  # the lazy loader above, plus the 0.1 module paths (supercoil._moved)
+    from supercoil._moved import MOVED, warn_moved
 
-    warnings.warn(f"supercoil.{name} is deprecated: it moved to {new} (the old path is kept "
-                  "for one release)", DeprecationWarning, stacklevel=2)
-    return importlib.import_module(new)
+    if name in MOVED:
+        return warn_moved(name, stacklevel=2)
+    return _lazy_getattr(name)

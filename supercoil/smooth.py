@@ -1,17 +1,5 @@
 """Deprecated alias of :mod:`supercoil.rod.smooth` (moved in 0.2; removed in 0.3)."""
 
-import importlib as _importlib
-import warnings as _warnings
+from supercoil._moved import alias as _alias
 
-_warnings.warn("supercoil.smooth is deprecated: it moved to supercoil.rod.smooth "
-               "(the old path is kept for one release)", DeprecationWarning,
-               stacklevel=2)
-_new = _importlib.import_module("supercoil.rod.smooth")
-
-
-def __getattr__(name):
-    return getattr(_new, name)
-
-
-def __dir__():
-    return dir(_new)
+__getattr__, __dir__ = _alias("smooth")
