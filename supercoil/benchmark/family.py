@@ -94,7 +94,7 @@ def _fit_rms(fit):
 
 
 def family_precision(dna=None, turns_points=201, repeat=3, reference=REFERENCE,
-                     measured=None, only=None, log=None):
+                     measured=None, only=None, log=None, fit_below=None):
     """The work-precision rows of every registered model and interaction (dict of lists).
 
     Parameters
@@ -114,6 +114,10 @@ def family_precision(dna=None, turns_points=201, repeat=3, reference=REFERENCE,
         Keys of :func:`cases` to measure (default all).
     log : callable, optional
         Called with one line per case.
+    fit_below : float, optional
+        Fit only the constructions whose hat curve took at most this CPU time (s); the
+        others keep NaN fit columns (a fit costs tens of hat curves: the budget of
+        ``supercoil bench --smoke``). Default: fit every construction.
     """
     import supercoil as sc
 
@@ -136,8 +140,9 @@ def family_precision(dna=None, turns_points=201, repeat=3, reference=REFERENCE,
                                            repeat)
             row["extension_error"] = _rms(hat["extension"], ref["extension"])
             row["torque_error"] = _rms(hat["torque"], ref["torque"])
-            fit, row["fit_seconds"] = _cpu(lambda m=model, i=inter: _fit(data, dna, m, i), 1)
-            row["fit_rms"] = _fit_rms(fit)
+            if fit_below is None or row["hat_seconds"] <= fit_below:
+                fit, row["fit_seconds"] = _cpu(lambda m=model, i=inter: _fit(data, dna, m, i), 1)
+                row["fit_rms"] = _fit_rms(fit)
             if measured is not None:
                 row["measured_rms"] = _fit_rms(_fit(measured, dna, model, inter))
         except Exception as exc:  # a failing model is a row of the chart, named

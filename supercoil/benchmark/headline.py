@@ -3,9 +3,9 @@
 :func:`measure` runs the measurements of :mod:`~supercoil.benchmark.targets_dna`,
 :mod:`~supercoil.benchmark.targets_fit`, :mod:`~supercoil.benchmark.process` and
 :mod:`~supercoil.benchmark.dna_models` (sizes in :data:`FULL` or, for
-``--quick``, :data:`QUICK`); :func:`target_rows` turns them into one row per
-target: ``measurement`` (naming exactly what is timed: a public call such as
-``sc.hat_curve`` or a kernel such as
+``--quick``, :data:`QUICK`; for ``--smoke``, :data:`SMOKE`); :func:`target_rows`
+turns them into one row per target: ``measurement`` (naming exactly what is timed:
+a public call such as ``sc.hat_curve`` or a kernel such as
 ``supercoil.core.dna.hat.hat_curve_points``, and the size), ``value``,
 ``unit``, ``target``, ``met`` and ``note``. Times are CPU times
 (``time.process_time``, medians of interleaved samples) except the ones a
@@ -34,14 +34,27 @@ QUICK = {"hat_n": 10**5, "hat_mem": (10**4, 10**5), "eq_n": 1000, "eq_mem": 10**
          "pool_repeats": 1,
          "import_repeat": 0, "cli_repeat": 0, "model_forces": 100, "model_sizes": (1_000,),
          "samples": 2}
+#: sizes of ``supercoil bench --smoke``: every row measured once at the smallest sizes
+#: that still exercise it (the hat curve above glibc's 1 MB mmap threshold, two molecules
+#: on the pool), the test suite's run; its values say nothing about speed
+SMOKE = {"hat_n": 2 * 10**5, "hat_mem": (10**4, 2 * 10**5), "eq_n": 100, "eq_mem": 10**4,
+         "loader_rows": 1_000, "fit_samples": 1, "pooled": 2, "replayed": (2, 4),
+         "pool_repeats": 1,
+         "import_repeat": 0, "cli_repeat": 0, "model_forces": 20, "model_sizes": (100,),
+         "samples": 1}
 MODELS = ("li-zhao", "free-energy", "marko2007")
 
 
-def measure(quick=False, log=print):
-    """Run every headline measurement; a dict of result dicts by group."""
+def measure(quick=False, log=print, size=None):
+    """Run every headline measurement; a dict of result dicts by group.
+
+    ``size`` ("full", "quick" or "smoke") overrides ``quick``.
+    """
     from supercoil.benchmark import dna_models, process, targets_dna, targets_fit
 
-    s = QUICK if quick else FULL
+    size = size or ("quick" if quick else "full")
+    quick = size != "full"
+    s = {"full": FULL, "quick": QUICK, "smoke": SMOKE}[size]
     r = {"load_start": os.getloadavg()[0]}
     log("headline: hat curve and plectoneme equilibrium (CPU, interleaved) ...")
     # quick: no compiled kernel (its compilation in each child would dominate the run)

@@ -106,12 +106,12 @@ def _charts(wp, hat, ub, out):
     plt.close(fig)
 
 
-def _headline_step(out, quick, log, machine, legacy):
+def _headline_step(out, size, log, machine, legacy):
     """Measure the headline targets; write dna_model_cost.csv, headline.csv and headline.md."""
     from supercoil.benchmark import dna_models, headline
     from supercoil.tables import make_table, provenance, write_csv
 
-    res = headline.measure(quick=quick, log=log)
+    res = headline.measure(size=size, log=log)
     write_csv(make_table(res["models"], dna_models.UNITS, provenance(None, machine=machine)),
               out / "dna_model_cost.csv")
     head = _headline_table(headline.target_rows(res) + legacy, machine)
@@ -122,26 +122,58 @@ def _headline_step(out, quick, log, machine, legacy):
     return head
 
 
-def run(out, quick=False, log=print):
-    """Run every benchmark, write charts and tables into ``out``; returns the headline table."""
+#: the sizes of each run: ``supercoil bench`` ("full"), ``--quick`` and ``--smoke``
+#: (the smallest run that still writes and fills every chart and table: the test suite's;
+#: its numbers say nothing about speed)
+SIZES = {
+    "full": {"rod_tolerances": None, "repeat": 3, "eq_forces": 200, "eq_tolerances": None,
+             "hat_sizes": (100, 1_000, 10_000, 100_000, 1_000_000), "ub_sizes": None,
+             "stability_quick": False, "family_points": 401, "family_repeat": 3,
+             "family_fit_below": None},
+    "quick": {"rod_tolerances": "every third", "repeat": 2, "eq_forces": 50,
+              "eq_tolerances": (1e-2, 1e-6, 1e-10, 1e-14), "hat_sizes": (100, 10_000, 1_000_000),
+              "ub_sizes": (1, 10_000), "stability_quick": True, "family_points": 101,
+              "family_repeat": 1, "family_fit_below": None},
+    # smoke: three tolerances still span the orders of magnitude of the charts (LSODA fails
+    # at 1e-3); the stability map is the quick one (computed once per process, and the
+    # stability tests need it anyway); fits only of the models whose hat curve is cheap
+    # (the ensemble's fit alone costs over 10 s)
+    "smoke": {"rod_tolerances": (1e-3, 1e-6, 1e-11), "repeat": 1, "eq_forces": 10,
+              "eq_tolerances": (1e-2, 1e-6, 1e-10, 1e-14), "hat_sizes": (100, 10_000),
+              "ub_sizes": (1, 100), "stability_quick": True, "family_points": 21,
+              "family_repeat": 1, "family_fit_below": 0.05},
+}
+
+
+def _size(quick, smoke):
+    return "smoke" if smoke else "quick" if quick else "full"
+
+
+def run(out, quick=False, log=print, smoke=False):
+    """Run every benchmark, write charts and tables into ``out``; returns the headline table.
+
+    ``quick`` and ``smoke`` pick the sizes of :data:`SIZES` (``smoke`` wins).
+    """
     import supercoil as sc
     from supercoil.benchmark import dna, family, rod, stability, unit_boundary, work_precision
     from supercoil.core.dna import plectoneme as pl
     from supercoil.tables import make_table, provenance, write_csv
 
+    size = _size(quick, smoke)
+    z = SIZES[size]
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     machine = machine_description()
-    log(f"supercoil bench on {machine}")
+    log(f"supercoil bench on {machine}" + ("" if size == "full" else f" ({size} sizes)"))
 
-    tols = rod.TOLERANCES[::3] if quick else rod.TOLERANCES
+    tols = {None: rod.TOLERANCES, "every third": rod.TOLERANCES[::3]}.get(
+        z["rod_tolerances"], z["rod_tolerances"])
     log("1/7 rough-rod profile: closed form vs solve_ivp ...")
-    rows = rod.rough_profile_work_precision(tolerances=tols, repeat=2 if quick else 3)
+    rows = rod.rough_profile_work_precision(tolerances=tols, repeat=z["repeat"])
     log("2/7 plectoneme equilibrium: tolerance, vectorised vs scalar loop ...")
-    eq_rows = dna.equilibrium_work_precision(n_forces=50 if quick else 200,
-                                             tolerances=[1e-2, 1e-6, 1e-10, 1e-14] if quick
-                                             else None, repeat=2 if quick else 3)
+    eq_rows = dna.equilibrium_work_precision(n_forces=z["eq_forces"],
+                                             tolerances=z["eq_tolerances"], repeat=z["repeat"])
     d = sc.load_parameters("dna").si
     forces = np.linspace(0.2e-12, 10e-12, 1000)
     eq1000 = best_time(lambda: pl.equilibrium(forces, d.bending_rigidity,
@@ -154,32 +186,32 @@ def run(out, quick=False, log=print):
     write_csv(wp_table, out / "bench_measurements.csv")
 
     log("3/7 hat curve: thermal vs athermal, cost per point ...")
-    hat_rows = dna.hat_cost(sizes=(100, 10_000, 1_000_000) if quick else
-                            (100, 1_000, 10_000, 100_000, 1_000_000))
+    hat_rows = dna.hat_cost(sizes=z["hat_sizes"])
     hat = make_table(hat_rows, {"variant": "", "points": "", "time": "s", "time_per_point": "s",
                                 "points_per_second": "1/s"}, provenance(None, machine=machine))
     write_csv(hat, out / "hat_curve_cost.csv")
 
     log("4/7 unit boundary ...")
-    ub = unit_boundary.run(sizes=(1, 10_000) if quick else unit_boundary.SIZES)
+    ub = unit_boundary.run(sizes=z["ub_sizes"] or unit_boundary.SIZES)
     write_csv(ub, out / "unit_boundary.csv")
 
     _charts(wp, hat, ub, out)
 
     log("5/7 stability map ...")
-    smap = stability.run(quick=quick)
+    smap = stability.run(quick=z["stability_quick"])
     write_csv(smap, out / "stability_map.csv")
     stability.plot(smap, out / "stability_map.png")
 
     log("6/7 the model family: cost against difference from the reference ...")
-    fam = make_table(family.family_precision(turns_points=101 if quick else 401,
-                                             repeat=1 if quick else 3, log=log),
+    fam = make_table(family.family_precision(turns_points=z["family_points"],
+                                             repeat=z["family_repeat"], log=log,
+                                             fit_below=z["family_fit_below"]),
                      family.UNITS, provenance(None, machine=machine, reference=family.REFERENCE,
                                               forces_pN=list(family.FORCES)))
     write_csv(fam, out / "family_precision.csv")
     family.plot(fam, out / "family_precision.png")
 
     log("7/7 headline targets ...")
-    head = _headline_step(out, quick, log, machine, _legacy_rows(wp, hat, ub, eq1000))
+    head = _headline_step(out, size, log, machine, _legacy_rows(wp, hat, ub, eq1000))
     log(f"done in {time.perf_counter() - t_start:.1f} s; outputs in {out}")
     return head

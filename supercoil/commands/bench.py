@@ -16,11 +16,15 @@ def register(sub):
     p.add_argument("--out", default="bench", help="output folder (default: bench)")
     p.add_argument("--quick", action="store_true",
                    help="fewer tolerances and smaller sizes (the row names give the sizes)")
+    p.add_argument("--smoke", action="store_true",
+                   help="the smallest sizes that still write every chart and table (a check "
+                   "that the benchmarks run, used by the test suite; not a measurement)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from supercoil.benchmark import suite
 
-    suite.run(args.out, quick=args.quick, log=lambda msg: print(msg, file=sys.stderr))
+    suite.run(args.out, quick=args.quick, smoke=args.smoke,
+              log=lambda msg: print(msg, file=sys.stderr))
     return 0
