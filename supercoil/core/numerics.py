@@ -20,7 +20,7 @@ solver                         workload                          scipy time /   
 k = 0 rough tilt, Newton in y  2000 arclengths (find_root)       12.8x           own
 (core/rod/rough.k0_y_of_s)
 s(y) inversion, Newton         2000 points, k = 0 / -20 rad/m    2.8x / 5.5x     own
-(core/rod/rough_ode)           (find_root)
+(core/rod/rough_solution)           (find_root)
 :func:`cumulative_integrals`   Tw, Wr of the k = 0 helix on      177x            own
                                860 panels (tanhsinh)
 :func:`finite_difference`      designed pitch P(s), 2001 points  17x             own
@@ -98,7 +98,7 @@ def safe_newton(fun, x, lo, hi, xtol, maxiter=100):
     ``maxiter`` steps at most.
 
     Kept hand-written by measurement: on the (GE2) tilt of the DNA plectoneme
-    (600 reduced radii, :func:`supercoil.core.dna.plectoneme.solve_tilt`)
+    (600 reduced radii, :func:`supercoil.core.dna.plectoneme.reduced_tilt`)
     scipy.optimize.elementwise.find_root takes 3.7x its time (0.44 ms vs
     1.6 ms) for the same roots (2e-16 apart): Newton uses the analytic
     derivative the caller already has.
