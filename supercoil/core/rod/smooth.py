@@ -30,7 +30,7 @@ TWO_PI = 2.0 * np.pi
 
 #: Elements per block of the smooth and twist-spinning solvers: their temporaries (a few
 #: tens of arrays of the block, 64 kB each) stay in the CPU cache, and the memory beyond
-#: the output is bounded by the block, not by the input (issue 20, item 13).
+#: the output is bounded by the block, not by the input.
 BLOCK = 8192
 
 #: Half-width of the window around the Newton estimate, relative, in which

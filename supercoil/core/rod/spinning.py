@@ -94,7 +94,7 @@ def spinning_tilt(turns_abs, head_tension, r, L, B, C):
 
     out = np.empty(n.shape)
     flat = out.reshape(-1)
-    for start in range(0, n.size, BLOCK):  # blocks: bounded temporaries (issue 20, item 13)
+    for start in range(0, n.size, BLOCK):  # blocks: temporaries bounded by the block
         nb, Tb = n.flat[start:start + BLOCK], Tp.flat[start:start + BLOCK]
         flat[start:start + BLOCK] = bisect_from_estimate(
             _G, _G_df, (nb, Tb, r, B, C), np.zeros(nb.shape), np.full(nb.shape, sc.QUARTER_PI))
