@@ -387,7 +387,7 @@ def test_rough_helix_names_a_wrong_material(material):
 
 
 # ---------------------------------------------------------------------------
-# issue 20: empty inputs, absurd molecules, and the fitting / design surface
+# empty inputs, absurd molecules, and the fitting / design surface
 # ---------------------------------------------------------------------------
 
 #: the DNA functions of FUNCTIONS (every model and interaction) that take a force
@@ -458,10 +458,10 @@ MAGNITUDES = (1e-300, 1e-30, 1e-3, 1e3, 1e30, 1e300)
 
 
 def known_model_defect(field, value, call):
-    """Outcomes still wrong in modules outside issue 20's DNA-surface fixes (listed in the
-    round-3 note): marko2007 overflows (raw warning) at
-    C_t = 1e300 nm; at t = 1e300 K li-zhao warns raw and the Moroz-Nelson C_eff is NaN;
-    the simulation at L = 1e-300 nm or t = 1e300 K warns raw before its named error."""
+    """Outcomes still wrong in modules outside the DNA-surface fixes: marko2007 overflows
+    (raw warning) at C_t = 1e300 nm; at t = 1e300 K li-zhao warns raw and the Moroz-Nelson
+    C_eff is NaN; the simulation at L = 1e-300 nm or t = 1e300 K warns raw before its named
+    error."""
     if "marko2007" in call:
         return field == "twist_persistence" and value == 1e300
     if call in ("hat_curve li-zhao hard-core", "buckling_turns li-zhao hard-core",
@@ -517,7 +517,7 @@ def test_the_extreme_molecules_of_the_default_model(field, value):
             check_absurd(field, value, call)
 
 
-@pytest.mark.xfail(strict=True, reason="known model defects outside issue 20's DNA-surface "
+@pytest.mark.xfail(strict=True, reason="known model defects outside the DNA-surface "
                                        "fixes (known_model_defect); strict: a fix shows here")
 @pytest.mark.parametrize("case", [
     ("temperature", 1e300, "effective_twist_rigidity")])

@@ -2,7 +2,7 @@
 
 tests/rod/data/smooth_spinning_reference.json holds every field of both records on a
 12 x 4 and a 12 x 5 grid (turns from 1e-3 to 55.5, both signs; slack 0-33.3 cm; head
-tension 0-17 N), written with repr() by the implementation before issue 20, item 13
+tension 0-17 N), written with repr() by the implementation before the block-wise solver
 (commit d9eedab: one bisection over the whole array).
 """
 
