@@ -113,13 +113,19 @@ def _xy(alpha, R, B, partials):
 
 
 def tilt_residual(alpha, R, B, partials):
-    """``h = -R^2 (GE2) = (sin 2a / 2) X + R cos(2a) Y`` (N)."""
+    """``h = -R^2 (GE2) = (sin 2a / 2) X + R cos(2a) Y`` (N).
+
+    Implements docs/theory/plectoneme.md (GE2).
+    """
     X, Y, _, _ = _xy(alpha, R, B, partials)
     return np.sin(2.0 * alpha) * 0.5 * X + R * np.cos(2.0 * alpha) * Y
 
 
 def torque(alpha, R, B, partials):
-    """(GE1) torque ``M = C omega = X / tau_alpha = R X / cos(2 alpha)`` (N m)."""
+    """(GE1) torque ``M = C omega = X / tau_alpha = R X / cos(2 alpha)`` (N m).
+
+    Implements docs/theory/plectoneme.md (GE1).
+    """
     X, _, _, _ = _xy(alpha, R, B, partials)
     return R * X / np.cos(2.0 * alpha)
 
@@ -410,6 +416,8 @@ def _solve_free(flat, B, partials, branch, xatol, method):
 
 def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, method="newton"):
     """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
+
+    Implements docs/theory/plectoneme.md (GE1, GE2).
 
     Each force is solved on the free branch (if it lies in its range) and on the contact
     branch R = a (:mod:`supercoil.core.dna.contact`, if given and the force lies in its

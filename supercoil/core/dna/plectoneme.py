@@ -273,6 +273,8 @@ def solve_reduced(T_target, b, rtol=EQUILIBRIUM_RTOL):
 def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
     """Plectoneme equilibrium at fixed force: solves (GE1), (GE2) and the tension equation.
 
+    Implements docs/theory/plectoneme.md (GE1, GE2).
+
     Parameters
     ----------
     force : float or array

@@ -43,6 +43,8 @@ MAX_NFEV = 100_000
 def dy_ds(s, y, k, r, L, B, C):
     """Right side of [eq da/ds] in ``y = 1 - cos 2a`` (1/m); ``k = k(2s)`` in rad/m.
 
+    Implements docs/theory/rough.md (eq da/ds).
+
     ``dy/ds = -2C / (B (L - 2s)) c^2 / (c^2 + c + 1) [(2 - y) - 2 r k sqrt((2 - y)/y)]``
     with ``c = 1 - y``. The k = 0 part is smooth in y through y = 0 and is
     evaluated there as it is (trial stages of explicit solvers step to y < 0
