@@ -57,7 +57,7 @@ class ParabolaRod(DNAModel):
     def has_free_energy(self, thermal):
         return True
 
-    def buckling(self, force, dna, thermal, interaction):
+    def _buckling(self, force, dna, thermal, interaction):
         inf = np.full(np.shape(force), np.inf)
         return Buckling(inf, inf, np.full(np.shape(force), -0.0))
 
@@ -72,14 +72,14 @@ class ParabolaRod(DNAModel):
         M = 2 * force * k * a**2 * om + dna.torsional_rigidity * om
         return G, z, M
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         turns = np.asarray(turns, float)
         G, z, M = self._g(turns, np.asarray(force, float), dna)
         zeros = np.zeros(turns.shape)
         return HatPoints(z, M, zeros, zeros.astype(np.int8), zeros.astype(bool),
                          z / dna.length, G)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         return self._g(turns, np.asarray(force, float), dna)[0]
 
 

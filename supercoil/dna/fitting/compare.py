@@ -246,7 +246,8 @@ def model_labels(models):
 
 def _details(m, fmt):
     """``"(option=..., parameter=...)"`` for what differs from the defaults, else ``""``."""
-    parts = [f"{k}={v}" for k, v in m.options().items() if v != m.OPTIONS[k]]
+    defaults = m.option_defaults()
+    parts = [f"{k}={v}" for k, v in m.options().items() if v != defaults[k]]
     for k, q in m.quantities().items():
         if m.values[k] != m.parameters[k].default:
             parts.append(f"{k}={format(q, fmt + '~P')}")
