@@ -197,10 +197,17 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     prov = provenance(dna, models=[r["model"] for r in rows],
                       vary={k: list(v) for k, v in vary.items()} if isinstance(vary, dict)
                       else list(vary),
-                      thermal=thermal, interaction=str(getattr(interaction, "name", interaction)),
+                      thermal=thermal, interaction=_interaction_name(interaction),
                       criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
     table = make_table(cols, all_units, prov)
     return (table, results) if return_results else table
+
+
+def _interaction_name(interaction):
+    """The provenance entry of ``interaction``: its registry name (a name or an instance)."""
+    from supercoil.dna.interactions.base import Interaction
+
+    return str(interaction.name if isinstance(interaction, Interaction) else interaction)
 
 
 def _model_list(models):

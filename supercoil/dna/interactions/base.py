@@ -1,6 +1,6 @@
 """The interaction interface: the energy w(alpha, R) between the two plectoneme strands.
 
-The contract is the docstring of :class:`Interaction` (docs/theory/models.md#interactions):
+The contract is the docstring of :class:`Interaction` (docs/theory/models.md#the-interface):
 the energy per unit strand length of a uniform double helix of tilt ``alpha`` and radius
 ``R``, and the uniform plectoneme at a given tension (docs/theory/plectoneme.md): (GE1),
 (GE2) and ``T = -(1/2) B kappa^2 + C omega tau - w``. The DNA models that have a
