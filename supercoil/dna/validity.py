@@ -4,10 +4,11 @@ One place for the limits of the DNA models: the input checks (a DNA, a finite
 force), the shared physical limits (overstretching above 65 pN, denaturation
 under negative turns above 0.8 pN, the strands pressed inside the hard core,
 a stretched tail carrying more than the Euler torque, an extension longer than
-the contour length) and the emission of the warnings. The model-specific
-checks (e.g. the Moroz-Nelson bracket of ``"li-zhao"``) come from each
-model's :meth:`~supercoil.dna.models.base.DNAModel.validity`; the public
-layer issues all of them through :func:`warn`.
+the contour length) and the emission of the warnings. Each text is written
+here once: :meth:`~supercoil.dna.models.base.DNAModel.validity` applies the
+shared point limits (:func:`point_messages`) to every model and adds the
+model's own (e.g. the Moroz-Nelson bracket of ``"li-zhao"``); the public layer
+and the fits issue them (:func:`warn`).
 """
 
 from __future__ import annotations
