@@ -309,3 +309,15 @@ def test_a_module_in_a_model_package_is_registered_by_being_there(tmp_path, monk
     reg = Registry("model", DNAModel, "contract_pkg")
     assert reg.names() == ["contract-pkg-rod"]  # the imported DNAModel is not its own
     assert list(reg.package_classes()) == ["Rod"]
+
+
+@pytest.mark.parametrize("inter", ["hard-core", "screened"])
+def test_li_zhao_turns_at_a_tail_length_are_exact_for_any_interaction(inter, molecule):
+    """li-zhao's step is exact: at the returned turns its points have that tail, L - S = l."""
+    dna, model, interaction = molecule.si, get_model("li-zhao"), get_interaction(inter)
+    tail = 4 * dna.bending_persistence
+    n = model.turns_at_tail_length(FORCES, tail, dna, True, interaction)
+    p = model.points(n, FORCES, dna, True, interaction)
+    np.testing.assert_allclose(dna.length - p.plectoneme_length, tail, rtol=1e-6)
+    never = ParabolaRod().turns_at_tail_length(FORCES, tail, dna, True)
+    assert np.all(np.isposinf(never))  # a model that never buckles keeps its whole tail
