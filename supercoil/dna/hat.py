@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from supercoil._checks import check_flag
-from supercoil.core.dna import hat as _hc
+from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
 from supercoil.dna import validity as _v
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import DEFAULT_MODEL, get_model
@@ -278,7 +278,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
                                                      interaction, short_tail_length, 2)
     L = si.length
     if short is None:
-        short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
+        short = SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
     # The checks above read the SI arrays; now each fresh array becomes its display-unit
     # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)

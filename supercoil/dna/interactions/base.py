@@ -17,7 +17,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from supercoil.dna.parameters import ModelParameter, Parametrised
+from supercoil.dna.model_parameters import ModelParameter, Parametrised
 
 __all__ = ["Interaction"]
 
@@ -34,7 +34,7 @@ class Interaction(Parametrised, abc.ABC):
     implements; overriding a public method is a TypeError at class definition.
 
     Declarations (class attributes): ``name`` (registry key), ``summary`` (one line),
-    ``parameters`` (its own :class:`~supercoil.dna.parameters.ModelParameter`
+    ``parameters`` (its own :class:`~supercoil.dna.model_parameters.ModelParameter`
     declarations); instances are immutable, picklable and hold ``values`` (SI).
 
     Steps (float level, SI; ``dna`` a :class:`~supercoil.dna.material.DNASI`)

@@ -20,7 +20,7 @@ from supercoil._checks import check_flag
 from supercoil.core.dna.interface import HatPoints
 from supercoil.dna import validity as _v
 from supercoil.dna.material import DNASI
-from supercoil.dna.parameters import ModelParameter, Parametrised
+from supercoil.dna.model_parameters import ModelParameter, Parametrised
 from supercoil.exceptions import ModelError
 
 __all__ = ["Buckling", "DNAModel", "HatPoints", "unique_forces"]
@@ -55,10 +55,10 @@ class DNAModel(Parametrised, abc.ABC):
     never the public methods (overriding one is a TypeError at class definition).
 
     Declarations (class attributes; instances are immutable, picklable, hold ``values``
-    in SI and are built with keywords, :class:`~supercoil.dna.parameters.Parametrised`)
+    in SI and are built with keywords, :class:`~supercoil.dna.model_parameters.Parametrised`)
 
     * ``name`` (registry key), ``summary`` (one line), ``parameters`` (its own
-      :class:`~supercoil.dna.parameters.ModelParameter` declarations) and ``OPTIONS``
+      :class:`~supercoil.dna.model_parameters.ModelParameter` declarations) and ``OPTIONS``
       (boolean options and their defaults, e.g. ``{"end_loop": False}``; read them with
       :meth:`options` and :meth:`option_defaults`).
     * Capabilities, declared here once (a model sets the class attribute, or a property
