@@ -424,11 +424,11 @@ def test_a_model_giving_nan_is_caught_by_the_shared_layer(dna):
         summary = "returns NaN past 3 turns, never buckles"
         uses_interaction = False
 
-        def buckling(self, force, dna, thermal, interaction):
+        def _buckling(self, force, dna, thermal, interaction):
             inf = np.full(np.shape(force), np.inf)  # never buckles: allowed
             return Buckling(inf, inf, np.zeros(np.shape(force)))
 
-        def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+        def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
             z = np.where(np.abs(turns) > 3, np.nan, dna.length)
             zeros = np.zeros(np.shape(turns))
             return HatPoints(z, zeros, zeros, zeros.astype(np.int8), zeros.astype(bool),

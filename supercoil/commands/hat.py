@@ -141,7 +141,7 @@ def model_with_options(command, name, end_loop):
 
     if not end_loop:
         return get_model(name), None
-    if "end_loop" not in getattr(get_model(name), "OPTIONS", {}):
+    if "end_loop" not in get_model(name).options():
         with_loop = [m for m in _models_with_end_loop()]
         return None, (f"supercoil {command}: error: --end-loop: model {name!r} has no end loop "
                       f"(models with one: {', '.join(with_loop)})")
@@ -151,7 +151,7 @@ def model_with_options(command, name, end_loop):
 def _models_with_end_loop():
     from supercoil.dna.models import available_models, get_model
 
-    return [m for m in available_models() if "end_loop" in getattr(get_model(m), "OPTIONS", {})]
+    return [m for m in available_models() if "end_loop" in get_model(m).options()]
 
 
 def _interaction_arg(args):

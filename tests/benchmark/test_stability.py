@@ -390,7 +390,7 @@ class _Parabola(DNAModel):
     def has_free_energy(self, thermal):
         return True
 
-    def buckling(self, force, dna, thermal, interaction):
+    def _buckling(self, force, dna, thermal, interaction):
         inf = np.full(np.shape(force), np.inf)
         return Buckling(inf, inf, np.zeros(np.shape(force)))
 
@@ -402,13 +402,13 @@ class _Parabola(DNAModel):
         M = (2 * force * k * a**2 * om + dna.torsional_rigidity * om)
         return G, np.clip(z, 0, None), M * (1 + self.values["torque_error"])
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         G, z, M = self._state(turns, np.asarray(force, float), dna)
         zeros = np.zeros(np.shape(turns))
         return HatPoints(z, M, zeros, zeros.astype(np.int8), zeros.astype(bool),
                          z / dna.length, G)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         return self._state(turns, np.asarray(force, float), dna)[0]
 
 

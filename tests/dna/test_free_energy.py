@@ -305,7 +305,7 @@ def test_model_class_wraps_the_kernel(si):
     co = fe.coexistence(FORCES, *si[:4], equilibrium_of(si))
     np.testing.assert_array_equal(b.turns, co.buckling_turns)
     np.testing.assert_array_equal(b.slope, co.slope)
-    assert model.validity(N, F, p, dna, True) == []
+    assert model._validity(N, F, p, dna, True) == []
 
 
 @pytest.mark.parametrize(("force", "words"), [(0.105e-12, "<= 0"), (0.15e-12, "not converged")])
@@ -316,9 +316,9 @@ def test_model_validity_messages(force, words):
     N = np.array([0.0, 3.0, 8.0])  # stretched, stretched, plectoneme
     F = np.full(3, force)
     p = FreeEnergy().points(N, F, dna, True, HardCore(), None)
-    msgs = FreeEnergy().validity(N, F, p, dna, True)
+    msgs = FreeEnergy()._validity(N, F, p, dna, True)
     assert len(msgs) == 1 and words in msgs[0] and f"{force * 1e12:.6g} pN" in msgs[0]
-    assert FreeEnergy().validity(N, F, p, dna, False) == []
+    assert FreeEnergy()._validity(N, F, p, dna, False) == []
 
 
 def test_model_through_the_public_functions(dna):

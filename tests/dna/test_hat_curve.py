@@ -523,7 +523,7 @@ def test_validity_shortcuts_give_the_messages_of_the_full_masks(dna, f_pN, short
     np.testing.assert_equal(tuple(lean.summary), tuple(p.summary))
     expected = _validity_by_masks(n, f, p, si)
     for q in (p, p._replace(summary=None), lean, lean._replace(summary=None)):
-        assert model.validity(n, f, q, si, True) == expected
+        assert model._validity(n, f, q, si, True) == expected
     if f_pN >= 1.2 and short is None:
         assert expected == []
     if f_pN <= 0.15 or (short == 0.0 and f_pN <= 1.2):

@@ -203,10 +203,10 @@ def test_validity_errors_name_the_quantity_and_limit():
             plectoneme_twist_persistence=75e-9).parameters_at(np.array([1e-12]),
                                                               _dna(C=70.0), False)
     # low-force warning messages (the public layer warns them)
-    msgs = m.validity(None, np.array([0.2e-12, 1e-12]), None, dna, True)
+    msgs = m._validity(None, np.array([0.2e-12, 1e-12]), None, dna, True)
     assert msgs and "kT/A" in msgs[0]
-    assert m.validity(None, np.array([1e-12]), None, dna, True) == []
-    assert m.validity(None, np.array([0.2e-12]), None, dna, False) == []
+    assert m._validity(None, np.array([1e-12]), None, dna, True) == []
+    assert m._validity(None, np.array([0.2e-12]), None, dna, False) == []
 
 
 def test_model_object():

@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from supercoil._checks import check_flag
-from supercoil.core.dna.interface import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
@@ -288,7 +288,7 @@ def run_fit(spec: FitSpec) -> dict:
         "nfev": int(res.nfev), "njev": int(prob.njev), "kernel_calls": prob.n_kernel_calls,
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
-        "interaction_obj": getattr(inter, "_inter", inter), "n0": n0, "z0": z0, "model": best,
+        "interaction_obj": inter.interaction, "n0": n0, "z0": z0, "model": best,
         "z0_points": np.asarray(z0_pts, dtype=float),
         "states": prob.states(u) if prob._per_force else None,
         "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
@@ -302,8 +302,9 @@ def run_fit(spec: FitSpec) -> dict:
 
 
 def _validity_records(spec, pts, n0, model, dna):
+    """The fit's validity warnings: points outside the model's range, then the model's
+    messages at the data (the shared limits and its own, :meth:`DNAModel.validity`)."""
     data = spec.data
-    n = data.n
     n_eff = data.turns - n0[data.mol_index]
     phase = np.asarray(pts.phase)
     short = np.asarray(pts.short_tail, dtype=bool)
@@ -311,24 +312,12 @@ def _validity_records(spec, pts, n0, model, dna):
     bad = short | (phase == FULLY_COILED)
     if bad.any():
         out.append(("ValidityWarning",
-                    f"{int(bad.sum())} of {n} data points lie where the hat-curve model is not "
-                    f"valid ({int((phase == FULLY_COILED).sum())} fully coiled, "
+                    f"{int(bad.sum())} of {data.n} data points lie where the hat-curve model "
+                    f"is not valid ({int((phase == FULLY_COILED).sum())} fully coiled, "
                     f"{int(short.sum())} with a tail shorter than a few persistence lengths); "
                     "exclude the large-|turns| ends of the curves"))
-    out += [("ValidityWarning", m)
-            for m in model.validity(n_eff, data.force, pts, dna, spec.thermal)]
-    over = data.force > OVERSTRETCHING_FORCE
-    if over.any():
-        out.append(("ValidityWarning",
-                    f"{int(over.sum())} data points are above {OVERSTRETCHING_FORCE * 1e12:g} "
-                    "pN, where B-DNA overstretches; the model (inextensible DNA) ignores it"))
-    denat = (data.force > DENATURATION_FORCE) & (n_eff < 0)
-    if denat.any() and not model.describes_denaturation:
-        out.append(("ValidityWarning",
-                    f"{int(denat.sum())} data points have negative turns at forces above "
-                    f"{DENATURATION_FORCE * 1e12:g} pN, where real DNA denatures; the model "
-                    "(symmetric in N) does not describe them"))
-    return out
+    return out + [("ValidityWarning", m)
+                  for m in model.validity(n_eff, data.force, pts, dna, spec.thermal)]
 
 
 _WARNING_CLASSES = {"BoundWarning": BoundWarning, "FitWarning": FitWarning,

@@ -78,11 +78,16 @@ class _CachedInteraction:
     """An interaction whose ``equilibrium`` is memoised within one fit."""
 
     def __init__(self, interaction, store):
+        self.interaction = interaction  # the bare interaction (the fit result keeps it)
         self._inter = interaction
         self._store = store
 
     def __getattr__(self, name):
         return getattr(self._inter, name)
+
+    def unrecorded(self):
+        """Itself: the cache records nothing the shared checks read (trial states stay cached)."""
+        return self
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)

@@ -173,7 +173,7 @@ class Screened(Interaction):
                                  f"got {self.values['charge_fraction']:g}")
 
     # ---- float level (SI) -------------------------------------------------
-    def check(self, dna):
+    def _check(self, dna):
         """ParameterError naming ``salt`` if the DNA has none; ValidityError if it is absurd.
 
         The Debye length must lie between ``a / 300`` and ``1000 a`` (``a`` the
@@ -205,11 +205,7 @@ class Screened(Interaction):
         lam, _, _, pref = self.screening(si)
         return si, lam, pref
 
-    def energy(self, alpha, radius, dna):
-        """``w(alpha, R)`` per unit DNA (= strand) length (J/m)."""
-        return self.partials(alpha, radius, dna)[0]
-
-    def partials(self, alpha, radius, dna):
+    def _partials(self, alpha, radius, dna):
         """``(w, w_alpha, w_R)`` in (J/m, J/m, J/m^2); analytic under the quadrature."""
         si, lam, pref = self._functions(dna)
         f = _partials_function(si.bending_rigidity, si.kT, lam, pref,
@@ -230,7 +226,7 @@ class Screened(Interaction):
         return _contact(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                         self.values["hard_core_radius"])
 
-    def equilibrium(self, tension, dna):
+    def _equilibrium(self, tension, dna):
         """Uniform plectoneme at each tension T (N): (GE1), (GE2) and the tension
         equation with this ``w`` (:mod:`supercoil.core.dna.equilibrium`).
 

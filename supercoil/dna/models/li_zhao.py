@@ -26,6 +26,7 @@ from supercoil.dna import validity as _v
 from supercoil.dna.models.base import Buckling, DNAModel
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
 from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
+from supercoil.exceptions import ModelError
 
 __all__ = ["CONVERGED_BRACKET", "LiZhao"]
 
@@ -41,27 +42,24 @@ class LiZhao(DNAModel):
     def _args(self, dna):
         return (dna.length, dna.bending_rigidity, dna.torsional_rigidity, dna.kT, dna.radius)
 
-    def buckling(self, force, dna, thermal, interaction):
-        force = np.asarray(force, dtype=float)
+    def _buckling(self, force, dna, thermal, interaction):
         eq = interaction.equilibrium(force, dna)
         par = _hc.hat_parameters(force, *self._args(dna), thermal=thermal, check_zeta=False,
                                  equilibrium_state=eq)
         return Buckling(par.buckling_turns, par.torque, par.slope)
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length=None):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Hat-curve points; ``zeta`` and ``bracket`` are not kept (None).
 
-        :meth:`validity` reads the kernel's summary, and only in a failure region
+        :meth:`_validity` reads the kernel's summary, and only in a failure region
         recomputes them (zeta as extension / tail, the bracket from the torque).
         """
         return _hc.hat_curve_points(
             turns, force, *self._args(dna), thermal=thermal, short_tail_length=short_tail_length,
             equilibrium_solver=lambda f: interaction.equilibrium(f, dna), diagnostics=False)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         """Not available: raises :class:`~supercoil.exceptions.ModelError` (see the class docs)."""
-        from supercoil.exceptions import ModelError
-
         if thermal:
             raise ModelError("model 'li-zhao' with thermal=True is not derived from one free "
                              "energy (its extension and torque violate the Maxwell relation, "
@@ -72,12 +70,21 @@ class LiZhao(DNAModel):
                          "and once fully coiled it holds the plateau torque, which no free "
                          "energy does")
 
-    def slope_validity(self, force, torque, dna):
+    def _turns_at_tail_length(self, force, tail_length, dna, thermal, interaction):
+        """Exact: ``N_b + (L - l) D / (2 pi)`` with the linking rate D of the plectoneme
+        phase (docs/theory/li-zhao.md#hat-curve)."""
+        par = _hc.hat_parameters(force, *self._args(dna), thermal=thermal,
+                                 equilibrium_state=interaction.equilibrium(force, dna))
+        return par.buckling_turns + (dna.length - tail_length) * par.linking_rate / (2 * np.pi)
+
+    def _slope_validity(self, force, torque, dna, thermal):
         """Messages where the long-tail factor of zeta at the plectoneme torque fails."""
+        if not thermal:
+            return []
         Q = _mn.zeta_bracket(force, torque, dna.bending_rigidity, dna.kT)
         return long_tail_messages(force, Q, np.ones(np.shape(force), bool))
 
-    def validity(self, turns, force, points, dna, thermal):
+    def _validity(self, turns, force, points, dna, thermal):
         if not thermal:
             return []
         summary = _v.summary_of(points)
