@@ -54,7 +54,7 @@ def _cases():
 
         cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
 
-        from supercoil.core.dna.hat import hat_curve_points
+        from supercoil.core.dna.li_zhao import hat_curve_points
 
         def hat_public(n, si=False):
             f = 1.2e-12 * u.N if si else 1.2 * u.pN
@@ -78,7 +78,7 @@ def run(sizes=SIZES):
 
     Public call and kernel are timed in interleaved samples
     (:func:`~supercoil.benchmark.timing.paired_best_times`); at 1e6 elements
-    fewer samples are taken (a plectoneme solve of 1e6 forces takes ~2 s).
+    fewer samples are taken (a plectoneme solve of 1e6 forces is the slowest sample).
     """
     from supercoil.tables import make_table, provenance
 
