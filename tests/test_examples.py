@@ -3,14 +3,18 @@
 Each example takes ``--out DIR`` (where to write PNG and CSV files) and
 ``--quick`` (a smaller run for the test suite; validation scripts use it to
 stay within the suite's time budget).
+
+Each script runs as ``python SCRIPT --out DIR --quick`` in a fresh process, forked from a
+helper that has imported numpy, scipy, pandas, matplotlib and supercoil once
+(:mod:`fresh_scripts`: the same argv, ``sys.path``, ``__main__`` and Agg backend as a
+fresh interpreter; no state passes from one script to the next).
 """
 
 import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from fresh_scripts import FreshScripts
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.py"))
 
@@ -19,20 +23,21 @@ def test_there_are_examples():
     assert EXAMPLES, "examples/ holds no scripts"
 
 
-@pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
-def test_example_runs_and_writes_outputs(script, tmp_path):
-    out = tmp_path / "out"
+@pytest.fixture(scope="module")
+def scripts():
     env = dict(os.environ, MPLBACKEND="Agg")
     env.pop("DISPLAY", None)
-    proc = subprocess.run(
-        [sys.executable, str(script), "--out", str(out), "--quick"],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=240,
-    )
-    assert proc.returncode == 0, proc.stderr[-3000:]
+    helper = FreshScripts(env)
+    yield helper
+    helper.close()
+
+
+@pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_example_runs_and_writes_outputs(script, tmp_path, scripts):
+    out = tmp_path / "out"
+    status, _, stderr = scripts.run(script, ["--out", out, "--quick"], cwd=tmp_path,
+                                    timeout=240)
+    assert status == 0, stderr[-3000:]
     written = {p.suffix for p in out.rglob("*") if p.is_file()}
     assert ".png" in written, f"{script.name} wrote no figure"
     assert ".csv" in written, f"{script.name} wrote no table"

@@ -137,7 +137,7 @@ SIZES = {
     # smoke: three tolerances still span the orders of magnitude of the charts (LSODA fails
     # at 1e-3); the stability map is the quick one (computed once per process, and the
     # stability tests need it anyway); fits only of the models whose hat curve is cheap
-    # (the ensemble's fit alone costs over 10 s)
+    # (the ensemble fit costs as much as the rest of the smoke run)
     "smoke": {"rod_tolerances": (1e-3, 1e-6, 1e-11), "repeat": 1, "eq_forces": 10,
               "eq_tolerances": (1e-2, 1e-6, 1e-10, 1e-14), "hat_sizes": (100, 10_000),
               "ub_sizes": (1, 100), "stability_quick": True, "family_points": 21,
