@@ -299,8 +299,9 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
         if "molecule" in data.columns and data["molecule"].nunique() > 1 and not args.global_fit:
             raise FitError("several --model compare models on one data set: give --global "
                            "(shared parameters, per-molecule offsets) or one molecule")
-        table, results = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
-                                        bounds=bounds, return_results=True, **options)
+        comparison = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
+                                    bounds=bounds, **options)
+    table, results = comparison.table, comparison.results
     for w in caught:
         print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)

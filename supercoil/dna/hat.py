@@ -15,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 import pandas as pd
 
+from supercoil import display
 from supercoil._checks import check_flag
 from supercoil.core.dna import hat as _hc
 from supercoil.dna import validity as _v
@@ -41,18 +42,9 @@ PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
 _PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
 _PHASE_DTYPE = pd.CategoricalDtype(_PHASE_CATEGORIES)
 
-_UNITS = {
-    "force": "pN",
-    "turns": "turn",
-    "extension": "nm",
-    "phase": "",
-    "torque": "pN nm",
-    "plectoneme_length": "nm",
-    "supercoiling_density": "",
-    "eta": "",
-    "short_tail": "",
-    "free_energy": "pN nm",
-}
+_COLUMNS = ("force", "turns", "extension", "phase", "torque", "plectoneme_length",
+            "supercoiling_density", "eta", "short_tail", "free_energy")
+_UNITS = {k: display.unit(k) for k in _COLUMNS}
 
 
 def resolve(dna, force, thermal, model, interaction):
@@ -320,13 +312,13 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)
     columns = {
-        "force": (np.full(F.size, F[0] * 1e12) if F.strides == (0,) and F.size
-                  else own.scaled(F, 1e12)),
+        "force": (np.full(F.size, F[0] * display.factor("force")) if F.strides == (0,)
+                  and F.size else own.scaled(F, display.factor("force"))),
         "turns": N,
-        "extension": own.scaled(hp.extension, 1e9),
+        "extension": own.scaled(hp.extension, display.factor("extension")),
         "phase": pd.Categorical.from_codes(hp.phase, dtype=_PHASE_DTYPE),
-        "torque": own.scaled(hp.torque, 1e21),
-        "plectoneme_length": own.scaled(hp.plectoneme_length, 1e9),
+        "torque": own.scaled(hp.torque, display.factor("torque")),
+        "plectoneme_length": own.scaled(hp.plectoneme_length, display.factor("plectoneme_length")),
         "supercoiling_density": N * (HELICAL_REPEAT / L),
         "eta": N * (2.0 * np.pi * si.wlc_persistence / L),
         "short_tail": hp.short_tail,
@@ -335,7 +327,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     if m.has_free_energy(thermal):
         g = hp.free_energy if hp.free_energy is not None else m.free_energy(N, F, si, thermal,
                                                                              inter)
-        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float), 1e21)
+        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float),
+                                            display.factor("free_energy"))
     else:
         units.pop("free_energy")
     return make_table(

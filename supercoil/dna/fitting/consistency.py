@@ -287,7 +287,7 @@ def maxwell_check(data, *, margin=0.1, floor=0.2) -> MaxwellCheck:
 
 def report_lines(result) -> list[str]:
     """The Maxwell-check lines of a fit report (none without torque data)."""
-    if not result._spec.data.has_torque:
+    if not result.spec.data.has_torque:
         return []
     try:
         return maxwell_check(result.data).lines()
