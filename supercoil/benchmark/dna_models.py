@@ -113,9 +113,9 @@ def screened_equilibrium_cost(dna=None, n_forces=1000, repeat=3):
 
     d = (dna or sc.load_parameters("dna_150mM_nacl")).si
     inter = Screened()
-    _, lam, pref = inter._functions(d)
+    _, lam, pref = inter.screening_functions(d)
     B = d.bending_rigidity
-    f = scm._partials_function(B, d.kT, lam, pref, inter.values["confinement"])
+    f = scm.partials_function(B, d.kT, lam, pref, inter.values["confinement"])
     branch, contact = inter.branch(d), inter.contact_branch(d)
     forces = np.geomspace(0.05e-12, 5e-12, n_forces)
     methods = ("direct", "newton")
