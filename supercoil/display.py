@@ -18,7 +18,8 @@ import numpy as np
 
 from supercoil.units import Q_, ureg
 
-__all__ = ["DISPLAY", "factor", "from_display", "quantity", "spec", "to_display", "unit"]
+__all__ = ["DISPLAY", "factor", "from_display", "quantity", "spec", "text", "to_display",
+           "unit"]
 
 #: display unit of every quantity kind, per domain (pint unit strings; "" dimensionless)
 DISPLAY = {
@@ -86,3 +87,10 @@ def quantity(si_value, kind: str, domain: str = "dna"):
     """An SI float or array of ``kind`` as a quantity in its display unit."""
     u, f = spec(DISPLAY[domain][kind])
     return Q_(np.asarray(si_value, dtype=float) * f if f != 1.0 else si_value, u)
+
+
+def text(si_value, kind: str, fmt: str = ".6g", domain: str = "dna") -> str:
+    """``"<value> <unit>"`` of an SI float in the display unit of ``kind``, for messages
+    (``text(1.2e-12, "force")`` is ``"1.2 pN"``; products spelled with a space)."""
+    u = DISPLAY[domain][kind].replace("**", "^").replace("*", " ")
+    return f"{to_display(si_value, kind, domain):{fmt}} {u}".rstrip()

@@ -44,7 +44,8 @@ _PHASE_DTYPE = pd.CategoricalDtype(_PHASE_CATEGORIES)
 
 _COLUMNS = ("force", "turns", "extension", "phase", "torque", "plectoneme_length",
             "supercoiling_density", "eta", "short_tail", "free_energy")
-_UNITS = {k: display.unit(k) for k in _COLUMNS}
+#: the hat table's units: the display units, products spelled with a space (its CSV header)
+_UNITS = {k: display.unit(k).replace("*", " ") for k in _COLUMNS}
 
 
 def resolve(dna, force, thermal, model, interaction):
@@ -122,9 +123,9 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
 
         i = np.flatnonzero(~np.isfinite(b.slope))[0]
         raise ValidityError(f"the post-buckling slope is not defined at force "
-                            f"{f[i] * 1e12:.6g} pN (model {m.name!r})")
+                            f"{display.text(f[i], 'force')} (model {m.name!r})")
     _v.warn(msgs, stacklevel=2)
-    return quantity(b.slope * 1e9, U.nm_per_turn)
+    return quantity(b.slope * display.factor("extension"), U.nm_per_turn)
 
 
 def _points(dna, force, turns, thermal, model, interaction, short_tail_length, stacklevel):
@@ -224,7 +225,7 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
         g = m.free_energy(N, F, si, thermal, inter)
     _v.check_finite_output(m, F, {"free energy": g}, N)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
-    return quantity(np.asarray(g) * 1e21, U.pN_nm)
+    return display.quantity(g, "free_energy")
 
 
 def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEFAULT_MODEL,
@@ -342,8 +343,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
             model_options=m.options(),
             interaction=inter.name if m.uses_interaction else None,
             thermal=bool(thermal),
-            short_tail_length=f"{short * 1e9:.6g} nm",
-            helical_repeat=f"{HELICAL_REPEAT * 1e9:.6g} nm",
+            short_tail_length=display.text(short, "length"),
+            helical_repeat=display.text(HELICAL_REPEAT, "length"),
         ),
     )
 

@@ -212,8 +212,7 @@ def test_hat_curve_table(dna, ureg):
                                 "plectoneme_length", "supercoiling_density", "eta",
                                 "short_tail"]
     assert df.attrs["units"]["extension"] == "nm"
-    # the display-unit table's spelling (supercoil.display.DISPLAY), the same unit
-    assert df.attrs["units"]["torque"] == "pN*nm"
+    assert df.attrs["units"]["torque"] == "pN nm"
     assert df.attrs["units"]["force"] == "pN"
     assert df.attrs["provenance"]["thermal"] is True
     assert set(df["phase"]) == {"stretched", "plectoneme", "fully coiled"}

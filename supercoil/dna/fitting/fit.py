@@ -20,6 +20,7 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
+from supercoil import display
 from supercoil._checks import check_flag, check_material
 from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
@@ -65,7 +66,8 @@ def _start_offsets(spec, prob):
     try:
         z_start = np.asarray(prob.points(u)[0].extension, dtype=float)
     except (NoEquilibriumError, ValidityError) as exc:
-        forces = ", ".join(f"{f * 1e12:.4g}" for f in np.unique(data.force))
+        forces = ", ".join(f"{f:.4g}" for f in display.to_display(np.unique(data.force),
+                                                                   "force"))
         raise FitError(
             f"cannot start the fit: the model {spec.model.name!r} fails with the start "
             f"parameters ({prob.describe()}, temperature = {spec.dna.temperature:.6g} K) at "

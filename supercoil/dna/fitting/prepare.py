@@ -19,6 +19,7 @@ import re
 
 import numpy as np
 
+from supercoil import display
 from supercoil._checks import check_flag, check_material
 from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.data import RotationData
@@ -221,7 +222,8 @@ def _add_per_force_offsets(params, data, i, label, entry, source):
     """One extension offset per force of molecule ``i`` (``extension_offset[0.3 pN]``)."""
     v, given, free = entry
     for f in np.unique(data.force[data.mol_index == i]):
-        inner = f"{f * 1e12:.6g} pN" if not data.has_molecule else f"{label}, {f * 1e12:.6g} pN"
+        force = display.text(f, "force")
+        inner = force if not data.has_molecule else f"{label}, {force}"
         params.add(FitParameter(f"extension_offset[{inner}]", v, "nm", vary=free,
                                 shared="per-force", molecule=i, force=float(f),
                                 kind="extension_offset", owner="offset",

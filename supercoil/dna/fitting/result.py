@@ -86,12 +86,18 @@ class FitResult:
         model or interaction parameters (their declared unit) and the offsets
         ``turns_offset`` (turn) and ``extension_offset`` (nm); with a
         ``molecule`` column the offsets are named ``turns_offset[<molecule>]``.
+        The canonical estimates (``parameters[name]`` is
+        ``params[name].quantity()``, the same number).
     stderr : dict of str -> pint.Quantity
         One-sigma standard errors, same keys and units; ``inf`` for a
         parameter the data do not determine (see ``undetermined``).
     params : FitParameters
         All parameters (free and fixed) with values, errors, bounds and
-        plausible limits (SI).
+        plausible limits (SI): lmfit's name, the set ``params=`` takes. Kept
+        beside :attr:`parameters`, which holds the same estimates as
+        quantities; read estimates from :attr:`parameters`.
+    start : dict of str -> pint.Quantity
+        The start values of the free parameters (given, or read from the data).
     undetermined : list of str
         Free parameters with a component in the numerical null space of the
         Jacobian: standard error ``inf``, NaN covariance and correlation rows
@@ -169,8 +175,24 @@ class FitResult:
     torque_best_fit, torque_residuals : pint.Quantity or None
         With a torque column: the model torque at the data points and
         ``data - model`` (pN nm); else None.
+    njev, kernel_calls, kernel_failures : int
+        Jacobian evaluations, calls of the model's kernel (residuals and
+        Jacobians) and those that failed (a named model error at a trial point).
+    seconds, cpu_seconds : float
+        Wall-clock and CPU time of the fit (``time.process_time``).
+    curve_cpu_seconds : float
+        CPU time of one evaluation of the model at the data points with the
+        best-fit parameters (measured by :func:`compare_models`; else NaN).
+    vary : list of str
+        The DNA, model and interaction parameters fitted (offsets not listed).
+    solution : FitSolution
+        What the fit engine returned (SI floats and arrays: best fit, offsets
+        per molecule, phases, per-channel statistics, ...).
+    spec : FitSpec
+        The validated settings of the fit (``spec.data``: the data in SI).
     warnings : list of str
-        Every warning of the fit (also in :meth:`report`).
+        Every warning of the fit (also in :meth:`report`); with their
+        categories in :attr:`warning_records`.
     notes : list of str
         What the fit decided for the user (also in :meth:`report`): a default
         parameter the model does not use and so not varied, the channel that
