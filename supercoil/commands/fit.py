@@ -225,7 +225,7 @@ def run(args) -> int:
         "interaction": args.interaction,
     }
     if len(models) > 1:
-        return _run_compare(args, models, dna, fixed, bounds, options, out)
+        return _run_compare(args, models, dna, fixed, bounds, dict(options, start=start), out)
     options["model"] = models[0]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -289,10 +289,6 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
     from supercoil.exceptions import FitError
     from supercoil.tables import write_csv
 
-    if args.start:
-        print("supercoil fit: error: --start cannot be combined with several --model",
-              file=sys.stderr)
-        return 2
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
