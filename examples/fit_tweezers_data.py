@@ -141,7 +141,7 @@ def main(argv=None):
     comparison, fits = result.table, result.results
     print("\nmodel comparison (lmfit's AIC and BIC; the data were made by li-zhao):")
     print(comparison[["model", "nparams", "chi_square", "aic", "delta_aic", "delta_bic",
-                      "goodness_p"]].to_string(index=False))
+                      "goodness_p", "cpu_seconds", "curve_cpu_seconds"]].to_string(index=False))
     sc.write_csv(comparison, out / "fit_comparison.csv")
     fig = plot_comparison(fits)
     fig.savefig(out / "fit_comparison.png", dpi=120)
