@@ -9,7 +9,9 @@ SVD of the Jacobian (:mod:`supercoil.dna.fitting.covariance`); plausibility
 and goodness-of-fit checks (:mod:`supercoil.dna.fitting.diagnostics`).
 
 The engine (:func:`run_fit`) works on a :class:`FitSpec` of plain SI data and
-returns plain data, so :func:`~supercoil.fit_many` runs it in worker processes.
+returns a :class:`~supercoil.dna.fitting.solution.FitSolution` (typed plain data), so
+:func:`~supercoil.fit_many` runs it in worker processes. The keywords the fitting
+functions share have their defaults once, in :data:`~supercoil.dna.fitting.options.DEFAULTS`.
 """
 
 from __future__ import annotations

@@ -143,7 +143,7 @@ def _points_per_force(n):
 
 
 #: units of the simulated extension column and their factor from metres
-_EXTENSION_FACTORS = {"um": 1e6, "nm": 1e9}
+_EXTENSION_UNITS = ("um", "nm")
 
 
 def _torque_sd(torque_noise):
@@ -230,8 +230,8 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     thermal = check_flag(thermal, "thermal")
     sigma_column = check_flag(sigma_column, "sigma_column")
     check_material(dna, DNA, "dna")
-    if extension_unit not in _EXTENSION_FACTORS:
-        raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
+    if extension_unit not in _EXTENSION_UNITS:
+        raise FitError(f"extension_unit must be one of {list(_EXTENSION_UNITS)}, got "
                        f"{extension_unit!r}")
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
@@ -253,7 +253,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         if n.size == 0:
             raise ValueError("turns is empty: give at least one number of turns")
         grids = [n] * len(F)
-    factor = _EXTENSION_FACTORS[extension_unit]
+    factor = display.spec(extension_unit)[1]  # m -> the unit asked for (pint)
     N = np.concatenate(grids)
     FF = np.concatenate([np.full(len(g), f) for g, f in zip(grids, F, strict=True)])
     mol, Fs, Ns, Zs, Ts = [], [], [], [], []
