@@ -2,7 +2,7 @@
 
 docs/theory/fitting.md. The model (:mod:`supercoil.dna.fitting.model`) is any
 registered DNA model through the model interface; the parameters
-(:mod:`supercoil.dna.fitting.parameters`) are DNA fields, model and interaction
+(:mod:`supercoil.dna.fitting.fit_parameters`) are DNA fields, model and interaction
 parameters and per-molecule offsets. :func:`scipy.optimize.least_squares`
 (trust-region reflective, bounds) on scaled variables; covariance from the thin
 SVD of the Jacobian (:mod:`supercoil.dna.fitting.covariance`); plausibility
@@ -23,17 +23,17 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from supercoil import display
-from supercoil._checks import check_flag, check_material
-from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
+from supercoil._checks import check_flag
+from supercoil.core.dna.interface import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
-from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
+from supercoil.dna.fitting.fit_parameters import CALIBRATION, FitParameters
+from supercoil.dna.fitting.joint_noise import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions, FitSpec
-from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
 from supercoil.dna.fitting.prepare import (
     build_parameters,
     extension_offset_mode,
@@ -42,7 +42,7 @@ from supercoil.dna.fitting.prepare import (
 )
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.fitting.solution import FitSolution
-from supercoil.dna.material import DNA
+from supercoil.dna.validity import check_dna
 from supercoil.exceptions import (
     BoundWarning,
     FitError,
@@ -374,7 +374,7 @@ def fit_parameters(data, dna, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed, bounds=D
     Model and interaction parameters held fixed must be set on the model or
     interaction instance passed to the fit.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
     z0_fit, z0_per_force = extension_offset_mode(fit_extension_offset)
@@ -395,7 +395,7 @@ def __getattr__(name):
 
         return getattr(importlib.import_module(f"supercoil.dna.fitting.{_MOVED[name]}"), name)
     if name == "PHYSICAL_PARAMETERS":
-        from supercoil.dna.fitting.parameters import DNA_FIELDS
+        from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 
         return DNA_FIELDS
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -8,7 +8,7 @@ in ``fixed``), the parameters the DNA model and the interaction declare
 (``model.parameters``, ``interaction.parameters``), and the offsets
 ``turns_offset`` / ``extension_offset`` (all molecules) or
 ``turns_offset[<molecule>]`` (one molecule), and the calibration scales
-(:data:`~supercoil.dna.fitting.parameters.CALIBRATION`: ``torque_scale``,
+(:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`: ``torque_scale``,
 ``force_scale``; held at 1 unless varied or fixed).
 """
 
@@ -20,12 +20,10 @@ import re
 import numpy as np
 
 from supercoil import display
-from supercoil._checks import check_flag, check_material
+from supercoil._checks import check_flag
 from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.data import RotationData
-from supercoil.dna.fitting.model import dna_si
-from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions, FitSpec
-from supercoil.dna.fitting.parameters import (
+from supercoil.dna.fitting.fit_parameters import (
     CALIBRATION,
     DNA_FIELDS,
     PLAUSIBLE,
@@ -33,11 +31,12 @@ from supercoil.dna.fitting.parameters import (
     FitParameters,
     calibration_parameter,
 )
+from supercoil.dna.fitting.model import dna_si
+from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions, FitSpec
 from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
-from supercoil.dna.material import DNA
 from supercoil.dna.models import get_model
-from supercoil.dna.validity import check_interaction
+from supercoil.dna.validity import check_dna, check_interaction
 from supercoil.exceptions import FitError, ModelError
 from supercoil.units import U, as_turns, magnitude
 
@@ -335,7 +334,7 @@ def prepare(data, dna, options=None, *, params=None, rotation=None, optional=Non
     thermal = check_flag(o.thermal, "thermal")
     fit_turns_offset = check_flag(o.fit_turns_offset, "fit_turns_offset")
     fit_extension_offset, z0_per_force = extension_offset_mode(o.fit_extension_offset)
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(o.model, o.interaction)
     if m.uses_interaction:
         check_interaction(inter, dna.si)  # with the hard-core scale A/r0

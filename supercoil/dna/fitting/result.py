@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 
 from supercoil import display
-from supercoil.dna.fitting.parameters import DNA_FIELDS
+from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 from supercoil.tables import make_table, provenance
 
 __all__ = ["FitResult", "fmt_pm", "log_likelihood_term"]
