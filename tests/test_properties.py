@@ -387,7 +387,7 @@ def test_rough_helix_names_a_wrong_material(material):
 
 
 # ---------------------------------------------------------------------------
-# issue 20: empty inputs, absurd molecules, and the fitting / design surface
+# empty inputs, absurd molecules, and the fitting / design surface
 # ---------------------------------------------------------------------------
 
 #: the DNA functions of FUNCTIONS (every model and interaction) that take a force

@@ -268,7 +268,7 @@ def summary_of(points):
 def _extreme(x, reduce):
     """``reduce(x)``; for one force broadcast over the points (stride 0) its value.
 
-    (numpy reduces a stride-0 view element by element: 0.25 ms at 1e6 points.)
+    (numpy reduces a stride-0 view element by element, as a full array.)
     """
     if x.ndim == 1 and x.size and x.strides[0] == 0:
         return x[0]

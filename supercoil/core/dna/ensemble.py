@@ -134,7 +134,10 @@ def _solve(F, N, par, Lp, m, chirality, wlc):
 
 
 def points(turns, force, par):
-    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape)."""
+    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape).
+
+    Implements docs/theory/ensemble.md (E6, E7).
+    """
     N = np.asarray(turns, float)
     F = np.asarray(force, float)
     if not par.finite_size:
