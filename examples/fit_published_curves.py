@@ -75,9 +75,10 @@ def fit_all(data, dna, models, quick, start=None):
                 + (["torque_scale"] if scale else []) for m in models}
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            table, res = compare_models(data, dna, models, vary=vary,
-                                        fit_extension_offset=False, return_results=True,
+            comparison = compare_models(data, dna, models, vary=vary,
+                                        fit_extension_offset=False,
                                         max_nfev=200 if quick else None, start=start)
+        table, res = comparison.table, comparison.results
         for rec in table.to_dict("records"):
             label = rec["model"] + (" + torque_scale" if scale else "")
             rows.append((label, rec, res.get(rec["model"]), len(caught)))

@@ -137,11 +137,11 @@ def main(argv=None):
         # --quick: the closed-form and one-solve models (an "ensemble" fit costs ~100x one)
         models = (["li-zhao", "free-energy", "marko2007"] if args.quick
                   else sc.available_models())
-        comparison, fits = sc.compare_models(data, seed_set, models, vary=vary,
-                                             return_results=True)
+        result = sc.compare_models(data, seed_set, models, vary=vary)
+    comparison, fits = result.table, result.results
     print("\nmodel comparison (lmfit's AIC and BIC; the data were made by li-zhao):")
     print(comparison[["model", "nparams", "chi_square", "aic", "delta_aic", "delta_bic",
-                      "goodness_p"]].to_string(index=False))
+                      "goodness_p", "cpu_seconds", "curve_cpu_seconds"]].to_string(index=False))
     sc.write_csv(comparison, out / "fit_comparison.csv")
     fig = plot_comparison(fits)
     fig.savefig(out / "fit_comparison.png", dpi=120)

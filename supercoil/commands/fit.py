@@ -225,7 +225,7 @@ def run(args) -> int:
         "interaction": args.interaction,
     }
     if len(models) > 1:
-        return _run_compare(args, models, dna, fixed, bounds, options, out)
+        return _run_compare(args, models, dna, fixed, bounds, dict(options, start=start), out)
     options["model"] = models[0]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -289,18 +289,15 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
     from supercoil.exceptions import FitError
     from supercoil.tables import write_csv
 
-    if args.start:
-        print("supercoil fit: error: --start cannot be combined with several --model",
-              file=sys.stderr)
-        return 2
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
         if "molecule" in data.columns and data["molecule"].nunique() > 1 and not args.global_fit:
             raise FitError("several --model compare models on one data set: give --global "
                            "(shared parameters, per-molecule offsets) or one molecule")
-        table, results = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
-                                        bounds=bounds, return_results=True, **options)
+        comparison = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
+                                    bounds=bounds, **options)
+    table, results = comparison.table, comparison.results
     for w in caught:
         print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
@@ -324,16 +321,18 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
 
 def _compare_report(table, results):
     lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) + 2k, "
-             "bic = N ln(chi2/N) + ln(N) k; lower is better)",
+             "bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit and per "
+             "hat-curve evaluation)",
              f"    {'model':<16}{'k':>4}{'chi-square':>14}{'AIC':>12}{'dAIC':>10}{'BIC':>12}"
-             f"{'dBIC':>10}"]
+             f"{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
     for _, row in table.iterrows():
         if not row["success"]:
             lines.append(f"    {row['model']:<16}  FAILED: {_cli_text(row['error'])}")
             continue
         lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
                      f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
-                     f"{row['delta_bic']:>10.2f}")
+                     f"{row['delta_bic']:>10.2f}{row['cpu_seconds']:>11.3g}"
+                     f"{row['curve_cpu_seconds']:>13.3g}")
     for name, result in results.items():
         lines += ["", f"==== model {name} ====", result.report()]
     return "\n".join(lines)

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from supercoil import display
 from supercoil.exceptions import DataError
 from supercoil.tables import make_table, provenance, read_csv
 
@@ -286,15 +287,16 @@ def write_published_workbook(table, path):
     wb = openpyxl.Workbook()
     wb.remove(wb.active)
     forces = np.unique(rot.force)[::-1]
-    for sheet, values, head, rows in (("S5A", rot.extension * 1e9, "Extension (nm)", 0),
-                                      ("S5B", rot.torque * 1e21, "Torque (pN\u2219nm)", 1)):
+    for sheet, values, head, rows in (
+            ("S5A", display.to_display(rot.extension, "extension"), "Extension (nm)", 0),
+            ("S5B", display.to_display(rot.torque, "torque"), "Torque (pN\u2219nm)", 1)):
         ws = wb.create_sheet(sheet)
         cols = []
         for f in forces:
             sel = np.flatnonzero(rot.force == f)
             sel = sel[np.argsort(rot.turns[sel], kind="stable")][rows::2]
             cols.append((rot.turns[sel], values[sel]))
-        ws.append([x for f in forces for x in (f"{f * 1e12:.2f} pN", None)])
+        ws.append([x for f in forces for x in (display.text(f, "force", ".2f"), None)])
         ws.append(["Turns added", head] * len(forces))
         for i in range(max(len(t) for t, _ in cols)):
             ws.append([float(x) if i < len(t) else None for t, v in cols

@@ -118,12 +118,12 @@ def _problem(result, params):
     from supercoil.dna.fitting import offsets
     from supercoil.dna.fitting.model import HatCurveModel
 
-    spec = dataclasses.replace(result._spec, params=params)
+    spec = dataclasses.replace(result.spec, params=params)
     cls = offsets.PerForceOffsetModel if offsets.has_per_force_offsets(params) \
         else HatCurveModel
     prob = cls(spec.data, params, spec.dna, spec.model, spec.interaction, spec.thermal,
                spec.xi_is_bending)
-    ch = result._core["channels"]
+    ch = result.solution.channels
     if ch["extension"]["noise"] is not None:
         prob.set_extension_sigma(ch["extension"]["noise"])
     if "torque" in ch and ch["torque"]["noise"] is not None:
@@ -169,15 +169,16 @@ def profile_likelihood(result, name, confidence_level=0.6827, max_steps=12, step
                        f"(have {result.names})")
     if not 0 < confidence_level < 1:
         raise FitError(f"confidence_level must lie in (0, 1), got {confidence_level!r}")
-    base = result._spec.params.copy()
+    base = result.spec.params.copy()
     p = base[name]
     p.vary = False
     if not base.free:
         raise FitError(f"cannot profile {name!r}: it is the only free parameter")
     best, err = p.value, p.stderr if p.stderr is not None else math.inf
     h = step * (err if np.isfinite(err) and err > 0 else 0.1 * max(abs(best), 1e-12))
-    s2 = result._core["chi_square"] / result._core["chisqr"] if result._core["chisqr"] else 1.0
-    chi2_min = float(result._core["chi_square"])
+    sol = result.solution
+    s2 = sol.chi_square / sol.chisqr if sol.chisqr else 1.0
+    chi2_min = float(sol.chi_square)
     t = float(stats.chi2.ppf(confidence_level, 1))
     vals, deltas = [], []
     for side in (-1, +1):
