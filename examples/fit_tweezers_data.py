@@ -120,11 +120,11 @@ def main(argv=None):
                             progress=lambda done, total, mol: print(
                                 f"  molecule {mol} done ({done}/{total})"))
     sc.write_csv(table, out / "fit_molecules.csv")
-    # unit weights: the reduced chi-square is the residual variance (nm^2); show its root,
-    # the noise estimate (nm). `determined` is False where the data leave a parameter free.
+    # unit weights: the noise estimate is the residual RMS (nm; the reduced chi-square is 1
+    # by construction). `determined` is False where the data leave a parameter free.
     shown = table[["molecule", "success", "determined", "twist_persistence",
                    "twist_persistence_stderr", "radius", "radius_stderr", "turns_offset"]].copy()
-    shown["noise_estimate_nm"] = np.sqrt(table["reduced_chi_square"])
+    shown["noise_estimate_nm"] = table["residual_rms"]
     print(shown.to_string(index=False))
     joint_torque_fit(true, seed_set, out, vary)
     # ---- model comparison: every registered model fitted to the same data -----------------

@@ -119,7 +119,10 @@ def _row(task, core, error):
     ok = core is not None
     row = {"molecule": task.label, "success": ok, "determined": ok and not np.any(
         core["undetermined"]), "error": error, "ndata": int(task.data.n),
-        "reduced_chi_square": float(core["reduced_chi_square"]) if ok else np.nan,
+        # dimensionless, as FitResult.redchi (1 by construction with unit weights); the noise
+        # estimate itself is the residual RMS of the extensions (nm)
+        "reduced_chi_square": float(core["redchi"]) if ok else np.nan,
+        "residual_rms": float(core["channels"]["extension"]["rms"] * 1e9) if ok else np.nan,
         "nfev": int(core["nfev"]) if ok else 0}
     by_name = {n: j for j, n in enumerate(core["names"])} if ok else {}
     for name, factor in layout["factors"].items():
@@ -137,7 +140,8 @@ def _layout(template):
     """Column names, display factors and units of the result table (from the template)."""
     names = list(template.params.free)
     units = {k: "" for k in ("molecule", "success", "determined", "error", "ndata",
-                             "reduced_chi_square", "nfev")}
+                             "reduced_chi_square", "residual_rms", "nfev")}
+    units["residual_rms"] = "nm"
     for name in names:
         units[name] = units[f"{name}_stderr"] = template.params[name].unit
     torque = template.data.has_torque
@@ -305,7 +309,11 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         ``determined`` (False when the data of that molecule do not determine
         some free parameter: its ``<name>_stderr`` is inf; also False for a
         failed fit), ``error`` (the exception for a failed fit, else ""),
-        ``ndata``, ``reduced_chi_square``, ``nfev``, then ``<name>`` and
+        ``ndata``, ``reduced_chi_square`` (dimensionless, as
+        :attr:`FitResult.redchi`: 1 by construction with unit weights, the
+        chi-square per degree of freedom with sigmas), ``residual_rms`` (nm,
+        the extension residual RMS: with unit weights the noise estimate by
+        which the errors are scaled), ``nfev``, then ``<name>`` and
         ``<name>_stderr`` for every varied parameter and offset (NaN where the
         fit failed), ``warnings``. Warnings of single fits are also re-issued,
         prefixed by the molecule.

@@ -276,7 +276,9 @@ def run_fit(spec: FitSpec) -> dict:
     dna, model, inter, n0, z0 = prob.unpack(u)
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
-    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
+    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)
+                + _diag.length_offset_messages(spec.params, prob.names, cov, undetermined,
+                                               spec.data, n0, dna)]
     gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
