@@ -73,8 +73,14 @@ class ProfileLikelihood:
         return (_crossing(self.values, self.delta_chi2, self.best, t, -1),
                 _crossing(self.values, self.delta_chi2, self.best, t, +1))
 
-    def plot(self, ax=None):
-        """The profile, the quantile and the Jacobian parabola; returns the Figure."""
+    def plot(self, ax=None, path=None, dpi=120):
+        """The profile, the quantile and the Jacobian parabola; returns the Figure.
+
+        ``ax``: draw into these axes (default a new figure); ``path``: also save
+        the figure there. Nothing is shown here: in a script call
+        ``matplotlib.pyplot.show()`` or save (``path=``), as for
+        :meth:`FitResult.plot`.
+        """
         import matplotlib.pyplot as plt
 
         if ax is None:
@@ -96,7 +102,9 @@ class ProfileLikelihood:
         ax.set_ylabel("Δχ²")
         ax.set_ylim(0, max(1.5 * t, float(np.nanmax(self.delta_chi2))))
         ax.legend(fontsize=8)
-        return fig
+        from supercoil.dna.fitting.plot import save_figure
+
+        return save_figure(fig, path, dpi)
 
 
 def _crossing(values, delta, best, t, side):
