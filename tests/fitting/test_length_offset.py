@@ -55,3 +55,24 @@ def test_a_determined_length_correlated_with_its_offset_is_not_reported(dna):
     assert abs(fit.correlation.loc["length", "extension_offset"]) > 0.98
     assert fit.stderr["length"].m_as("nm") < 0.01 * LENGTH_NM
     assert not [m for m in msgs if "are degenerate" in m], msgs
+
+
+def test_a_length_run_away_in_a_fit_that_did_not_converge_names_the_fix(dna):
+    """On the published curves the fit stopped at max_nfev with L = 4e5 nm and said only
+    "did not converge": the message now names the valley and the fix."""
+    from supercoil.dna.fitting.diagnostics import runaway_hint
+
+    u = sc.ureg
+    data = sc.simulate_rotation_curves(dna, [1.0, 2.0] * u.pN, points_per_force=20, seed=1)
+    params = sc.fit_parameters(data, dna, vary=["length", "twist_persistence"])
+    start = params.vector()
+    j = params.free.index("length")
+    ran = start.copy()
+    ran[j] *= 190  # 2190 nm -> 4.2e5 nm
+    hint = runaway_hint(params, ran)
+    assert "the length ran from its start 2190 nm to 416100 nm" in hint
+    assert "fit_extension_offset=False" in hint and "dna.replace(length=" in hint
+    assert runaway_hint(params, start * 1.5) == ""  # moved, not ran away
+    held = sc.fit_parameters(data, dna, vary=["length", "twist_persistence"],
+                             fit_extension_offset=False)
+    assert runaway_hint(held, ran) == ""  # no offset to trade with

@@ -32,7 +32,7 @@ import numpy as np
 from scipy import stats
 
 __all__ = ["LENGTH_OFFSET_CORRELATION", "P_THRESHOLD", "bound_records", "chi_square_test",
-           "length_offset_messages", "plausibility_messages", "runs_test"]
+           "length_offset_messages", "plausibility_messages", "runaway_hint", "runs_test"]
 
 #: p-value below which a goodness-of-fit test warns (a correct fit warns in 1 of 1000)
 P_THRESHOLD = 1e-3
@@ -118,6 +118,38 @@ def length_offset_messages(params, names, cov, undetermined, data, n0, dna):
             "or hold the length at your molecule's (dna.replace(length=...), length not in "
             "vary); "
             "docs/theory/fitting.md#start-values"]
+
+
+#: a length that ends this factor from its start (either way) in a fit that did not
+#: converge ran along the valley of the length and an extension offset
+LENGTH_RUNAWAY_FACTOR = 3.0
+
+
+def runaway_hint(params, u):
+    """The fix to append to a did-not-converge FitError when the length ran away.
+
+    ``u`` is the optimiser's last vector (scaled, in the order of the free
+    parameters); the parameters still hold their start values. Returns "" unless
+    the length and an extension offset are both free and the length ended more
+    than :data:`LENGTH_RUNAWAY_FACTOR` from its start.
+    """
+    free = params.free_params()
+    names = [p.name for p in free]
+    if "length" not in names or not any(p.kind == "extension_offset" for p in free):
+        return ""
+    j = names.index("length")
+    p = free[j]
+    last = float(u[j]) * p.scale
+    if not (p.value > 0 and last > 0) or (
+            1 / LENGTH_RUNAWAY_FACTOR <= last / p.value <= LENGTH_RUNAWAY_FACTOR):
+        return ""
+    f = p.factor
+    return (f"; the length ran from its start {p.value * f:.6g} {p.unit} to {last * f:.6g} "
+            f"{p.unit}: with the length and the extension offset both free the extensions fix "
+            "only L g(F) + extension_offset, a flat valley. Fix one of them: hold the extension "
+            "offset at 0 (fit_extension_offset=False) when the instrument measures absolute "
+            "extensions, or hold the length at your molecule's (dna.replace(length=...), "
+            "length not in vary)")
 
 
 def plausibility_messages(params):

@@ -225,7 +225,7 @@ def _solve(spec, prob, u0):
     if res.status <= 0 or not np.all(np.isfinite(res.fun)):
         raise FitError(
             f"the fit did not converge ({res.message}) after {res.nfev} evaluations; last "
-            f"parameters: {prob.describe(res.x)}"
+            f"parameters: {prob.describe(res.x)}" + _diag.runaway_hint(spec.params, res.x)
             + (f"; last kernel failure: {prob.last_failure}" if prob.last_failure else ""))
     return res
 
