@@ -29,7 +29,8 @@ import numpy as np
 from supercoil.exceptions import DataError
 from supercoil.tables import make_table, provenance, read_csv
 
-__all__ = ["CITATION", "ENV_VAR", "FILE", "REPOSITORY", "load_published_summary",
+__all__ = ["CITATION", "ENV_VAR", "FILE", "REPOSITORY", "SYNTHETIC_LENGTH_NM",
+           "SYNTHETIC_TORQUE_SCALE", "load_published_summary",
            "published_curves_path", "read_published_curves", "write_published_workbook",
            "write_synthetic_workbook"]
 
