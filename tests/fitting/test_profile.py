@@ -37,6 +37,8 @@ def test_profile_plot_and_errors(result, tmp_path):
     assert (tmp_path / "profile.png").read_bytes()[:4] == b"\x89PNG"
     ax = fig.axes[0]
     assert ax.get_ylabel() == "Δχ²" and len(ax.lines) >= 3
+    x, y = ax.lines[0].get_data()  # the profile passes through the best fit at zero
+    assert np.all(np.diff(x) > 0) and y[list(x).index(p.best)] == 0.0
     plt.close(fig)
     with pytest.raises(FitError, match="not a free parameter"):
         result.profile("length")

@@ -87,7 +87,10 @@ class ProfileLikelihood:
             fig, ax = plt.subplots(figsize=(4.8, 3.6), layout="constrained")
         else:
             fig = ax.figure
-        ax.plot(self.values, self.delta_chi2, "o-", ms=3, label="profile")
+        # the profile through its minimum (the best fit, at zero), not a chord across it
+        x, y = np.append(self.values, self.best), np.append(self.delta_chi2, 0.0)
+        order = np.argsort(x, kind="stable")
+        ax.plot(x[order], y[order], "o-", ms=3, label="profile")
         if np.isfinite(self.stderr) and self.stderr > 0:
             grid = np.linspace(self.values.min(), self.values.max(), 200)
             ax.plot(grid, ((grid - self.best) / self.stderr) ** 2, "k--", lw=0.8,
