@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 from supercoil.tables import make_table, provenance
 
 SALTS_MM = (10, 50, 150, 500, 1000)

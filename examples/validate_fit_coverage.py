@@ -32,8 +32,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments, example_parser
 from supercoil.dna.fitting import simulate_rotation_curves
+from supercoil.example_cli import example_arguments, example_parser
 from supercoil.tables import make_table, provenance
 
 FORCES = (0.3, 0.5, 0.7)  # pN

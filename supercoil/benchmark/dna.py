@@ -82,7 +82,7 @@ def equilibrium_work_precision(dna=None, n_forces=200, tolerances=None, repeat=3
 def hat_cost(dna=None, sizes=(100, 1_000, 10_000, 100_000, 1_000_000), force=1.2e-12):
     """Time per hat-curve point against the number of turns values, thermal and athermal."""
     import supercoil as sc
-    from supercoil.core.dna.hat import hat_curve_points
+    from supercoil.core.dna.li_zhao import hat_curve_points
 
     d = (dna or sc.load_parameters("dna")).si
     args = (d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)

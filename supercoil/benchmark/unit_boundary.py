@@ -54,7 +54,7 @@ def _cases():
 
         cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
 
-        from supercoil.core.dna.hat import hat_curve_points
+        from supercoil.core.dna.li_zhao import hat_curve_points
 
         def hat_public(n, si=False):
             f = 1.2e-12 * u.N if si else 1.2 * u.pN

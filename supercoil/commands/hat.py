@@ -24,7 +24,7 @@ import sys
 
 import numpy as np
 
-from supercoil.core.dna.hat import DENATURATION_FORCE
+from supercoil.core.dna.interface import DENATURATION_FORCE
 
 DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
 #: default turns at forces up to DENATURATION_PN, and above it (positive turns only: real

@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from supercoil._checks import check_flag
-from supercoil.core.dna import hat as _hc
+from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS, HatPoints
 from supercoil.dna import validity as _v
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import DEFAULT_MODEL, get_model
@@ -170,14 +170,14 @@ def _buckling(m, f, si, thermal, inter):
 
 
 def _no_points(m, thermal):
-    """The :class:`~supercoil.core.dna.hat.HatPoints` of no point (empty force or turns).
+    """The :class:`~supercoil.core.dna.interface.HatPoints` of no point (empty force or turns).
 
     One path for every model: the models reduce over their inputs (min, max,
     the first force) and would fail on zero-size arrays with numpy's
     messages; an empty input gives an empty result instead, as in 0.1.
     """
     e = np.empty(0)
-    return _hc.HatPoints(extension=e, torque=e.copy(), plectoneme_length=e.copy(),
+    return HatPoints(extension=e, torque=e.copy(), plectoneme_length=e.copy(),
                          phase=np.empty(0, np.int8), short_tail=np.empty(0, bool),
                          zeta=e.copy(),
                          free_energy=np.empty(0) if m.has_free_energy(thermal) else None)
@@ -315,7 +315,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
                                                      interaction, short_tail_length, 2)
     L = si.length
     if short is None:
-        short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
+        short = SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
     # The checks above read the SI arrays; now each fresh array becomes its display-unit
     # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)

@@ -17,7 +17,7 @@ import warnings
 import numpy as np
 
 from supercoil._checks import check_material, check_scale
-from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
+from supercoil.core.dna.interface import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
 from supercoil.exceptions import ValidityWarning
 from supercoil.units import U, as_turns, magnitude
@@ -236,7 +236,7 @@ _BLOCK = 1 << 15
 
 
 def summary_of(points):
-    """The kernel's :class:`~supercoil.core.dna.hat.PointSummary` if it holds, else None.
+    """The kernel's :class:`~supercoil.core.dna.interface.PointSummary` if it holds, else None.
 
     Only a summary whose ranges are finite is used (else the checks pass over
     the arrays and name the point).

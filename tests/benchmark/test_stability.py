@@ -22,8 +22,8 @@ from supercoil.core.dna import moroz_nelson as mn
 from supercoil.core.dna import plectoneme as pl
 from supercoil.core.rod import contact as sco
 from supercoil.core.rod import rough as rh
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models import Buckling, DNAModel, HatPoints, unregister_model
-from supercoil.dna.parameters import ModelParameter
 
 u = sc.ureg
 
@@ -293,7 +293,7 @@ def test_largest_plectoneme_force_is_named_with_its_limit(dna):
     with pytest.warns(sc.ValidityWarning, match="overstretches|hard-core radius"):
         e = sc.plectoneme_equilibrium(dna, 0.999 * f_max * u.pN)
     si = dna.si
-    res = pl.equilibrium_residuals(0.999 * f_max * 1e-12, e.alpha.m_as(u.rad),
+    res = pl.hard_core_residuals(0.999 * f_max * 1e-12, e.alpha.m_as(u.rad),
                                    e.radius.m_as(u.m), e.omega.m_as(1 / u.m),
                                    si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius)
     assert max(abs(x) for x in res) < 1e-10

@@ -23,7 +23,7 @@ from scipy.optimize import minimize_scalar
 
 import supercoil as sc
 from supercoil.core.dna import free_energy as fe
-from supercoil.core.dna.hat import FULLY_COILED, PLECTONEME, STRETCHED
+from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 from supercoil.dna.interactions import get_interaction
 from supercoil.dna.models.free_energy import FreeEnergy
 from supercoil.exceptions import ValidityError

@@ -26,6 +26,7 @@ import pytest
 
 import supercoil as sc
 from supercoil.dna.interactions import available_interactions, get_interaction
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models import (
     Buckling,
     DNAModel,
@@ -35,7 +36,6 @@ from supercoil.dna.models import (
     register_model,
     unregister_model,
 )
-from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import ModelError
 
 u = sc.ureg

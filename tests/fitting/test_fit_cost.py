@@ -8,8 +8,8 @@ from fitting_helpers import simulate
 import supercoil as sc
 from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting import model as fit_model
+from supercoil.dna.fitting.fit_parameters import display_factor, parse_unit
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.fitting.parameters import display_factor, parse_unit
 from supercoil.dna.interactions.hard_core import HardCore
 
 VARY = ["twist_persistence", "radius"]

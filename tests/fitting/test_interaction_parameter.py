@@ -15,7 +15,7 @@ import supercoil as sc
 from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.interactions import HardCore, get_interaction
-from supercoil.dna.parameters import ModelParameter
+from supercoil.dna.model_parameters import ModelParameter
 
 
 class ScaledCore(HardCore):

@@ -14,8 +14,8 @@ import pytest
 
 import supercoil as sc
 from supercoil.cli import main
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models import Buckling, DNAModel, HatPoints
-from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import FitWarning, ModelError
 
 

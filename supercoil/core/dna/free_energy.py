@@ -45,7 +45,7 @@ torque); buckling becomes a jump at the crossing ``N* > N_b`` of the stretched
 branch with the coexistence raised by the loop's excess free energy.
 
 With ``thermal=False`` every formula reduces, operation for operation, to the
-athermal li-zhao construction of :mod:`supercoil.core.dna.hat`.
+athermal li-zhao construction of :mod:`supercoil.core.dna.li_zhao`.
 
 ``equilibrium`` is a callable ``T -> PlectonemeState`` (1-D SI tensions), e.g.
 ``lambda T: interaction.equilibrium(T, dna)``.
@@ -61,7 +61,7 @@ from supercoil.core.blocks import points_in_blocks
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import moroz_nelson as _mn
-from supercoil.core.dna.hat import (
+from supercoil.core.dna.interface import (
     FULLY_COILED,
     PLECTONEME,
     SHORT_TAIL_PERSISTENCE_LENGTHS,

@@ -33,15 +33,12 @@ from typing import NamedTuple
 import numpy as np
 
 from supercoil.core.blocks import points_in_blocks
-from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
+from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME
 from supercoil.exceptions import ValidityError
 
 from . import end_loop as _loop
 
 __all__ = [
-    "FULLY_COILED",
-    "PLECTONEME",
-    "STRETCHED",
     "MarkoParameters",
     "MarkoPoints",
     "free_energy",

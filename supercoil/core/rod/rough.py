@@ -53,7 +53,7 @@ import numpy as np
 from supercoil.core.geometry import curvature, torsion
 from supercoil.core.numerics import cumulative_integrals, first_crossing
 from supercoil.core.rod import contact as sc
-from supercoil.core.rod.rough_ode import (
+from supercoil.core.rod.rough_solution import (
     ATOL,
     MAX_NFEV,
     RTOL,

@@ -2,7 +2,7 @@
 
 docs/theory/fitting.md. The model (:mod:`supercoil.dna.fitting.model`) is any
 registered DNA model through the model interface; the parameters
-(:mod:`supercoil.dna.fitting.parameters`) are DNA fields, model and interaction
+(:mod:`supercoil.dna.fitting.fit_parameters`) are DNA fields, model and interaction
 parameters and per-molecule offsets. :func:`scipy.optimize.least_squares`
 (trust-region reflective, bounds) on scaled variables; covariance from the thin
 SVD of the Jacobian (:mod:`supercoil.dna.fitting.covariance`); plausibility
@@ -22,15 +22,15 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from supercoil._checks import check_flag, check_material
-from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
+from supercoil.core.dna.interface import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
-from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
+from supercoil.dna.fitting.fit_parameters import CALIBRATION, FitParameters
+from supercoil.dna.fitting.joint_noise import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
@@ -484,7 +484,7 @@ def __getattr__(name):
 
         return getattr(importlib.import_module(f"supercoil.dna.fitting.{_MOVED[name]}"), name)
     if name == "PHYSICAL_PARAMETERS":
-        from supercoil.dna.fitting.parameters import DNA_FIELDS
+        from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 
         return DNA_FIELDS
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from supercoil.dna.fitting.parameters import DNA_FIELDS
+from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, quantity
 

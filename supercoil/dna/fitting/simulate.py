@@ -39,7 +39,7 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     ValueError, NoEquilibriumError
         Forces not finite, not 1-D, or not positive (as every DNA function).
     """
-    from supercoil.core.dna.hat import hat_parameters
+    from supercoil.core.dna.li_zhao import hat_parameters
 
     thermal = check_flag(thermal, "thermal")
     si = check_material(dna, DNA, "dna")

@@ -11,7 +11,7 @@ assumed. Implementations: ``"hard-core"`` (the paper's Marko-Siggia ``w``,
 (Debye-Hueckel electrostatics with salt).
 
 Adding an interaction: subclass :class:`Interaction`, declare ``name`` and
-``parameters`` (:class:`~supercoil.dna.parameters.ModelParameter`), implement
+``parameters`` (:class:`~supercoil.dna.model_parameters.ModelParameter`), implement
 :meth:`partials` and :meth:`equilibrium` on SI floats, and register it with
 :func:`supercoil.dna.interactions.register_interaction`.
 """
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from supercoil.dna.parameters import ModelParameter, Parametrised
+from supercoil.dna.model_parameters import ModelParameter, Parametrised
 
 __all__ = ["Interaction"]
 

@@ -33,7 +33,7 @@ from supercoil.core.dna import equilibrium as _eq
 from supercoil.core.dna import screened as _sc
 from supercoil.core.dna.plectoneme import PlectonemeState
 from supercoil.dna.interactions.base import Interaction
-from supercoil.dna.parameters import ModelParameter
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.exceptions import ParameterError, ValidityWarning
 from supercoil.units import U, quantity
 

@@ -12,7 +12,7 @@ subclass plus its tests.
 Contract (float level, SI; modelled on scipy's ``OdeSolver`` rules)
 ------------------------------------------------------------------
 1. ``name`` (registry key), ``summary`` (one line) and ``parameters`` (its own
-   :class:`~supercoil.dna.parameters.ModelParameter` declarations) are class
+   :class:`~supercoil.dna.model_parameters.ModelParameter` declarations) are class
    attributes; instances are immutable, picklable and hold ``values`` (SI).
 2. Capabilities, declared once as class attributes (an instance may override them
    through a property when an option decides): ``uses_interaction`` (a plectoneme
@@ -47,7 +47,7 @@ from typing import ClassVar, NamedTuple
 import numpy as np
 
 from supercoil.core.dna.interface import HatPoints
-from supercoil.dna.parameters import ModelParameter, Parametrised
+from supercoil.dna.model_parameters import ModelParameter, Parametrised
 from supercoil.exceptions import ModelError
 
 __all__ = ["Buckling", "DNAModel", "HatPoints", "unique_forces"]

@@ -16,8 +16,8 @@ from typing import ClassVar
 import numpy as np
 
 from supercoil.core.dna import ensemble as _en
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
-from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import ModelError, ValidityError
 
 __all__ = ["Ensemble"]

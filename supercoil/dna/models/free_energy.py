@@ -18,6 +18,7 @@ from typing import ClassVar
 import numpy as np
 
 from supercoil.core.dna import free_energy as _fe
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
 from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
@@ -131,7 +132,7 @@ class FreeEnergy(DNAModel):
         torque, phase = np.asarray(points.torque, float), np.asarray(points.phase)
         if _converged_everywhere(force, torque, phase, dna):
             return []
-        where = phase != _fe.FULLY_COILED
+        where = phase != FULLY_COILED
         Q = _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT)
 
         def at(i):
@@ -148,7 +149,7 @@ def _converged_everywhere(force, torque, phase, dna, block=1 << 15):
     """
     for start in range(0, force.size, block):
         sl = slice(start, start + block)
-        where = phase[sl] != _fe.FULLY_COILED
+        where = phase[sl] != FULLY_COILED
         if not where.any():
             continue
         Q = _fe.tail_bracket(force[sl][where], torque[sl][where], dna.bending_rigidity, dna.kT)

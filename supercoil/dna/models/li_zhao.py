@@ -5,7 +5,7 @@ at the full force F (any interaction), the Moroz-Nelson effective twist
 rigidity ``C_eff`` of the fluctuating tail and its extension factor ``zeta``
 with the paper's finite-length term; buckling where the tail torque
 ``C_eff 2 pi N / L`` reaches the plectoneme torque. Kernel:
-:mod:`supercoil.core.dna.hat`. ``thermal=False`` is the athermal construction
+:mod:`supercoil.core.dna.li_zhao`. ``thermal=False`` is the athermal construction
 (``C_eff = C``, ``zeta = 1``). The thermal construction is not derived from
 one free energy (its extension and torque violate the Maxwell relation,
 docs/theory/free-energy.md#maxwell), so :meth:`free_energy` raises
@@ -19,8 +19,9 @@ from typing import ClassVar
 
 import numpy as np
 
-from supercoil.core.dna import hat as _hc
+from supercoil.core.dna import li_zhao as _hc
 from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna import validity as _v
 from supercoil.dna.models.base import Buckling, DNAModel
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
@@ -96,7 +97,7 @@ class LiZhao(DNAModel):
         else:
             zeta = _zeta(points, dna)
             zeta_bad = ~points.short_tail & ~((zeta > 0) & (zeta <= 1))
-            zeta_bad &= points.phase != _hc.FULLY_COILED
+            zeta_bad &= points.phase != FULLY_COILED
         if np.any(zeta_bad):
             i = np.flatnonzero(zeta_bad)[0]
             return [f"Moroz-Nelson zeta = {zeta[i]:.4g} lies outside (0, 1] at force "
@@ -104,7 +105,7 @@ class LiZhao(DNAModel):
                     "valid there"]
         if q_min >= CONVERGED_BRACKET:
             return []  # no long-tail message can fire
-        return long_tail_messages(force, Q, points.phase != _hc.FULLY_COILED, turns)
+        return long_tail_messages(force, Q, points.phase != FULLY_COILED, turns)
 
 
 def _zeta(points, dna):

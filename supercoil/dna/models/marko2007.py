@@ -19,8 +19,9 @@ import numpy as np
 
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import marko2007 as _mk
+from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
-from supercoil.dna.parameters import ModelParameter
 
 __all__ = ["LOW_FORCE_FACTOR", "Marko2007"]
 
@@ -29,8 +30,6 @@ __all__ = ["LOW_FORCE_FACTOR", "Marko2007"]
 #: interpolation and c_s is 5 % below the Moroz-Nelson resummation for the seed
 #: set; docs/theory/marko2007.md#6-validity)
 LOW_FORCE_FACTOR = 4.0
-#: default short-tail threshold in bending persistence lengths (as li-zhao)
-SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 
 
 class Marko2007(DNAModel):

@@ -1,4 +1,4 @@
-"""Reduced equations of the hard-core plectoneme (docs/theory/plectoneme.md#reduced-form).
+"""Hard-core plectoneme equations in reduced units (docs/theory/plectoneme.md#reduced-form).
 
 The (GE2) function ``h(alpha, rho)`` and the reduced tension ``T'(alpha, rho)``
 of :mod:`supercoil.core.dna.plectoneme` in the variables ``rho = R/r0``,
@@ -17,8 +17,16 @@ import numpy as np
 from supercoil.core.dna import marko_siggia as _ms
 from supercoil.core.numerics import safe_newton as _safe_newton
 
-__all__ = ["ALPHA_HI", "ALPHA_LO", "reduced_ge2", "reduced_tension", "reduced_torque",
-           "scalar_ge2_tension", "scalar_tilt", "solve_tilt"]
+__all__ = [
+    "ALPHA_HI",
+    "ALPHA_LO",
+    "reduced_ge2",
+    "reduced_tension",
+    "reduced_tilt",
+    "reduced_torque",
+    "scalar_ge2_tension",
+    "scalar_tilt",
+]
 
 #: bracket of the tilt in (GE2): (0, pi/4)
 ALPHA_LO = 1e-12
@@ -107,7 +115,7 @@ def reduced_torque(alpha, rho, b):
 # ---------------------------------------------------------------------------
 
 
-def solve_tilt(rho, b, alpha0=None, xtol=1e-15):
+def reduced_tilt(rho, b, alpha0=None, xtol=1e-15):
     """The unique root alpha in (0, pi/4) of (GE2) at reduced radius ``rho``."""
     rho = np.asarray(rho, dtype=float)
     if alpha0 is None:

@@ -1,7 +1,7 @@
-"""The numpy path of the hat-curve points, one block at a time (docs/theory/li-zhao.md#hat-curve).
+"""The li-zhao hat-curve points in numpy, one block at a time (docs/theory/li-zhao.md#hat-curve).
 
 :func:`fill_block` writes the points of one block of
-:func:`supercoil.core.dna.hat.hat_curve_points` into slices of its result: the
+:func:`supercoil.core.dna.li_zhao.hat_curve_points` into slices of its result: the
 general per-point formulas, or, for a one-force block whose points are all in
 one phase (decided on its extreme turns by the same floating-point
 operations), the same operations with the phase's constants hoisted
@@ -17,8 +17,8 @@ import numpy as np
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
-__all__ = ["FULLY_COILED", "PLECTONEME", "STRETCHED", "UNIFORM", "block_summary", "fill_block",
-           "fill_coiled", "fill_plectoneme", "fill_stretched", "one_phase"]
+__all__ = ["UNIFORM", "block_summary", "fill_block", "fill_coiled", "fill_plectoneme",
+           "fill_stretched", "one_phase"]
 
 
 

@@ -1,4 +1,4 @@
-"""The rough-helix ODE [eq da/ds]: integration in two phases and its piecewise solution.
+"""The solution of the rough-helix ODE [eq da/ds]: integration in two phases, piecewise result.
 
 Float-only kernel (SI: m, N m^2, rad). :func:`integrate` solves [eq da/ds] in
 the regular variable ``y = 1 - cos 2 alpha`` (see :mod:`supercoil.core.rod.rough`
