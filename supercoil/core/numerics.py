@@ -39,7 +39,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 __all__ = ["bisect_from_estimate", "bisect_increasing", "cumulative_integrals",
-           "finite_difference", "first_crossing", "safe_newton"]
+           "find_root", "finite_difference", "first_crossing", "safe_newton"]
 
 
 def bisect_increasing(fun, lo, hi, n_iter=1100, xtol=0.0):
@@ -121,6 +121,20 @@ def safe_newton(fun, x, lo, hi, xtol, maxiter=100):
         if np.all(dx <= xtol * (1.0 + np.abs(x))):
             break
     return x
+
+
+def find_root(f, init, args=(), **kwargs):
+    """``scipy.optimize.elementwise.find_root`` (Chandrupatla) without its stray warning.
+
+    scipy's post-termination check takes the square root of a negative interpolation
+    ratio on some collapsed brackets ("invalid value encountered in sqrt"); the NaN only
+    turns the next step into a bisection, so it is silenced here and nowhere else (the
+    caller checks ``res.success`` and the values).
+    """
+    from scipy.optimize import elementwise
+
+    with np.errstate(invalid="ignore"):
+        return elementwise.find_root(f, init, args=args, **kwargs)
 
 
 #: Width of the cell of :func:`bisect_from_estimate`, in float spacings of the estimate

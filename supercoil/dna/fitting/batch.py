@@ -20,7 +20,6 @@ from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 
 import numpy as np
 
-from supercoil._checks import check_material
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.fit import (
     DEFAULT_VARY,
@@ -33,8 +32,8 @@ from supercoil.dna.fitting.prepare import strip_molecule_keys
 from supercoil.dna.fitting.progress import Progress
 from supercoil.dna.fitting.weights import checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
+from supercoil.dna.validity import check_dna
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
 
@@ -324,7 +323,7 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         Only for problems common to all molecules (malformed table, unknown
         parameter names); failures of single fits are reported in the table.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     _check_executor(executor)
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
     whole = RotationData.from_frame(data)
