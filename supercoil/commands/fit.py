@@ -368,8 +368,8 @@ def _many_report(table, args):
         f"[[Per-molecule fits]] {len(table)} molecules, {int(table['success'].sum())} fitted, "
         f"{int((~table['success']).sum())} failed; varied: {', '.join(args.vary)}",
     ]
-    # with unit weights the reduced chi-square is the residual variance in nm^2;
-    # show its root, the noise estimate in nm (the errors are scaled by it)
+    # with unit weights the reduced chi-square is 1 by construction: show the noise
+    # estimate (the residual RMS in nm, by which the errors are scaled)
     unit_weights = table.attrs.get("provenance", {}).get("weighting", "unit") == "unit"
     stat_head = "noise [nm]" if unit_weights else "red.chi2"
     head = f"    {'molecule':<12}{stat_head:>10}"
@@ -380,7 +380,7 @@ def _many_report(table, args):
         if not row["success"]:
             lines.append(f"    {row['molecule']!s:<12}  FAILED: {_cli_text(row['error'])}")
             continue
-        stat = np.sqrt(row["reduced_chi_square"]) if unit_weights else row["reduced_chi_square"]
+        stat = row["residual_rms"] if unit_weights else row["reduced_chi_square"]
         text = f"    {row['molecule']!s:<12}{stat:>10.4g}"
         for p in params:
             err = row[p + "_stderr"]
@@ -416,7 +416,7 @@ def _plot_many(table, vary, path):
     import numpy as np
 
     units = table.attrs["units"]
-    names = [v for v in vary if v in table.columns] or ["reduced_chi_square"]
+    names = [v for v in vary if v in table.columns] or ["residual_rms"]
     fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 3.6), squeeze=False,
                              layout="constrained")
     ok = table["success"].to_numpy()

@@ -83,8 +83,10 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     # unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
     assert "noise [nm]" in report and "red.chi2" not in report
     row = next(line for line in report.splitlines() if line.strip().startswith("m1 "))
-    assert float(row.split()[1]) == pytest.approx(np.sqrt(table["reduced_chi_square"].iloc[0]),
-                                                  rel=1e-3)
+    assert float(row.split()[1]) == pytest.approx(table["residual_rms"].iloc[0], rel=1e-3)
+    assert table.attrs["units"]["residual_rms"] == "nm"
+    assert 3 < table["residual_rms"].iloc[0] < 8  # the noise estimate, nm (default 5 nm noise)
+    assert table["reduced_chi_square"].iloc[0] == pytest.approx(1.0)  # dimensionless
     assert (out / "fit_molecules.png").exists()
     # --global: one fit, shared parameters, offsets per molecule
     ok = df[df["molecule"] != "m2"].reset_index(drop=True)

@@ -113,7 +113,10 @@ def _row(task, solution, error):
     ok = solution is not None
     row = {"molecule": task.label, "success": ok, "determined": ok and not np.any(
         solution.undetermined), "error": error, "ndata": int(task.data.n),
-        "reduced_chi_square": float(solution.reduced_chi_square) if ok else np.nan,
+        # dimensionless, as FitResult.redchi (1 by construction with unit weights); the noise
+        # estimate itself is the residual RMS of the extensions (nm)
+        "reduced_chi_square": float(solution.redchi) if ok else np.nan,
+        "residual_rms": float(solution.channels["extension"]["rms"] * 1e9) if ok else np.nan,
         "nfev": int(solution.nfev) if ok else 0}
     by_name = {n: j for j, n in enumerate(solution.names)} if ok else {}
     for name, factor in layout["factors"].items():
@@ -132,7 +135,8 @@ def _layout(template):
     """Column names, display factors and units of the result table (from the template)."""
     names = list(template.params.free)
     units = {k: "" for k in ("molecule", "success", "determined", "error", "ndata",
-                             "reduced_chi_square", "nfev")}
+                             "reduced_chi_square", "residual_rms", "nfev")}
+    units["residual_rms"] = "nm"
     for name in names:
         units[name] = units[f"{name}_stderr"] = template.params[name].unit
     torque = template.data.has_torque
@@ -302,7 +306,11 @@ def fit_many(data, dna, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed, bounds=DEFAULT
         ``determined`` (False when the data of that molecule do not determine
         some free parameter: its ``<name>_stderr`` is inf; also False for a
         failed fit), ``error`` (the exception for a failed fit, else ""),
-        ``ndata``, ``reduced_chi_square``, ``nfev``, then ``<name>`` and
+        ``ndata``, ``reduced_chi_square`` (dimensionless, as
+        :attr:`FitResult.redchi`: 1 by construction with unit weights, the
+        chi-square per degree of freedom with sigmas), ``residual_rms`` (nm,
+        the extension residual RMS: with unit weights the noise estimate by
+        which the errors are scaled), ``nfev``, then ``<name>`` and
         ``<name>_stderr`` for every varied parameter and offset (NaN where the
         fit failed), ``warnings``. Warnings of single fits are also re-issued,
         prefixed by the molecule.

@@ -114,7 +114,7 @@ def _solve(spec, prob, u0):
     if res.status <= 0 or not np.all(np.isfinite(res.fun)):
         raise FitError(
             f"the fit did not converge ({res.message}) after {res.nfev} evaluations; last "
-            f"parameters: {prob.describe(res.x)}"
+            f"parameters: {prob.describe(res.x)}" + _diag.runaway_hint(spec.params, res.x)
             + (f"; last kernel failure: {prob.last_failure}" if prob.last_failure else ""))
     return res
 
@@ -171,7 +171,9 @@ def run_fit(spec: FitSpec, time_curve=False) -> FitSolution:
     n0, z0 = prob.unpack(u)[3:]
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
-    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
+    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)
+                + _diag.length_offset_messages(spec.params, prob.names, cov, undetermined,
+                                               spec.data, n0, dna)]
     gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]

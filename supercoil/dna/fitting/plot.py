@@ -8,7 +8,7 @@ from supercoil import display
 from supercoil.dna.fitting.result import fmt_pm
 from supercoil.exceptions import SupercoilError
 
-__all__ = ["plot_comparison", "plot_fit"]
+__all__ = ["plot_comparison", "plot_fit", "save_figure"]
 
 _MARKERS = "osd^v<>p*hX"
 
@@ -84,13 +84,44 @@ def _data_panels(result, axes, k, f):
     return n_eff[sel]
 
 
-def plot_fit(result, fig=None, n_curve=300):
+def save_figure(fig, path, dpi):
+    """Save ``fig`` to ``path`` (its folder created) when ``path`` is given; returns ``fig``."""
+    if path is not None:
+        from pathlib import Path
+
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(path, dpi=dpi)
+    return fig
+
+
+def plot_fit(result, fig=None, n_curve=300, path=None, dpi=120):
     """Data, fit and residuals per force (offset-corrected); returns the Figure.
 
     Top row: extension minus the molecule's extension offset against turns
     minus its turns offset, with the fitted hat curve. Second row: residuals
     ``data - model``. With torque data (a joint fit) two more rows: the
     measured torque with the fitted torque, and the torque residuals.
+
+    Parameters
+    ----------
+    result : FitResult
+    fig : matplotlib.figure.Figure, optional
+        Draw into this (empty) figure; default a new one from ``pyplot``.
+    n_curve : int
+        Points of each fitted curve.
+    path : str or Path, optional
+        Also save the figure there (format from the suffix; folder created).
+    dpi : float
+        Resolution of the saved file (dots per inch).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Shown by nothing here: a notebook displays it, a script calls
+        ``matplotlib.pyplot.show()`` (an interactive backend; on Agg, the
+        default without a display, nothing appears) or saves it (``path=``
+        or ``fig.savefig``).
     """
     import matplotlib.pyplot as plt
 
@@ -126,12 +157,12 @@ def plot_fit(result, fig=None, n_curve=300):
     text = ", ".join(
         f"{k} = {fmt_pm(result.parameters[k].magnitude, result.stderr[k].magnitude)} "
         f"{result.units[k]}" for k in result.names if result.params[k].owner != "offset")
-    if result.weighting == "unit":  # the reduced chi-square is a variance in nm^2 here
+    if result.weighting == "unit":  # the reduced chi-square is 1 by construction here
         stat = f"noise estimate (residual RMS) {result.residual_rms.magnitude:.3g} nm"
     else:
         stat = f"reduced chi-square {result.reduced_chi_square:.3g}"
     fig.suptitle(f"hat-curve fit ({result.model.name}): {text}; {stat}", fontsize="medium")
-    return fig
+    return save_figure(fig, path, dpi)
 
 
 def plot_comparison(results, fig=None, n_curve=300):

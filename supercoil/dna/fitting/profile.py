@@ -73,15 +73,24 @@ class ProfileLikelihood:
         return (_crossing(self.values, self.delta_chi2, self.best, t, -1),
                 _crossing(self.values, self.delta_chi2, self.best, t, +1))
 
-    def plot(self, ax=None):
-        """The profile, the quantile and the Jacobian parabola; returns the Figure."""
+    def plot(self, ax=None, path=None, dpi=120):
+        """The profile, the quantile and the Jacobian parabola; returns the Figure.
+
+        ``ax``: draw into these axes (default a new figure); ``path``: also save
+        the figure there. Nothing is shown here: in a script call
+        ``matplotlib.pyplot.show()`` or save (``path=``), as for
+        :meth:`FitResult.plot`.
+        """
         import matplotlib.pyplot as plt
 
         if ax is None:
             fig, ax = plt.subplots(figsize=(4.8, 3.6), layout="constrained")
         else:
             fig = ax.figure
-        ax.plot(self.values, self.delta_chi2, "o-", ms=3, label="profile")
+        # the profile through its minimum (the best fit, at zero), not a chord across it
+        x, y = np.append(self.values, self.best), np.append(self.delta_chi2, 0.0)
+        order = np.argsort(x, kind="stable")
+        ax.plot(x[order], y[order], "o-", ms=3, label="profile")
         if np.isfinite(self.stderr) and self.stderr > 0:
             grid = np.linspace(self.values.min(), self.values.max(), 200)
             ax.plot(grid, ((grid - self.best) / self.stderr) ** 2, "k--", lw=0.8,
@@ -96,7 +105,9 @@ class ProfileLikelihood:
         ax.set_ylabel("Δχ²")
         ax.set_ylim(0, max(1.5 * t, float(np.nanmax(self.delta_chi2))))
         ax.legend(fontsize=8)
-        return fig
+        from supercoil.dna.fitting.plot import save_figure
+
+        return save_figure(fig, path, dpi)
 
 
 def _crossing(values, delta, best, t, side):

@@ -345,11 +345,21 @@ class FitResult:
 
         return conf_interval(self, names, sigmas, max_steps, step)
 
-    def plot(self, fig=None, n_curve=300):
-        """Data, fit and residuals per force (offset-corrected); returns the Figure."""
+    def plot(self, fig=None, n_curve=300, path=None, dpi=120):
+        """Data, fit and residuals per force (offset-corrected); returns the Figure.
+
+        Like every matplotlib function that makes a figure, this draws and
+        shows nothing by itself: in a notebook the returned Figure is
+        displayed; in a script call ``matplotlib.pyplot.show()`` (an
+        interactive backend) or save it, ``fit.plot(path="fit.png")`` or
+        ``fit.plot().savefig("fit.png")``. On a non-interactive backend (Agg,
+        the default without a display) ``show()`` shows nothing: save it.
+        See :func:`~supercoil.dna.fitting.plot.plot_fit` for ``fig``, ``n_curve``,
+        ``path`` and ``dpi``.
+        """
         from supercoil.dna.fitting.plot import plot_fit
 
-        return plot_fit(self, fig=fig, n_curve=n_curve)
+        return plot_fit(self, fig=fig, n_curve=n_curve, path=path, dpi=dpi)
 
     # ---- tables -------------------------------------------------------------------------
     def to_frame(self) -> pd.DataFrame:
