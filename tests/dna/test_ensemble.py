@@ -120,21 +120,29 @@ CASES = {  # (turns, force): stretched, positive coexistence, negative (melting 
 def test_extension_torque_are_derivatives_of_G_and_maxwell_holds(case, finite_size):
     N0, F0 = CASES[case]
     par = _par(finite_size=finite_size)
-    N, F = np.array([N0]), np.array([F0 * PN])
+    hN, hF = 1e-3, 1e-4 * F0 * PN
+    # one call for the point and the eight stencil points of the two differences
+    steps = np.array([0.0, 1.0, -1.0, 2.0, -2.0])
+    n = np.concatenate([N0 + hN * steps, np.full(4, N0)])
+    f = np.concatenate([np.full(5, F0 * PN), F0 * PN + hF * steps[1:]])
+    pts = en.points(n, f, par)
 
-    def at(n, f):
-        return en.points(np.atleast_1d(n), np.atleast_1d(f), par)
+    def fd(values, h):  # fourth-order central difference over the stencil (+1, -1, +2, -2)
+        return (8 * (values[0] - values[1]) - (values[2] - values[3])) / (12 * h)
 
-    p = at(N, F)
-    hN, hF = 1e-3, 1e-4 * F
-    dGdN = _fd(lambda n: at(n, F).free_energy, N, hN)
-    dGdF = _fd(lambda f: at(N, f).free_energy, F, hF)
-    np.testing.assert_allclose(p.torque, dGdN / TWO_PI, rtol=1e-6, atol=1e-6 * PNNM)
-    np.testing.assert_allclose(p.extension, -dGdF, rtol=1e-6, atol=1e-6 * NM)
-    dzdN = _fd(lambda n: at(n, F).extension, N, hN)
-    dMdF = _fd(lambda f: at(N, f).torque, F, hF)
-    scale = max(abs(dzdN[0]), 1e-9)  # m per turn
-    assert abs(dzdN[0] + TWO_PI * dMdF[0]) <= 1e-6 * scale + 1e-6 * NM
+    def along_n(name):
+        return fd(getattr(pts, name)[1:5], hN)
+
+    def along_f(name):
+        return fd(getattr(pts, name)[5:9], hF)
+
+    torque, extension = pts.torque[0], pts.extension[0]
+    np.testing.assert_allclose(torque, along_n("free_energy") / TWO_PI, rtol=1e-6,
+                               atol=1e-6 * PNNM)
+    np.testing.assert_allclose(extension, -along_f("free_energy"), rtol=1e-6, atol=1e-6 * NM)
+    dzdN, dMdF = along_n("extension"), along_f("torque")
+    scale = max(abs(dzdN), 1e-9)  # m per turn
+    assert abs(dzdN + TWO_PI * dMdF) <= 1e-6 * scale + 1e-6 * NM
 
 
 def test_phases_present_in_the_cases():
