@@ -73,6 +73,35 @@ def installed_wheel(tmp_path_factory):
     return names, site, run
 
 
+@pytest.fixture(scope="session")
+def example_run(tmp_path_factory):
+    """``run(name)``: ``(exit status, stderr, output folder)`` of ``python
+    examples/<name>.py --out DIR --quick``, run once per session (a fresh process forked
+    from the helper of :mod:`fresh_scripts`, headless), shared by every test that
+    checks that example's outputs."""
+    from pathlib import Path
+
+    from fresh_scripts import FreshScripts
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    env = dict(os.environ, MPLBACKEND="Agg")
+    env.pop("DISPLAY", None)
+    helper = FreshScripts(env)
+    done = {}
+
+    def run(name):
+        if name not in done:
+            cwd = tmp_path_factory.mktemp(f"example_{name}")
+            status, _, stderr = helper.run(examples / f"{name}.py",
+                                           ["--out", cwd / "out", "--quick"], cwd=cwd,
+                                           timeout=240)
+            done[name] = status, stderr, cwd / "out"
+        return done[name]
+
+    yield run
+    helper.close()
+
+
 def pytest_addoption(parser):
     parser.addoption("--qian-s5", default=None,
                      help="path of the Figure S5 workbook of Qian et al. (bioRxiv "

@@ -4,17 +4,17 @@ Each example takes ``--out DIR`` (where to write PNG and CSV files) and
 ``--quick`` (a smaller run for the test suite; validation scripts use it to
 stay within the suite's time budget).
 
-Each script runs as ``python SCRIPT --out DIR --quick`` in a fresh process, forked from a
-helper that has imported numpy, scipy, pandas, matplotlib and supercoil once
-(:mod:`fresh_scripts`: the same argv, ``sys.path``, ``__main__`` and Agg backend as a
-fresh interpreter; no state passes from one script to the next).
+Each script runs once per session as ``python SCRIPT --out DIR --quick`` in a fresh
+process, forked from a helper that has imported numpy, scipy, pandas, matplotlib and
+supercoil once (the ``example_run`` fixture of ``conftest.py`` and :mod:`fresh_scripts`:
+the same argv, ``sys.path``, ``__main__`` and Agg backend as a fresh interpreter; no state
+passes from one script to the next); tests that check an example's outputs further
+(``tests/fitting/test_csv_outputs.py``) read the same run.
 """
 
-import os
 from pathlib import Path
 
 import pytest
-from fresh_scripts import FreshScripts
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.py"))
 
@@ -23,20 +23,9 @@ def test_there_are_examples():
     assert EXAMPLES, "examples/ holds no scripts"
 
 
-@pytest.fixture(scope="module")
-def scripts():
-    env = dict(os.environ, MPLBACKEND="Agg")
-    env.pop("DISPLAY", None)
-    helper = FreshScripts(env)
-    yield helper
-    helper.close()
-
-
 @pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
-def test_example_runs_and_writes_outputs(script, tmp_path, scripts):
-    out = tmp_path / "out"
-    status, _, stderr = scripts.run(script, ["--out", out, "--quick"], cwd=tmp_path,
-                                    timeout=240)
+def test_example_runs_and_writes_outputs(script, example_run):
+    status, stderr, out = example_run(script.stem)
     assert status == 0, stderr[-3000:]
     written = {p.suffix for p in out.rglob("*") if p.is_file()}
     assert ".png" in written, f"{script.name} wrote no figure"

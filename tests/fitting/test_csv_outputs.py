@@ -4,9 +4,7 @@ Issue 15: one column-header convention everywhere: the name, then the unit in
 brackets, nothing else in brackets (coverage_summary.csv had prose there).
 """
 
-import importlib.util
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,25 +14,20 @@ from supercoil.cli import main
 from supercoil.dna.fitting import simulate_rotation_curves
 from supercoil.units import ureg
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 #: a header cell: a name (may hold a molecule label "[m1]" glued to it), then " [unit]"
 HEADER = re.compile(r"^(?P<name>[A-Za-z_][\w.]*(\[[^\[\]]+\])?\w*)( \[(?P<unit>[^\[\]()]+)\])?$")
 DIMENSIONS = {"force": "[force]", "extension": "[length]", "torque": "[force] * [length]",
               "radius": "[length]", "twist_persistence": "[length]", "turns_offset": "turn"}
 
 
-def _run_example(name, out):
-    spec = importlib.util.spec_from_file_location(f"example_{name}", EXAMPLES / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    module.main(["--out", str(out), "--quick"])
-
-
 @pytest.fixture(scope="module")
-def written(tmp_path_factory, true_dna):
+def written(tmp_path_factory, true_dna, example_run):
     root = tmp_path_factory.mktemp("csv")
-    _run_example("fit_tweezers_data", root / "example")
-    _run_example("validate_fit_coverage", root / "coverage")
+    examples = []
+    for name in ("fit_tweezers_data", "validate_fit_coverage"):  # the runs test_examples checks
+        status, stderr, out = example_run(name)
+        assert status == 0, stderr[-3000:]
+        examples += list(out.rglob("*.csv"))
     u = sc.ureg
     one = simulate_rotation_curves(true_dna, [0.3, 0.5, 0.7] * u.pN, points_per_force=40,
                                    seed=9, torque_noise=2 * u.pN * u.nm, sigma_column=True)
@@ -50,7 +43,7 @@ def written(tmp_path_factory, true_dna):
     assert main(["fit", str(root / "one.csv"), "--model", "li-zhao", "--model", "marko2007",
                  "--out", str(root / "cli4"), "--no-plot"]) in (0, 1)
     files = sorted(p for p in root.rglob("*.csv") if p.parent != root)
-    return files
+    return sorted(examples) + files
 
 
 def test_every_fit_csv_reads_back_with_units(written):
