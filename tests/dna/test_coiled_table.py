@@ -257,16 +257,23 @@ def test_the_screened_jump_to_contact_is_named_for_fully_coiled_turns():
 
 
 @pytest.mark.parametrize("end_loop", [False, True])
-def test_hat_points_to_full_coiling_match_the_direct_solve(si, end_loop):
-    """hat_points solves its fully coiled points from one cubic inverse of the branch per
-    call (coiled_table.inverse_table): torque and free energy agree with the direct solve
+@pytest.mark.parametrize("path", ["inverse", "series"])
+def test_hat_points_to_full_coiling_match_the_direct_solve(si, end_loop, path, monkeypatch):
+    """hat_points solves its fully coiled points from one table of the branch per call:
+    the cubic inverse (coiled_table.inverse_of, from INVERSE_MIN_POINTS points) or Newton
+    on the Chebyshev series (fewer): torque and free energy agree with the direct solve
     per point (the secant on every point, and brentq on seven) to 1e-12, far inside the
     1e-8 the fits need; extension is 0 there by construction, and the other phases are
-    untouched (bit for bit the same as without the inverse)."""
+    untouched (bit for bit the same as without the table)."""
+    monkeypatch.setattr(ct, "INVERSE_MIN_POINTS", 0 if path == "inverse" else 10**9)
+    used = []
+    evaluate = ct.evaluate_inverse
+    monkeypatch.setattr(ct, "evaluate_inverse", lambda *a: used.append(1) or evaluate(*a))
     L, B, C, kT, _ = si
     N = np.linspace(-40.0, 40.0, 4001)
     F = np.full(N.size, 1.2e-12)
     p = fe.hat_points(N, F, L, B, C, kT, equilibrium_of(si), end_loop=end_loop)
+    assert bool(used) == (path == "inverse")
     coiled = p.phase == fe.FULLY_COILED
     assert coiled.sum() > 1000
     co = fe.coexistence(F[:1], L, B, C, kT, equilibrium_of(si))

@@ -41,7 +41,7 @@ def _start(ci, co, loop, length, B, C):
 
 
 def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
-    """One inverse of the fully coiled branch for all points of a call, or None.
+    """One table of the fully coiled branch for all points of a call, or None.
 
     A pass over the points (in blocks, no per-point temporaries kept) finds the fully
     coiled ones: fewer than :data:`~supercoil.core.dna.coiled_table.MIN_POINTS`, None
@@ -70,7 +70,12 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
     with _naming_turns(top, length):
         _, T_hi = _table.secant(np.array([x_of(top)]), co.pull[i:i + 1], start, C,
                                 equilibrium, ends, upper=_table.DOMAIN_OVERSHOOT)
-    return _table.inverse_table((co.pull[i], T_hi[0]), C, equilibrium, ends) or False
+    series = _table.branch_series((co.pull[i], T_hi[0]), C, equilibrium, ends)
+    if series is None:
+        return False
+    if count < _table.INVERSE_MIN_POINTS:
+        return series
+    return _table.inverse_of(series) or series
 
 
 class _naming_turns:
@@ -91,6 +96,13 @@ class _naming_turns:
         return False
 
 
+def _domain(branch):
+    """``(x_lo, x_hi)``: the linkings an :class:`Inverse` or a :class:`Series` covers."""
+    if isinstance(branch, _table.Inverse):
+        return branch.x_lo, branch.x_hi
+    return branch.nodes[-1], branch.nodes[0]
+
+
 def solve(n, inv, coiled, co, loop, length, B, C, equilibrium, trial_equilibrium,
           branch=None):
     """``(M, T)`` of the fully coiled points n, with or without loop.
@@ -103,10 +115,15 @@ def solve(n, inv, coiled, co, loop, length, B, C, equilibrium, trial_equilibrium
     """
     ends = None if loop is None else (B, length)
     x = _TWO_PI * (n if loop is None else n - _loop.LOOP_WRITHE) / length
-    if branch and x.max() <= branch.x_hi and \
-            x.min() >= branch.x_lo - 1e-9 * (branch.x_hi - branch.x_lo):
-        Mc, Tc = _table.evaluate_inverse(branch, x)
-    else:  # few points in the call, or a branch the inverse cannot resolve
+    got = None
+    if branch:
+        x_lo, x_hi = _domain(branch)
+        if x.max() <= x_hi and x.min() >= x_lo - 1e-9 * (x_hi - x_lo):
+            got = (_table.evaluate_inverse(branch, x) if isinstance(branch, _table.Inverse)
+                   else _table.solve_series(branch, x))
+    if got is not None:
+        Mc, Tc = got
+    else:  # few points in the call, or a branch the table cannot resolve
         ci = np.zeros(n.size, np.intp) if inv is None else inv[coiled]
         start = _start(ci, co, loop, length, B, C)[1]
         with _naming_turns(n.max(), length):

@@ -54,6 +54,7 @@ from supercoil.exceptions import ValidityError
 
 __all__ = [
     "DOMAIN_OVERSHOOT",
+    "INVERSE_MIN_POINTS",
     "INVERSE_RTOL",
     "MAX_DEGREE",
     "MAX_PIECES",
@@ -63,10 +64,14 @@ __all__ = [
     "START_PIECES",
     "TAIL_RTOL",
     "Inverse",
+    "Series",
     "branch_linking",
+    "branch_series",
     "evaluate_inverse",
+    "inverse_of",
     "inverse_table",
     "secant",
+    "solve_series",
     "torque_at_linking",
 ]
 
@@ -91,6 +96,9 @@ _NEWTON_TOL = 1e-14
 _ROUNDING = 16.0 * np.finfo(float).eps
 #: pieces of the first cubic inverse (:func:`inverse_table`); its error sets the final size
 START_PIECES = 64
+#: fewer fully coiled points in a call than this: Newton on the series solves them (the
+#: inverse would solve 2 K + 1 >= 129 roots, typically 2,049, to build itself)
+INVERSE_MIN_POINTS = 2048
 #: largest number of pieces tried (the caller's secant solves beyond)
 MAX_PIECES = 1 << 14
 #: the inverse is accepted once at every piece's midpoint its T and M are within this
@@ -188,20 +196,44 @@ def torque_at_linking(linking, extremes, C, equilibrium, loop=None):
         does not converge by :data:`MAX_DEGREE` or Newton does not settle (the
         caller then solves by its secant).
     """
-    x = np.asarray(linking, float)
-    T_lo, T_hi = extremes
-    u_lo, u_hi = np.log(T_lo), np.log(T_hi)
+    series = branch_series(extremes, C, equilibrium, loop)
+    return None if series is None else solve_series(series, linking)
+
+
+class Series(NamedTuple):
+    """Converged Chebyshev series of ``l_p`` and ``M_p`` in ``t`` on ``[u_lo, u_hi]``."""
+
+    u_lo: float  # log T at t = -1
+    half: float  # (u_hi - u_lo) / 2
+    linking: np.ndarray  # coefficients of l_p, rad/m
+    slope: np.ndarray  # of dl_p/dt
+    torque: np.ndarray  # of M_p, N m
+    nodes: np.ndarray  # l_p at the Lobatto nodes (descending t)
+
+
+def branch_series(extremes, C, equilibrium, loop=None):
+    """The :class:`Series` of the branch between the tensions ``extremes``, or None.
+
+    None where ``T_hi <= T_lo`` or the table does not converge (see
+    :func:`torque_at_linking`).
+    """
+    u_lo, u_hi = np.log(extremes[0]), np.log(extremes[1])
     if not u_hi > u_lo:  # all targets equal: the extremes are the answer
         return None
     table = _table(u_lo, u_hi, C, equilibrium, loop)
     if table is None:
         return None
     cl, cM, lp_nodes = table
-    half = 0.5 * (u_hi - u_lo)
-    t = _roots(x, cl, _ch.chebder(cl), lp_nodes, half)
+    return Series(u_lo, 0.5 * (u_hi - u_lo), cl, _ch.chebder(cl), cM, lp_nodes)
+
+
+def solve_series(series, linking):
+    """``(M, T)`` with ``l_p(T) = linking`` by Newton on ``series``, or None (not settled)."""
+    x = np.asarray(linking, float)
+    t = _roots(x, series.linking, series.slope, series.nodes, series.half)
     if t is None:
         return None
-    return _ch.chebval(t, cM), np.exp(u_lo + half * (t + 1.0))
+    return _ch.chebval(t, series.torque), np.exp(series.u_lo + series.half * (t + 1.0))
 
 
 def _roots(x, cl, dcl, lp_nodes, half, t=None):
@@ -279,16 +311,14 @@ def inverse_table(extremes, C, equilibrium, loop=None):
         None where the table is not resolved (as :func:`torque_at_linking`) or
         :data:`MAX_PIECES` pieces do not reach the tolerance.
     """
-    T_lo, T_hi = extremes
-    u_lo, u_hi = np.log(T_lo), np.log(T_hi)
-    if not u_hi > u_lo:
-        return None
-    table = _table(u_lo, u_hi, C, equilibrium, loop)
-    if table is None:
-        return None
-    cl, cM, lp_nodes = table
-    half = 0.5 * (u_hi - u_lo)
-    dcl, dcM = _ch.chebder(cl), _ch.chebder(cM)
+    series = branch_series(extremes, C, equilibrium, loop)
+    return None if series is None else inverse_of(series)
+
+
+def inverse_of(series):
+    """The :class:`Inverse` of a :class:`Series` (see :func:`inverse_table`), or None."""
+    u_lo, half, cl, dcl, cM, lp_nodes = series
+    dcM = _ch.chebder(cM)
     x_lo, x_hi = lp_nodes[-1], lp_nodes[0]
 
     def level(pieces, guess=None):
