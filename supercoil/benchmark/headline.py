@@ -25,7 +25,7 @@ import numpy as np
 #: sizes of the full run (``supercoil bench``)
 FULL = {"hat_n": 10**6, "hat_mem": (10**6, 10**7), "eq_n": 1000, "eq_mem": 10**7,
         "loader_rows": 10**5, "fit_samples": 9, "pooled": 200, "replayed": (200, 2000),
-        "pool_repeats": 5,
+        "pool_repeats": 3,
         "import_repeat": 5, "cli_repeat": 3, "model_forces": 1000,
         "model_sizes": (1_000, 100_000), "samples": 9, "physical": 200, "fit_samples_models": 3}
 #: sizes of ``supercoil bench --quick`` (seconds; the names of the rows give the sizes)

@@ -207,7 +207,7 @@ def fit_many_cost_child(pooled, replayed, read_back, repeats):
     fitting script does not. Measured in a fresh child, as such a script runs.
     """
     args = [str(pooled), ",".join(str(n) for n in replayed), str(read_back), str(repeats)]
-    text, _, _ = _run(["-c", _FIT_MANY, *args], _env())
+    text, _, _ = _run(["-c", _FIT_MANY, *args], _env(), timeout=900)
     return json.loads(text.strip().splitlines()[-1])
 
 
