@@ -39,7 +39,6 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_parser
 from supercoil.datasets.published import (
     ENV_VAR,
     published_curves_path,
@@ -48,6 +47,7 @@ from supercoil.datasets.published import (
 )
 from supercoil.dna.fitting import compare_models
 from supercoil.dna.models import get_model
+from supercoil.example_cli import example_parser
 
 #: model parameters fitted per model (others: every parameter the model declares)
 MODEL_VARY = {"marko2007": ["plectoneme_twist_persistence"]}

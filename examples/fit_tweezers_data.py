@@ -34,9 +34,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
 from supercoil.dna.fitting import simulate_rotation_curves
 from supercoil.dna.fitting.result import fmt_pm
+from supercoil.example_cli import example_arguments
 
 FORCES = (0.3, 0.5, 0.7)  # pN
 

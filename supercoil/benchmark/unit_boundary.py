@@ -54,7 +54,7 @@ def _cases():
 
         cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
 
-        from supercoil.core.dna.hat import hat_curve_points
+        from supercoil.core.dna.li_zhao import hat_curve_points
 
         def hat_public(n, si=False):
             f = 1.2e-12 * u.N if si else 1.2 * u.pN
@@ -78,8 +78,8 @@ def run(sizes=SIZES):
 
     Public call and kernel are timed in interleaved samples
     (:func:`~supercoil.benchmark.timing.paired_best_times`); at 1e6 elements
-    two samples and no warm-up (a plectoneme solve of 1e6 forces takes ~2 s), and the
-    SI run skips the warm-up the display run just gave both calls.
+    two samples and no warm-up (a plectoneme solve of 1e6 forces is the slowest sample),
+    and the SI run skips the warm-up the display run just gave both calls.
     """
     from supercoil.tables import make_table, provenance
 
@@ -87,7 +87,7 @@ def run(sizes=SIZES):
     rows = {k: [] for k in keys}
     for name, public, kernel in _cases():
         for n in sizes:
-            big = n >= 1_000_000  # a plectoneme solve of 1e6 forces takes ~2 s: 2 samples
+            big = n >= 1_000_000  # a plectoneme solve of 1e6 forces: the slowest call
             kern = kernel(n)
             for si in (False, True):
                 tp, tk = paired_best_times(public(n, si), kern, repeat=2 if big else 7,

@@ -24,7 +24,7 @@ import sys
 
 import numpy as np
 
-from supercoil.core.dna.hat import DENATURATION_FORCE
+from supercoil.core.dna.interface import DENATURATION_FORCE
 
 DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
 #: default turns at forces up to DENATURATION_PN, and above it (positive turns only: real
@@ -141,7 +141,7 @@ def model_with_options(command, name, end_loop):
 
     if not end_loop:
         return get_model(name), None
-    if "end_loop" not in getattr(get_model(name), "OPTIONS", {}):
+    if "end_loop" not in get_model(name).options():
         with_loop = [m for m in _models_with_end_loop()]
         return None, (f"supercoil {command}: error: --end-loop: model {name!r} has no end loop "
                       f"(models with one: {', '.join(with_loop)})")
@@ -151,7 +151,7 @@ def model_with_options(command, name, end_loop):
 def _models_with_end_loop():
     from supercoil.dna.models import available_models, get_model
 
-    return [m for m in available_models() if "end_loop" in getattr(get_model(m), "OPTIONS", {})]
+    return [m for m in available_models() if "end_loop" in get_model(m).options()]
 
 
 def _interaction_arg(args):

@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from supercoil._checks import check_flag
-from supercoil.core.dna import hat as _hc
+from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
 from supercoil.dna import validity as _v
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import DEFAULT_MODEL, get_model
@@ -93,8 +93,7 @@ def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DE
         radius) as :func:`plectoneme_equilibrium` gives them.
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    b = _buckling(m, f, si, thermal, inter)
-    _v.check_finite_output(m, f, {"buckling turns": b.turns}, allow_inf=True)
+    b = m.buckling(f, si, thermal, inter)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(b.turns, U.turn)
 
@@ -121,10 +120,8 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     with np.errstate(invalid="ignore"):  # an undefined slope is raised as ValidityError below
-        b = _buckling(m, f, si, thermal, inter)
-        msgs = _v.force_messages(f) + inter.messages(si)
-        if thermal and hasattr(m, "slope_validity"):
-            msgs += m.slope_validity(f, b.torque, si)
+        b = m.buckling(f, si, thermal, inter)
+        msgs = m.slope_validity(f, b, si, thermal) + inter.messages(si)
     if not np.all(np.isfinite(b.slope)):
         from supercoil.exceptions import ValidityError
 
@@ -147,47 +144,17 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
                              f"got {short_tail_length}")
     F = _repeated(f, n.size)
     N = _tiled(n, f.size, turns)
-    if N.size == 0:  # no force or no turns: an empty table, no model called
-        return si, F, N, _no_points(m, thermal), m, inter.interaction, thermal, short
-    hp = m.points(N, F, si, thermal, inter, short)
-    if _v.summary_of(hp) is None:  # the kernel's summary says finite: no second pass
-        _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
-    denat = [] if m.describes_denaturation else _v.denaturation_messages(F, N)
-    msgs = (_v.force_messages(f) + denat + inter.messages(si)
-            + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
-            + m.validity(N, F, hp, si, thermal))
+    hp = m.points(N, F, si, thermal, inter, short)  # no point: an empty table, no kernel call
+    msgs = m.validity(N, F, hp, si, thermal) + inter.messages(si) if N.size else []
     _v.warn(msgs, stacklevel=stacklevel + 1)
     return si, F, N, hp, m, inter.interaction, thermal, short
-
-
-def _buckling(m, f, si, thermal, inter):
-    """``m.buckling``, or empty arrays for no force (the models reduce over the forces)."""
-    if f.size == 0:
-        from supercoil.dna.models.base import Buckling
-
-        return Buckling(np.empty(0), np.empty(0), np.empty(0))
-    return m.buckling(f, si, thermal, inter)
-
-
-def _no_points(m, thermal):
-    """The :class:`~supercoil.core.dna.hat.HatPoints` of no point (empty force or turns).
-
-    One path for every model: the models reduce over their inputs (min, max,
-    the first force) and would fail on zero-size arrays with numpy's
-    messages; an empty input gives an empty result instead, as in 0.1.
-    """
-    e = np.empty(0)
-    return _hc.HatPoints(extension=e, torque=e.copy(), plectoneme_length=e.copy(),
-                         phase=np.empty(0, np.int8), short_tail=np.empty(0, bool),
-                         zeta=e.copy(),
-                         free_energy=np.empty(0) if m.has_free_energy(thermal) else None)
 
 
 def _repeated(f, size):
     """The per-point forces: each force ``size`` times, force-major.
 
-    One force: a read-only broadcast view (no array written: 0.7 ms and 8 MB
-    fewer at 1e6 points; the models only read the forces).
+    One force: a read-only broadcast view (no array written: 8 MB fewer at 1e6
+    points; the models only read the forces).
     """
     if f.size == 1:
         return np.broadcast_to(f, (size,))
@@ -226,11 +193,7 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
     n = _v.checked_turns(turns, si)
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
-    if N.size == 0 and m.has_free_energy(thermal):
-        g = np.empty(0)  # no point: no model call (the models reduce over their inputs)
-    else:
-        g = m.free_energy(N, F, si, thermal, inter)
-    _v.check_finite_output(m, F, {"free energy": g}, N)
+    g = m.free_energy(N, F, si, thermal, inter)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(np.asarray(g) * 1e21, U.pN_nm)
 
@@ -315,7 +278,7 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
                                                      interaction, short_tail_length, 2)
     L = si.length
     if short is None:
-        short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
+        short = SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
     # The checks above read the SI arrays; now each fresh array becomes its display-unit
     # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)
@@ -377,5 +340,5 @@ class _Owned:
 
 @lru_cache(maxsize=32)
 def _parameters(dna):
-    """``dna.as_dict()`` once per molecule (formatting pint units costs ~50 us)."""
+    """``dna.as_dict()`` once per molecule (formatting pint units is slow)."""
     return dna.as_dict()

@@ -36,7 +36,7 @@ def plectoneme_map(dna, quick):
                     a, R = float(e.alpha.m_as(u.rad)), float(e.radius.m_as(u.m))
                     om = float(e.omega.m_as(1 / u.m))
                     with np.errstate(all="ignore"):
-                        res = pl.equilibrium_residuals(F * 1e-12, a, R, om, si.bending_rigidity,
+                        res = pl.hard_core_residuals(F * 1e-12, a, R, om, si.bending_rigidity,
                                                        si.torsional_rigidity, si.kT, si.radius)
                     worst = max(abs(float(x)) for x in res)
                     if not 0 < a < np.pi / 4 or not R >= 0.5 * si.radius:
@@ -89,7 +89,7 @@ def extension_map(dna, quick):
 
 def hat_turns(d, F, thermal):
     """17 turns from 0 to the point where the plectoneme holds half the molecule."""
-    from supercoil.core.dna import hat as hc
+    from supercoil.core.dna import li_zhao as hc
 
     si = d.si
     args = (si.length, si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius, thermal)
@@ -111,7 +111,7 @@ def hat_checks(df, d, F, thermal):
     Returns ``(problems, soft)``: points that do not match their phase, and
     unflagged points outside ``0 <= z <= L`` or with z growing with N.
     """
-    from supercoil.core.dna import hat as hc
+    from supercoil.core.dna import li_zhao as hc
     from supercoil.core.dna import moroz_nelson as mn
 
     si = d.si

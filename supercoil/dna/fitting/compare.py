@@ -197,10 +197,17 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     prov = provenance(dna, models=[r["model"] for r in rows],
                       vary={k: list(v) for k, v in vary.items()} if isinstance(vary, dict)
                       else list(vary),
-                      thermal=thermal, interaction=str(getattr(interaction, "name", interaction)),
+                      thermal=thermal, interaction=_interaction_name(interaction),
                       criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
     table = make_table(cols, all_units, prov)
     return (table, results) if return_results else table
+
+
+def _interaction_name(interaction):
+    """The provenance entry of ``interaction``: its registry name (a name or an instance)."""
+    from supercoil.dna.interactions.base import Interaction
+
+    return str(interaction.name if isinstance(interaction, Interaction) else interaction)
 
 
 def _model_list(models):
@@ -246,7 +253,8 @@ def model_labels(models):
 
 def _details(m, fmt):
     """``"(option=..., parameter=...)"`` for what differs from the defaults, else ``""``."""
-    parts = [f"{k}={v}" for k, v in m.options().items() if v != m.OPTIONS[k]]
+    defaults = m.option_defaults()
+    parts = [f"{k}={v}" for k, v in m.options().items() if v != defaults[k]]
     for k, q in m.quantities().items():
         if m.values[k] != m.parameters[k].default:
             parts.append(f"{k}={format(q, fmt + '~P')}")

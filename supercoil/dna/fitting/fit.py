@@ -2,7 +2,7 @@
 
 docs/theory/fitting.md. The model (:mod:`supercoil.dna.fitting.model`) is any
 registered DNA model through the model interface; the parameters
-(:mod:`supercoil.dna.fitting.parameters`) are DNA fields, model and interaction
+(:mod:`supercoil.dna.fitting.fit_parameters`) are DNA fields, model and interaction
 parameters and per-molecule offsets. :func:`scipy.optimize.least_squares`
 (trust-region reflective, bounds) on scaled variables; covariance from the thin
 SVD of the Jacobian (:mod:`supercoil.dna.fitting.covariance`); plausibility
@@ -21,23 +21,22 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
-from supercoil._checks import check_flag, check_material
-from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
+from supercoil._checks import check_flag
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
-from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
+from supercoil.dna.fitting.fit_parameters import CALIBRATION, FitParameters
+from supercoil.dna.fitting.joint_noise import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
 from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
-from supercoil.dna.validity import check_interaction
+from supercoil.dna.validity import check_dna, check_interaction
 from supercoil.exceptions import (
     BoundWarning,
     FitError,
@@ -97,7 +96,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
     fit_extension_offset, z0_per_force = _extension_offset_mode(fit_extension_offset)
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
         check_interaction(inter, dna.si)  # with the hard-core scale A/r0
@@ -289,7 +288,7 @@ def run_fit(spec: FitSpec) -> dict:
         "nfev": int(res.nfev), "njev": int(prob.njev), "kernel_calls": prob.n_kernel_calls,
         "status": int(res.status), "message": str(res.message),
         "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
-        "interaction_obj": getattr(inter, "_inter", inter), "n0": n0, "z0": z0, "model": best,
+        "interaction_obj": inter.interaction, "n0": n0, "z0": z0, "model": best,
         "z0_points": np.asarray(z0_pts, dtype=float),
         "states": prob.states(u) if prob._per_force else None,
         "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
@@ -303,8 +302,9 @@ def run_fit(spec: FitSpec) -> dict:
 
 
 def _validity_records(spec, pts, n0, model, dna):
+    """The fit's validity warnings: points outside the model's range, then the model's
+    messages at the data (the shared limits and its own, :meth:`DNAModel.validity`)."""
     data = spec.data
-    n = data.n
     n_eff = data.turns - n0[data.mol_index]
     phase = np.asarray(pts.phase)
     short = np.asarray(pts.short_tail, dtype=bool)
@@ -312,24 +312,12 @@ def _validity_records(spec, pts, n0, model, dna):
     bad = short | (phase == FULLY_COILED)
     if bad.any():
         out.append(("ValidityWarning",
-                    f"{int(bad.sum())} of {n} data points lie where the hat-curve model is not "
-                    f"valid ({int((phase == FULLY_COILED).sum())} fully coiled, "
+                    f"{int(bad.sum())} of {data.n} data points lie where the hat-curve model "
+                    f"is not valid ({int((phase == FULLY_COILED).sum())} fully coiled, "
                     f"{int(short.sum())} with a tail shorter than a few persistence lengths); "
                     "exclude the large-|turns| ends of the curves"))
-    out += [("ValidityWarning", m)
-            for m in model.validity(n_eff, data.force, pts, dna, spec.thermal)]
-    over = data.force > OVERSTRETCHING_FORCE
-    if over.any():
-        out.append(("ValidityWarning",
-                    f"{int(over.sum())} data points are above {OVERSTRETCHING_FORCE * 1e12:g} "
-                    "pN, where B-DNA overstretches; the model (inextensible DNA) ignores it"))
-    denat = (data.force > DENATURATION_FORCE) & (n_eff < 0)
-    if denat.any() and not model.describes_denaturation:
-        out.append(("ValidityWarning",
-                    f"{int(denat.sum())} data points have negative turns at forces above "
-                    f"{DENATURATION_FORCE * 1e12:g} pN, where real DNA denatures; the model "
-                    "(symmetric in N) does not describe them"))
-    return out
+    return out + [("ValidityWarning", m)
+                  for m in model.validity(n_eff, data.force, pts, dna, spec.thermal)]
 
 
 _WARNING_CLASSES = {"BoundWarning": BoundWarning, "FitWarning": FitWarning,
@@ -461,7 +449,7 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     Model and interaction parameters held fixed must be set on the model or
     interaction instance passed to the fit.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
     z0_fit, z0_per_force = _extension_offset_mode(fit_extension_offset)
@@ -482,7 +470,7 @@ def __getattr__(name):
 
         return getattr(importlib.import_module(f"supercoil.dna.fitting.{_MOVED[name]}"), name)
     if name == "PHYSICAL_PARAMETERS":
-        from supercoil.dna.fitting.parameters import DNA_FIELDS
+        from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 
         return DNA_FIELDS
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

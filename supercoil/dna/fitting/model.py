@@ -6,7 +6,7 @@ For point i of molecule m at force T_i and turns N_i (docs/theory/fitting.md#the
 
 ``hat`` is any registered :class:`~supercoil.dna.models.base.DNAModel`
 (``model.points``), evaluated for the whole data set in one call. The
-parameters (:class:`~supercoil.dna.fitting.parameters.FitParameters`) go to the
+parameters (:class:`~supercoil.dna.fitting.fit_parameters.FitParameters`) go to the
 molecule (DNA fields, at the float level: a :class:`~supercoil.dna.material.DNASI`
 with the derived rigidities recomputed), to ``model.replace(...)``, to
 ``interaction.replace(...)`` or to the per-molecule offsets.
@@ -17,7 +17,7 @@ residual vector is ``[(z_model - z) / sigma_z, (tau_model - tau) / sigma_tau]``
 channels, the extension offsets on the extensions only.
 
 Calibration nuisance parameters (docs/theory/fitting.md#calibration-nuisance-parameters,
-:data:`~supercoil.dna.fitting.parameters.CALIBRATION`; both 1 unless given):
+:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`; both 1 unless given):
 the kernel is evaluated at ``force_scale x`` the data's (nominal) force, and the
 measured torque is predicted as ``tau_model / torque_scale`` (model torque =
 torque_scale x measured torque); the data and their sigmas are never rescaled.
@@ -78,11 +78,16 @@ class _CachedInteraction:
     """An interaction whose ``equilibrium`` is memoised within one fit."""
 
     def __init__(self, interaction, store):
+        self.interaction = interaction  # the bare interaction (the fit result keeps it)
         self._inter = interaction
         self._store = store
 
     def __getattr__(self, name):
         return getattr(self._inter, name)
+
+    def unrecorded(self):
+        """Itself: the cache records nothing the shared checks read (trial states stay cached)."""
+        return self
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)

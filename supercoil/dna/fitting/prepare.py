@@ -5,7 +5,7 @@ in ``fixed``), the parameters the DNA model and the interaction declare
 (``model.parameters``, ``interaction.parameters``), and the offsets
 ``turns_offset`` / ``extension_offset`` (all molecules) or
 ``turns_offset[<molecule>]`` (one molecule), and the calibration scales
-(:data:`~supercoil.dna.fitting.parameters.CALIBRATION`: ``torque_scale``,
+(:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`: ``torque_scale``,
 ``force_scale``; held at 1 unless varied or fixed).
 """
 
@@ -16,8 +16,7 @@ import re
 
 import numpy as np
 
-from supercoil.dna.fitting.model import dna_si
-from supercoil.dna.fitting.parameters import (
+from supercoil.dna.fitting.fit_parameters import (
     CALIBRATION,
     DNA_FIELDS,
     PLAUSIBLE,
@@ -25,6 +24,7 @@ from supercoil.dna.fitting.parameters import (
     FitParameters,
     calibration_parameter,
 )
+from supercoil.dna.fitting.model import dna_si
 from supercoil.exceptions import FitError
 from supercoil.units import U, as_turns, magnitude
 

@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag, check_material, scalar
+from supercoil._checks import check_flag, scalar
 from supercoil.dna import validity as _v
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
-from supercoil.dna.models.li_zhao import LiZhao
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, as_turns, magnitude, quantity
@@ -26,9 +24,10 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     extension factor is not valid (docs/theory/li-zhao.md). ``min_tail``
     defaults to 4 bending persistence lengths (one more than the kernel's
     short-tail flag, so that a turns offset of a turn or two keeps the data
-    valid). For ``"li-zhao"`` exact: ``N_b + (L - l_min) D / (2 pi)`` with the
-    linking rate D; for other models from their buckling constants: ``N_b +
-    z_b (1 - l_min / L) / |dz/dN|`` (the plectoneme phase taken as linear).
+    valid). From :meth:`~supercoil.dna.models.base.DNAModel.turns_at_tail_length`: for
+    ``"li-zhao"`` exact, ``N_b + (L - l_min) D / (2 pi)`` with the linking rate D; by
+    default from the buckling constants, ``N_b + z_b (1 - l_min / L) / |dz/dN|`` (the
+    plectoneme phase taken as linear).
 
     Returns a float array (turns), one per force (empty for no force).
 
@@ -39,10 +38,8 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     ValueError, NoEquilibriumError
         Forces not finite, not 1-D, or not positive (as every DNA function).
     """
-    from supercoil.core.dna.hat import hat_parameters
-
     thermal = check_flag(thermal, "thermal")
-    si = check_material(dna, DNA, "dna")
+    si = _v.check_dna(dna)
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
         _v.check_interaction(inter, si)
@@ -51,18 +48,12 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
         return np.empty(0)
     lmin = 4 * si.bending_persistence if min_tail is None else float(
         magnitude(min_tail, U.m, "min_tail"))
-    if type(m) is LiZhao and inter.name == DEFAULT_INTERACTION:
-        par = hat_parameters(F, si.length, si.bending_rigidity, si.torsional_rigidity, si.kT,
-                             si.radius, thermal=thermal)
-        return par.buckling_turns + (si.length - lmin) * par.linking_rate / (2 * np.pi)
-    b = m.buckling(F, si, thermal, inter)
-    ok = np.isfinite(b.turns) & np.isfinite(b.slope) & (b.slope < 0)
-    if not ok.all():
-        i = int(np.flatnonzero(~ok)[0])
+    n = m.turns_at_tail_length(F, lmin, si, thermal, inter)
+    if not np.all(np.isfinite(n)):
+        i = int(np.flatnonzero(~np.isfinite(n))[0])
         raise FitError(f"model {m.name!r} does not buckle at force {F[i] * 1e12:.6g} pN: no "
                        "finite valid turns range; give the turns explicitly")
-    zb = np.asarray(m.points(b.turns, F, si, thermal, inter, None).extension, dtype=float)
-    return b.turns + zb * (1 - lmin / si.length) / np.abs(b.slope)
+    return n
 
 
 def _labels(molecules):
@@ -226,7 +217,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     """
     thermal = check_flag(thermal, "thermal")
     sigma_column = check_flag(sigma_column, "sigma_column")
-    check_material(dna, DNA, "dna")
+    _v.check_dna(dna)
     if extension_unit not in _EXTENSION_FACTORS:
         raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
                        f"{extension_unit!r}")

@@ -78,7 +78,7 @@ def unused_parameters(names, force, dna, model, inter, thermal, xi_is_bending=Tr
         if name in model.parameters:
             spec = model.parameters[name]
             m = model.replace(**{name: _perturbed(model.values[name], spec.lower, spec.upper)})
-        elif name in getattr(inter, "parameters", {}):
+        elif inter is not None and name in inter.parameters:
             spec = inter.parameters[name]
             i = inter.replace(**{name: _perturbed(inter.values[name], spec.lower, spec.upper)})
         else:

@@ -16,8 +16,8 @@ from typing import ClassVar
 import numpy as np
 
 from supercoil.core.dna import ensemble as _en
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
-from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import ModelError, ValidityError
 
 __all__ = ["Ensemble"]
@@ -151,7 +151,7 @@ class Ensemble(DNAModel):
             physical_loop=self.physical_loop, max_domains=2 if self.multi_domain else 1,
             nodes=nodes, finite_size=self.finite_size)
 
-    def buckling(self, force, dna, thermal, interaction=None):
+    def _buckling(self, force, dna, thermal, interaction):
         """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
         check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
@@ -163,7 +163,7 @@ class Ensemble(DNAModel):
         slope = -2.0 * np.pi * (-t.dphi_dF) / (om_p - om_t)
         return Buckling(dna.length * om_t / (2.0 * np.pi), Mb, slope)
 
-    def points(self, turns, force, dna, thermal, interaction=None, short_tail_length=None):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Ensemble averages: extension, torque, plectoneme length, phase, G."""
         check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
@@ -179,7 +179,7 @@ class Ensemble(DNAModel):
         return HatPoints(pt.extension, pt.torque, pt.plectoneme_length, phase,
                          tail < short_tail_length, zeta, pt.free_energy)
 
-    def free_energy(self, turns, force, dna, thermal, interaction=None):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         """G(N, F) = -kT ln Z in J (ensemble.md#32-fixed-turns)."""
         check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)

@@ -9,7 +9,7 @@ A parameter is one of
 * a :class:`~supercoil.DNA` field (``length``, ``bending_persistence``,
   ``twist_persistence``, ``radius``; ``owner="dna"``), shared by all points;
 * a parameter the DNA model or the interaction declares
-  (:class:`~supercoil.dna.parameters.ModelParameter`; ``owner="model"`` or
+  (:class:`~supercoil.dna.model_parameters.ModelParameter`; ``owner="model"`` or
   ``"interaction"``), shared by all points;
 * a nuisance offset of one molecule (``turns_offset[<molecule>]``,
   ``extension_offset[<molecule>]``; ``owner="offset"``, ``shared="per-molecule"``);
