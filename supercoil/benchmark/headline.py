@@ -27,13 +27,15 @@ FULL = {"hat_n": 10**6, "hat_mem": (10**6, 10**7), "eq_n": 1000, "eq_mem": 10**7
         "loader_rows": 10**5, "fit_samples": 9, "pooled": 200, "replayed": (200, 2000),
         "pool_repeats": 3,
         "import_repeat": 5, "cli_repeat": 3, "model_forces": 1000,
-        "model_sizes": (1_000, 100_000), "samples": 9, "physical": 200, "fit_samples_models": 3}
+        "model_sizes": (1_000, 100_000), "samples": 9, "physical": 200, "fit_samples_models": 3,
+        "coiled_points": 200_000}
 #: sizes of ``supercoil bench --quick`` (seconds; the names of the rows give the sizes)
 QUICK = {"hat_n": 10**5, "hat_mem": (10**4, 10**5), "eq_n": 1000, "eq_mem": 10**5,
          "loader_rows": 5_000, "fit_samples": 2, "pooled": 4, "replayed": (4, 20),
          "pool_repeats": 1,
          "import_repeat": 0, "cli_repeat": 0, "model_forces": 100, "model_sizes": (1_000,),
-         "samples": 2, "physical": 40, "fit_samples_models": 1}
+         "samples": 2, "physical": 40, "fit_samples_models": 1,
+         "coiled_points": 20_000}
 MODELS = ("li-zhao", "free-energy", "marko2007")
 
 
@@ -77,7 +79,8 @@ def measure(quick=False, log=print):
                        "startup": float("nan")}
     log("headline: DNA models side by side ...")
     r["models"] = dna_models.model_cost(n_forces=s["model_forces"], sizes=s["model_sizes"],
-                                        repeat=s["samples"], models=MODELS)
+                                        repeat=s["samples"], models=MODELS,
+                                        coiled=(40.0, s["coiled_points"]))
     r["load_end"] = os.getloadavg()[0]
     return r
 
