@@ -1,4 +1,4 @@
-"""Salt dependence of the DNA plectoneme with the screened interaction (issue 12).
+"""Salt dependence of the DNA plectoneme with the screened interaction.
 
 Plectoneme radius, tilt, torque, buckling turns and post-buckling slope against force at
 10, 50, 150, 500 and 1000 mM monovalent salt for ``interaction="screened"`` (Debye-Hueckel

@@ -59,7 +59,7 @@ def main(argv=None) -> int:
 
     out = getattr(args, "out", None)
     problem = check_out_folder(out) if out is not None else None
-    if problem:  # before any computation (issue 20 item 12)
+    if problem:  # before any computation: a bad folder costs no work
         print(f"supercoil {args.command}: error: {problem}", file=sys.stderr)
         return 2
     try:

@@ -5,11 +5,12 @@ Every result record of the public API (:class:`~supercoil.rod.smooth.SmoothHelix
 :class:`~supercoil.rod.rough.RoughHelix`,
 :class:`~supercoil.dna.plectoneme.PlectonemeEquilibrium`) is a :class:`Record`: it holds
 the kernel's SI arrays and builds the quantity of a field, in its display unit, only when
-the field is read (a scene pays for no quantity it does not use; one costs ~3 us). The
-display units of all fields live in one table, :data:`DISPLAY` (per domain: rods are
-shown in mm and N, DNA in nm and pN); the SI-to-display factors are computed from it by
-pint once per record class. ``to_table()`` gives the same fields as a table in the
-package convention (docs/theory/conventions.md), with the same units.
+the field is read (a scene pays for no quantity it does not use; building one costs more
+than the float arithmetic behind it). The display units of all fields live in one table,
+:data:`DISPLAY` (per domain: rods are shown in mm and N, DNA in nm and pN); the
+SI-to-display factors are computed from it by pint once per record class. ``to_table()``
+gives the same fields as a table in the package convention (docs/theory/conventions.md),
+with the same units.
 """
 
 from __future__ import annotations

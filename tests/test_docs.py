@@ -180,3 +180,65 @@ def test_docstring_pipes_are_escaped_outside_literals():
     assert escape("2 pi |N| = x") == r"2 pi \|N\| = x"
     assert escape("``2 pi |N|`` and |N|") == r"``2 pi |N|`` and \|N\|"
     assert escape(r"already \|N\|") == r"already \|N\|"
+
+
+# --- "Implements docs/theory/<page>.md (<label>, ...)" lines of the kernels ---------------
+IMPLEMENTS = re.compile(r"Implements docs/theory/([a-z0-9_-]+)\.md \(([^()]+)\)")
+#: a numbered equation of a page, ``\tag{GE1}``
+TAG = re.compile(r"\\tag\{([^}]+)\}")
+#: the paper's labels cited on a page, ``[eq da/ds]`` or ``[eq alpha def, Eq curvature1]``
+PAPER_LABELS = re.compile(r"\[([^\]\n]+)\]")
+#: the pages of the DNA models: every numbered equation there has an implementing function
+DNA_MODEL_PAGES = ("plectoneme", "li-zhao", "free-energy", "marko2007", "end-loop", "ensemble",
+                   "melting", "screened-interaction", "models")
+
+
+def equation_labels(text):
+    """Labels of a theory page: its ``\\tag`` numbers and the paper labels it cites."""
+    labels = set(TAG.findall(text))
+    for group in PAPER_LABELS.findall(text):
+        labels |= {x.strip() for x in group.split(",") if re.match(r"[Ee]q ", x.strip())}
+    return labels
+
+
+def implements_lines(files):
+    """(file, page, label) of every label of every ``Implements`` line in ``files``."""
+    return [(f, page, label.strip()) for f in files
+            for page, labels in IMPLEMENTS.findall(f.read_text()) for label in labels.split(",")]
+
+
+def unresolved(refs, theory):
+    """The references of ``implements_lines`` whose page or label does not exist."""
+    bad = []
+    for f, page, label in refs:
+        p = theory / f"{page}.md"
+        if not p.exists() or label not in equation_labels(p.read_text()):
+            bad.append(f"{f.name}: {page}.md ({label})")
+    return bad
+
+
+def test_every_implements_line_names_an_existing_page_and_equation():
+    refs = implements_lines(sorted((ROOT / "supercoil").rglob("*.py")))
+    assert len(refs) >= 30  # the kernels carry them (not a vacuous pass)
+    assert not unresolved(refs, THEORY)
+
+
+def test_an_implements_line_with_a_wrong_page_or_label_is_caught(tmp_path):
+    (tmp_path / "page.md").write_text("$$ x = 1 \\tag{E1} $$ and [eq da/ds, Eq curvature1].\n")
+    good = tmp_path / "good.py"
+    good.write_text('"""Implements docs/theory/page.md (E1, eq da/ds, Eq curvature1)."""\n')
+    bad = tmp_path / "bad.py"
+    bad.write_text('"""Implements docs/theory/page.md (E2).\n\n'
+                   'Implements docs/theory/nopage.md (E1)."""\n')
+    assert unresolved(implements_lines([good]), tmp_path) == []
+    assert unresolved(implements_lines([bad]), tmp_path) == ["bad.py: page.md (E2)",
+                                                             "bad.py: nopage.md (E1)"]
+
+
+def test_every_numbered_equation_of_the_dna_model_pages_has_an_implementing_function():
+    done = {(page, label) for _, page, label in
+            implements_lines(sorted((ROOT / "supercoil" / "core").rglob("*.py")))}
+    missing = [f"{page}.md ({label})" for page in DNA_MODEL_PAGES
+               for label in sorted(TAG.findall((THEORY / f"{page}.md").read_text()))
+               if (page, label) not in done]
+    assert not missing, f"numbered equations without an 'Implements' line: {missing}"

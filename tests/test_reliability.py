@@ -302,7 +302,7 @@ def test_non_positive_force_is_refused_by_every_model(dna, model, force):
 
 
 def test_empty_turns_give_an_empty_table(dna):
-    # main: numpy reduction error; round 3 (issue 20, item 3): an empty table as in 0.1
+    # it once raised numpy's reduction error; now an empty table, as in 0.1
     t = sc.hat_curve(dna, 1 * u.pN, [], model="marko2007")
     assert len(t) == 0 and "extension" in t.columns
 

@@ -8,7 +8,7 @@
   different equations from the solver under test.
 * :func:`hat_cost`: cost per point of the hat curve as the number of turns grows
   (1e2 to 1e6), thermal against athermal. The equilibrium is solved once per
-  call (about 60 us), so at large sizes this is the cost "once the
+  call (a fixed cost), so at large sizes this is the cost "once the
   equilibrium is known".
 """
 

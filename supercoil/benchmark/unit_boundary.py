@@ -78,7 +78,7 @@ def run(sizes=SIZES):
 
     Public call and kernel are timed in interleaved samples
     (:func:`~supercoil.benchmark.timing.paired_best_times`); at 1e6 elements
-    fewer samples are taken (a plectoneme solve of 1e6 forces takes ~2 s).
+    fewer samples are taken (a plectoneme solve of 1e6 forces is the slowest sample).
     """
     from supercoil.tables import make_table, provenance
 

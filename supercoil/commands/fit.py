@@ -45,7 +45,7 @@ def _parse_quantity(text, what):
     """One finite number with its unit; ArgumentTypeError naming ``what`` (the flag) else.
 
     pint reads ``[1,2]nm`` as 12 nm and ``nan`` as a number: both are refused here
-    (issue 20 item 12: a bad ``--fix`` value exits 2 naming the flag, no traceback).
+    (a bad ``--fix`` value exits 2 naming the flag, no traceback).
     """
     import math
 
@@ -344,7 +344,7 @@ def _run_many(args, data, dna, fixed, bounds, start, options):
     from supercoil.dna.fitting.progress import Progress
 
     n = data["molecule"].astype(str).nunique()
-    # a tqdm bar on a terminal, one line per molecule in a log (issue 15)
+    # a tqdm bar on a terminal, one line per molecule in a log (no carriage returns piling up)
     bar = Progress(False if args.no_progress else "log", n, prefix="supercoil fit: ")
     kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start,
                   progress=lambda done, total, molecule: bar.update(molecule), **options)
@@ -369,7 +369,7 @@ def _many_report(table, args):
         f"[[Per-molecule fits]] {len(table)} molecules, {int(table['success'].sum())} fitted, "
         f"{int((~table['success']).sum())} failed; varied: {', '.join(args.vary)}",
     ]
-    # issue 15: with unit weights the reduced chi-square is the residual variance in nm^2;
+    # with unit weights the reduced chi-square is the residual variance in nm^2;
     # show its root, the noise estimate in nm (the errors are scaled by it)
     unit_weights = table.attrs.get("provenance", {}).get("weighting", "unit") == "unit"
     stat_head = "noise [nm]" if unit_weights else "red.chi2"

@@ -39,7 +39,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 __all__ = ["bisect_from_estimate", "bisect_increasing", "cumulative_integrals",
-           "finite_difference", "first_crossing", "safe_newton"]
+           "find_root", "finite_difference", "first_crossing", "safe_newton"]
 
 
 def bisect_increasing(fun, lo, hi, n_iter=1100, xtol=0.0):
@@ -99,8 +99,8 @@ def safe_newton(fun, x, lo, hi, xtol, maxiter=100):
 
     Kept hand-written by measurement: on the (GE2) tilt of the DNA plectoneme
     (600 reduced radii, :func:`supercoil.core.dna.plectoneme.reduced_tilt`)
-    scipy.optimize.elementwise.find_root takes 3.7x its time (0.44 ms vs
-    1.6 ms) for the same roots (2e-16 apart): Newton uses the analytic
+    scipy.optimize.elementwise.find_root takes 3.7x its time for the same roots
+    (2e-16 apart): Newton uses the analytic
     derivative the caller already has.
     """
     x = np.array(x, dtype=float, copy=True)
@@ -121,6 +121,20 @@ def safe_newton(fun, x, lo, hi, xtol, maxiter=100):
         if np.all(dx <= xtol * (1.0 + np.abs(x))):
             break
     return x
+
+
+def find_root(f, init, args=(), **kwargs):
+    """``scipy.optimize.elementwise.find_root`` (Chandrupatla) without its stray warning.
+
+    scipy's post-termination check takes the square root of a negative interpolation
+    ratio on some collapsed brackets ("invalid value encountered in sqrt"); the NaN only
+    turns the next step into a bisection, so it is silenced here and nowhere else (the
+    caller checks ``res.success`` and the values).
+    """
+    from scipy.optimize import elementwise
+
+    with np.errstate(invalid="ignore"):
+        return elementwise.find_root(f, init, args=args, **kwargs)
 
 
 #: Width of the cell of :func:`bisect_from_estimate`, in float spacings of the estimate
@@ -222,8 +236,8 @@ def cumulative_integrals(fun, breaks, rtol=1e-12, max_depth=60, max_panels=20000
 
     Kept hand-written by measurement: for the twist and writhe integrals of
     the k = 0 rough helix on its 860-point internal grid, scipy.integrate.
-    tanhsinh (vectorised over the panels, rtol 1e-12) takes 177x the time
-    (0.15 s vs 0.84 ms) for results 2e-14 apart.
+    tanhsinh (vectorised over the panels, rtol 1e-12) takes 177x the time for
+    results 2e-14 apart.
 
     Parameters
     ----------
@@ -307,7 +321,7 @@ def finite_difference(fun, x, h, lo, hi):
     Kept hand-written by measurement: for ``P(s) = 16 + 4 sin(2 pi s / 0.16 m)``
     mm on 2001 points of [0, 0.2 m] (the designed-helix scene) with
     ``h = 1e-4 s_end``, scipy.differentiate.derivative (one-sided within 2 mm
-    of the ends) takes 17x the time (2.1 ms vs 0.12 ms) and is less accurate
+    of the ends) takes 17x the time and is less accurate
     at its defaults (3e-9 vs 2e-12 relative to the exact derivative).
     """
     x = np.asarray(x, float)

@@ -153,8 +153,8 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
 def _repeated(f, size):
     """The per-point forces: each force ``size`` times, force-major.
 
-    One force: a read-only broadcast view (no array written: 0.7 ms and 8 MB
-    fewer at 1e6 points; the models only read the forces).
+    One force: a read-only broadcast view (no array written: 8 MB fewer at 1e6
+    points; the models only read the forces).
     """
     if f.size == 1:
         return np.broadcast_to(f, (size,))
@@ -340,5 +340,5 @@ class _Owned:
 
 @lru_cache(maxsize=32)
 def _parameters(dna):
-    """``dna.as_dict()`` once per molecule (formatting pint units costs ~50 us)."""
+    """``dna.as_dict()`` once per molecule (formatting pint units is slow)."""
     return dna.as_dict()

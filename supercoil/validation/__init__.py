@@ -30,7 +30,8 @@ DEFAULT_CONFIGS = (
 FALLBACK_FORCE_PN = {"plectoneme_radius": 0.2, "extension_jump_ratio": 2.0}
 #: quantities that depend on the contour length (the others are per length or per turn
 #: of a long molecule); a row of one of these that states no length is not compared: its
-#: prediction is bracketed over BRACKET_LENGTHS_UM instead (issue 20 item 16)
+#: prediction is bracketed over BRACKET_LENGTHS_UM instead (the comparison would
+#: otherwise rest on a length the source did not state)
 LENGTH_DEPENDENT = ("buckling_turns", "extension_jump_ratio")
 #: the contour lengths of the bundled sets (dna: 750 nm; dna_150mM_nacl: 5.03 um)
 BRACKET_LENGTHS_UM = (0.75, 5.03)

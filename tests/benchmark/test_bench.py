@@ -45,7 +45,7 @@ def _bound(target):
 def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
     head = sc.read_csv(bench_dir / "headline.csv")
     text = " ".join(head["measurement"])
-    # every target of issue 14 (benchmarks), issue 9 item 12 and issue 11 has its row
+    # every speed and memory target has its row
     for needle in ("public sc.hat_curve", "kernel supercoil.core.dna.li_zhao.hat_curve_points",
                    "peak traced memory / memory of its result", "sc.fit_hat_curves",
                    "kernel calls x CPU", "sc.fit_many", "ProcessPoolExecutor(2)",

@@ -1,4 +1,4 @@
-"""Stability map (issue 5): every failure region gives its named error or warning.
+"""Stability map: every failure region gives its named error or warning.
 
 The coarse map of :mod:`supercoil.benchmark.stability` runs every solver over its
 inputs; the targeted tests drive each method onto the boundary of each failure
@@ -343,7 +343,7 @@ def test_thermal_hat_fails_named_at_high_force(dna):
     text = " | ".join(str(w.message) for w in rec)
     assert all(issubclass(w.category, sc.ValidityWarning) for w in rec)
     assert "above 65 pN, where B-DNA overstretches" in text
-    assert "R = 1.574 nm < r0" in text  # the strands inside the hard core (issue 9, item 7)
+    assert "R = 1.574 nm < r0" in text  # the strands inside the hard core
     assert "above the Euler limit 2 sqrt(B F)" in text  # athermal tail torque > 2 sqrt(B F)
     assert np.isfinite(df["extension"]).all() and (df["extension"] <= 750).all()
     # 29.8-44 pN: the thermal curve is defined, but R < r0 is said (it was silent before)
@@ -363,7 +363,7 @@ def test_short_molecule_is_flagged_everywhere(dna):
     assert df["short_tail"].all()
     df = sc.hat_curve(short, 1 * u.pN, np.linspace(0, 0.5, 11), thermal=False)
     assert df["short_tail"].all()
-    # zeta > 1: the formula fails, as flagged, and z > L is never silent (issue 9, item 3)
+    # zeta > 1: the formula fails, as flagged, and z > L is never silent
     with pytest.warns(sc.ValidityWarning, match=r"extension 21.2\d* nm .* \[0, L = 20 nm\]"):
         df = sc.hat_curve(short, 1 * u.pN, [0.0], thermal=True)
     assert df["extension"].iloc[0] > 20

@@ -30,7 +30,7 @@ def test_fit_command_single_molecule(tmp_path, capsys, true_dna):
     assert rc == 0
     report = (out / "fit_report.txt").read_text()
     assert "twist_persistence" in report and "noise estimate" in report
-    assert "reduced chi-square" not in report  # unit weights: no chi-square (issue 15)
+    assert "reduced chi-square" not in report  # unit weights: no chi-square
     assert (out / "fit.png").stat().st_size > 0
     params = sc.read_csv(out / "fit_parameters.csv")
     assert params.attrs["units"]["twist_persistence"] == "nm"
@@ -69,7 +69,7 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     rc = main(["fit", str(path), "--out", str(out), "--jobs", "2"])
     assert rc == 1  # one molecule failed: reported, the others fitted
     captured = capsys.readouterr()
-    # issue 15: not a terminal, so one line per molecule (no carriage returns piling up)
+    # not a terminal, so one line per molecule (no carriage returns piling up)
     done = [line for line in captured.err.splitlines() if " done (" in line]
     assert sorted(line[-4:-1] for line in done) == ["1/3", "2/3", "3/3"]
     assert all(line.startswith("supercoil fit: molecule m") for line in done)
@@ -80,7 +80,7 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     assert np.isfinite(table["radius"].iloc[[0, 2]]).all()
     report = (out / "fit_report.txt").read_text()
     assert "FAILED" in report
-    # issue 15: unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
+    # unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
     assert "noise [nm]" in report and "red.chi2" not in report
     row = next(line for line in report.splitlines() if line.strip().startswith("m1 "))
     assert float(row.split()[1]) == pytest.approx(np.sqrt(table["reduced_chi_square"].iloc[0]),
@@ -124,7 +124,7 @@ def test_fit_command_bad_input(tmp_path, capsys):
 
 
 def test_fit_command_malformed_row_is_an_error_not_a_traceback(tmp_path, capsys):
-    """Audit B3: a decimal comma row raised pandas' ParserError out of `supercoil fit`."""
+    """A decimal comma row raised pandas' ParserError out of `supercoil fit`."""
     path = tmp_path / "dc.csv"
     path.write_text("# rig: 2\nforce [pN],turns,extension [um]\n0.5,1,0.6\n0.5,2,0,61\n")
     assert main(["fit", str(path), "--out", str(tmp_path / "x")]) == 2
@@ -154,7 +154,7 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
     assert main(["fit", str(path), "--vary", "radius", "--start", "length=700nm",
                  "--out", out]) == 2
     assert "--start given for 'length'" in capsys.readouterr().err
-    # issue 15: values that do not parse name their flag
+    # values that do not parse name their flag
     for flag, item in (("--fix", "length=abc"), ("--start", "radius=1 parsec/"),
                        ("--bound", "radius=x:3nm"), ("--sigma", "5 blorp")):
         assert main(["fit", str(path), flag, item, "--out", out]) == 2
@@ -164,7 +164,7 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
 
 def test_fit_command_reports_a_molecule_whose_parameters_are_not_determined(
         tmp_path, capsys, true_dna):
-    """Audit B1: a nicked molecule (flat curve) is reported, and the exit status is 1."""
+    """A nicked molecule (flat curve) is reported, and the exit status is 1."""
     u = sc.ureg
     forces = [0.3, 0.5, 0.7]
     df = simulate_rotation_curves(true_dna, forces * u.pN, points_per_force=30, molecules=2,

@@ -55,7 +55,7 @@ def _coiling_turns(co, lp, dna=SEED):
 def test_off_by_default_is_bit_identical_to_the_model_before_the_loop():
     """Values recorded (float.hex) from FreeEnergy() (first before end_loop existed)."""
     # Re-recorded when the plectoneme equilibrium's scalar solve started from a table of
-    # b rounded to 10 % (issue 14): the values moved by 0-13 ulp (at most 3e-15 relative)
+    # b rounded to 10 %: the values moved by 0-13 ulp (at most 3e-15 relative)
     # against those recorded before end_loop existed; the test keeps end_loop=False
     # bit-identical to the default model from here on.
     recorded = {

@@ -439,7 +439,7 @@ def test_scaling_in_place_copies_shared_or_foreign_arrays():
 
 
 def test_peak_memory_of_the_public_table_is_bounded(dna, ureg):
-    """Peak traced memory <= 1.5 x the returned table (issue 14), at 2e5 points."""
+    """Peak traced memory <= 1.5 x the returned table, at 2e5 points."""
     import tracemalloc
 
     turns = np.linspace(0.0, 25.0, 200_000)

@@ -24,7 +24,7 @@ def _flat_molecule(base, forces, points, seed):
 
 
 def test_fit_many_marks_a_flat_molecule_as_not_determined(true_dna, base):
-    """Audit B1: a flat curve in fit_many had success True and stderr ~1e-11."""
+    """A flat curve in fit_many had success True and stderr ~1e-11."""
     u = sc.ureg
     df = simulate_rotation_curves(true_dna, np.array(FORCES) * u.pN, points_per_force=40,
                                   noise=5 * u.nm, molecules=2, seed=1)
@@ -165,7 +165,7 @@ def test_fit_many_checks_and_splits_the_table_once(many, base, monkeypatch):
 
 
 def test_each_task_carries_its_molecule_only_not_the_table():
-    """A task's pickled size does not grow with the number of molecules (issue 16: the
+    """A task's pickled size does not grow with the number of molecules (the
     template once held the whole table, 26 MB per task at 2,000 molecules)."""
     from supercoil.benchmark.fit_many import client_cost
 

@@ -35,7 +35,7 @@ def _counted_fit(problem, base, monkeypatch, **kw):
 
     monkeypatch.setattr(fit_model, "evaluate", counted)
     monkeypatch.setattr(HardCore, "equilibrium", solve)
-    # the pre-fit check which parameters the model uses (issue 22: 1 + len(vary) kernel
+    # the pre-fit check which parameters the model uses (1 + len(vary) kernel
     # calls on a 48-point grid, before the optimiser) is not the fit's cost counted here
     from supercoil.dna.fitting import start
 
@@ -54,8 +54,8 @@ def test_kernel_calls_per_fit_do_not_grow(problem, base, monkeypatch):
     # Jacobian one forward column per global parameter plus one N -/+ h call of 2n points
     assert kernel.count(2 * n) == core["njev"]
     assert len(kernel) <= r.nfev + core["njev"] * (len(VARY) + 1)
-    # pinned on this problem (main before issue 14: 24 calls of which 6 of 2 n points,
-    # nfev 6); a change of the optimiser's path would show here first
+    # pinned on this problem (as before the fit's cost was cut: 24 calls of which 6 of
+    # 2 n points, nfev 6); a change of the optimiser's path would show here first
     assert (len(kernel), r.nfev, core["njev"]) == (24, 6, 6)
     # equilibria: the C column and the N -/+ h call reuse the state of their base point
     # (hard core: C-free key); only the radius column and the new points solve
@@ -109,7 +109,7 @@ def test_display_units_are_parsed_once_and_convert_as_pint_does():
         parse_unit("furlongs_per_nm")
 
 
-#: Recorded with the code before issue 14's changes (main 1b57562) on ``problem``:
+#: Recorded with the code before the fit's cost was cut (main 1b57562) on ``problem``:
 #: (value, stderr) in nm / turn, and the sum of squares (nm^2).
 BEFORE = {
     "twist_persistence": (95.9335335923661, 0.6124963411768019),
@@ -127,7 +127,7 @@ def test_the_benchmark_fit_gives_the_numbers_of_the_code_before(problem, base):
     for name, (v, e) in BEFORE.items():
         assert r.parameters[name].m == pytest.approx(v, rel=1e-9), name
         assert r.stderr[name].m == pytest.approx(e, rel=1e-7), name
-    # issue 22: chi_square is dimensionless now (nfree with unit weights); the sum of
+    # chi_square is dimensionless now (nfree with unit weights); the sum of
     # squares is the number recorded before
     assert r.sum_squares.m_as("nm**2") == pytest.approx(BEFORE_CHI2, rel=1e-9)
 

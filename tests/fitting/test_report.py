@@ -63,7 +63,7 @@ def test_unit_weights_show_the_noise_estimate_not_a_chi_square(result, true_dna,
     text = result.report()
     stats = text.split("[[Fit statistics]]")[1].split("[[Parameters]]")[0]
     first = next(line for line in stats.splitlines() if "chi" in line or "noise" in line)
-    # issue 15: the residual RMS in the data's unit (um here), no reduced chi-square in nm^2
+    # the residual RMS in the data's unit (um here), no reduced chi-square in nm^2
     assert first.strip().startswith(f"noise estimate     = {noise / 1000:.4g} um ({noise:.4g} nm)")
     assert "reduced chi-square" not in stats and "sum of squares" in stats
     assert "chi-square" not in repr(result)

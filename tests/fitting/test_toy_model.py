@@ -184,7 +184,7 @@ def test_compare_table_statistics_are_lmfits(base, true_dna):
                                       noise=5 * u.nm, seed=6)
     table, _ = _compare(hat, base)
     for _, row in table.iterrows():
-        # unit weights: the criteria use the sum of squares on the 1 nm scale (issue 22: the
+        # unit weights: the criteria use the sum of squares on the 1 nm scale (the
         # table's chi_square is dimensionless, nfree)
         n, k = row["ndata"], row["nparams"]
         chi2 = row["residual_rms"] ** 2 * (n - k)

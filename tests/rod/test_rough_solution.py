@@ -23,7 +23,7 @@ def _si(rod):
     return s.radius, s.length, s.bending_rigidity, s.torsional_rigidity
 
 
-# --- issue 9 item 2: every ODE run ends in bounded time ----------------------------------
+# --- every ODE run ends in bounded time -------------------------------------------------
 
 
 def test_absurd_twist_rate_ends_in_a_named_error_within_the_budget():
@@ -50,7 +50,7 @@ def test_budget_is_an_argument_and_counts_every_evaluation():
         sc.rough_helix(rod_a(), 40, method="ode", max_nfev=1e5)
 
 
-# --- issue 9 item 11: accuracy outliers ------------------------------------------------------
+# --- accuracy outliers ----------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(("N", "r_mm", "L_cm", "old"), [

@@ -28,8 +28,8 @@ from math import factorial
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise
 
+from supercoil.core.numerics import find_root
 from supercoil.exceptions import ValidityError
 
 from . import phases as _ph
@@ -127,12 +127,15 @@ def _solve(F, N, par, Lp, m, chirality, wlc):
         return _configuration(F, M, par, Lp, m, chirality, wlc or None)[1] - _TWO_PI * N
 
     lo = np.full(np.shape(N), -TORQUE_BRACKET)
-    res = elementwise.find_root(h, (lo, -1.03 * lo), args=(F, N, Lp, *(wlc or ())))
+    res = find_root(h, (lo, -1.03 * lo), args=(F, N, Lp, *(wlc or ())))
     return res.x, res.success
 
 
 def points(turns, force, par):
-    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape)."""
+    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape).
+
+    Implements docs/theory/ensemble.md (E6, E7).
+    """
     N = np.asarray(turns, float)
     F = np.asarray(force, float)
     if not par.finite_size:
@@ -189,7 +192,7 @@ def coexistence_torque(force, par, sign=1.0, strict=True):
 
     a = np.full(F.shape, sign * 1e-24)
     b = np.full(F.shape, sign * TORQUE_BRACKET)
-    res = elementwise.find_root(f, (np.minimum(a, b), np.maximum(a, b)), args=(F,))
+    res = find_root(f, (np.minimum(a, b), np.maximum(a, b)), args=(F,))
     if not strict:
         return np.where(res.success, res.x, np.nan)
     if not np.all(res.success):
@@ -207,7 +210,7 @@ def _single(F, N, par, phase):
         return -par.length * g.dphi_dM - _TWO_PI * N
 
     lo = np.full(N.shape, -TORQUE_BRACKET)
-    M = elementwise.find_root(h, (lo, -1.03 * lo), args=(F, N)).x
+    M = find_root(h, (lo, -1.03 * lo), args=(F, N)).x
     g = tail_gibbs(F, M, par)[0] if phase == 0 else _plectoneme(F, M, par)
     return par.length * g.phi + _TWO_PI * M * N, M, -par.length * g.dphi_dF
 

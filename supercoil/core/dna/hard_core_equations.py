@@ -44,7 +44,10 @@ def _trig(alpha):
 
 
 def reduced_ge2(alpha, rho, b, derivatives=False):
-    """``h = -rho^4 (GE2)`` in reduced units; with ``derivatives`` also ``(h_alpha, h_rho)``."""
+    """``h = -rho^4 (GE2)`` in reduced units; with ``derivatives`` also ``(h_alpha, h_rho)``.
+
+    Implements docs/theory/plectoneme.md (GE2).
+    """
     beta = b ** (-1.0 / 3.0)
     s, c, t, t_a = _trig(alpha)
     s2 = s * s
@@ -102,7 +105,10 @@ def reduced_tension(alpha, rho, b, derivatives=False):
 
 
 def reduced_torque(alpha, rho, b):
-    """Reduced torque ``M_3 / kT = (B kappa kappa_alpha + w_alpha) / (kT tau_alpha)`` (GE1)."""
+    """Reduced torque ``M_3 / kT = (B kappa kappa_alpha + w_alpha) / (kT tau_alpha)`` (GE1).
+
+    Implements docs/theory/plectoneme.md (GE1).
+    """
     beta = b ** (-1.0 / 3.0)
     s, c, _, _ = _trig(alpha)
     c2 = c * c - s * s

@@ -138,7 +138,10 @@ def buckling_turns(force, length, B, C, kT, r0, thermal=True):
 
 
 def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
-    """``dz/dN`` (m per turn) just past buckling, N > 0: ``-2 pi zeta_inf / D``."""
+    """``dz/dN`` (m per turn) just past buckling, N > 0: ``-2 pi zeta_inf / D``.
+
+    Implements docs/theory/li-zhao.md (LZ4).
+    """
     return hat_parameters(force, length, B, C, kT, r0, thermal).slope
 
 
@@ -146,6 +149,8 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
                      short_tail_length=None, equilibrium_solver=None, fast=None,
                      diagnostics=True):
     """Hat-curve points: one (turns, force) pair per point, equilibrium once per force.
+
+    Implements docs/theory/li-zhao.md (LZ3).
 
     Parameters
     ----------

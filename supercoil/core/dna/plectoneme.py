@@ -186,8 +186,8 @@ def _start_table(b):
     grid of step :data:`_START_TABLE_STEP` in log b (within 5 %).
 
     A fit moves r0, hence b, a little at every step and every Jacobian column; a
-    table costs ~0.5 ms (600 tilt solves) against ~20 us for a scalar solve, and a
-    new molecule's fit built 12 of them (5.6 ms of its 13 ms). One table
+    table costs 600 tilt solves, about 25 scalar solves, and a new molecule's fit
+    built 12 of them (about 40 % of its time). One table
     per 10 % of b serves them all; the start (hence the result, to the last bit)
     depends on b alone, not on which tables earlier calls built.
     """
@@ -272,6 +272,8 @@ def solve_reduced(T_target, b, rtol=EQUILIBRIUM_RTOL):
 
 def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
     """Plectoneme equilibrium at fixed force: solves (GE1), (GE2) and the tension equation.
+
+    Implements docs/theory/plectoneme.md (GE1, GE2).
 
     Parameters
     ----------

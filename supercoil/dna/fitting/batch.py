@@ -20,7 +20,6 @@ from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 
 import numpy as np
 
-from supercoil._checks import check_material
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.fit import (
     DEFAULT_VARY,
@@ -33,8 +32,8 @@ from supercoil.dna.fitting.prepare import strip_molecule_keys
 from supercoil.dna.fitting.progress import Progress
 from supercoil.dna.fitting.weights import checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
+from supercoil.dna.validity import check_dna
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
 
@@ -66,15 +65,16 @@ _CONTROLLER = []
 #: the first BLAS thread appeared at 3,600-4,200 points with 3 free parameters,
 #: 2,640-2,730 with 4 and 1,800-2,100 with 5 (9,000-11,000 entries; OpenBLAS runs gemv
 #: threaded from 2304 x 4 = 9,216). Limiting is not free in a fresh worker: its first
-#: ``openblas_set_num_threads`` starts the BLAS threads, which then spin for ~0.1 s of CPU
-#: (measured: 100 ms per worker in 0.5 s idle, 3 threads instead of 1), competing with the
+#: ``openblas_set_num_threads`` starts the BLAS threads, which then spin on the CPU for a
+#: while (measured: 3 threads instead of 1, each spinning while idle), competing with the
 #: fits (the pool's speed-up on 2 workers fell from about 1.8x to 1.7x).
 BLAS_LIMIT_FROM = 8192
 
 
 def _controller():
     """This process's threadpoolctl controller, made once: the library scan of a fresh
-    ``threadpool_limits`` costs ~6 ms (half a fit), a cached controller's limit 0.1 ms."""
+    ``threadpool_limits`` costs about half a fit, a cached controller's limit 1/60 of
+    that."""
     if not _CONTROLLER:
         try:
             from threadpoolctl import ThreadpoolController
@@ -186,11 +186,11 @@ def _chunk_size(n_molecules):
 #: most molecules in one submit to a process pool, and the share of the molecules not yet
 #: submitted that one submit may take (1/8: the last submits carry single molecules).
 #: Measured (200 molecules of 330 points, ProcessPoolExecutor(2), medians of 3): the
-#: parent's CPU per molecule 0.53 ms with one molecule per submit, 0.40 / 0.36 / 0.32 ms
-#: with chunks of up to 2 / 4 / 8 (1/16 of the rest). With fits of ~6.6 ms (the
-#: plectoneme start tables) the parent's share shows in the wall time: speed-up
-#: over serial 1.76-1.77x with (4, 1/16) against 1.81-1.83x with (16, 1/8), parent CPU
-#: 0.31-0.35 against 0.25-0.26 ms per molecule (alternating runs, load 0.5-0.9).
+#: parent's CPU per molecule falls by 25 / 32 / 40 % from one molecule per submit with
+#: chunks of up to 2 / 4 / 8 (1/16 of the rest). With fast fits (the plectoneme start
+#: tables cached) the parent's share shows in the wall time: speed-up over serial
+#: 1.76-1.77x with (4, 1/16) against 1.81-1.83x with (16, 1/8), the parent's CPU per
+#: molecule 20-25 % lower (alternating runs).
 POOL_CHUNK, POOL_TAIL = 16, 8
 
 
@@ -316,7 +316,7 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         Only for problems common to all molecules (malformed table, unknown
         parameter names); failures of single fits are reported in the table.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     _check_executor(executor)
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
     whole = RotationData.from_frame(data)

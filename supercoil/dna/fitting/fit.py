@@ -21,7 +21,7 @@ import warnings
 import numpy as np
 from scipy.optimize import least_squares
 
-from supercoil._checks import check_flag, check_material
+from supercoil._checks import check_flag
 from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting import offsets as _offsets
@@ -35,9 +35,8 @@ from supercoil.dna.fitting.prepare import build_parameters
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL, get_model
-from supercoil.dna.validity import check_interaction
+from supercoil.dna.validity import check_dna, check_interaction
 from supercoil.exceptions import (
     BoundWarning,
     FitError,
@@ -97,7 +96,7 @@ def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, s
     thermal = check_flag(thermal, "thermal")
     fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
     fit_extension_offset, z0_per_force = _extension_offset_mode(fit_extension_offset)
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
         check_interaction(inter, dna.si)  # with the hard-core scale A/r0
@@ -450,7 +449,7 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     Model and interaction parameters held fixed must be set on the model or
     interaction instance passed to the fit.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
     z0_fit, z0_per_force = _extension_offset_mode(fit_extension_offset)

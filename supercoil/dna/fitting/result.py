@@ -240,7 +240,7 @@ class FitResult:
         self.dna = dna.replace(**{p: quantity(getattr(si, p) * 1e9, U.nm) for p in spec.vary
                                   if p in DNA_FIELDS})
 
-    # the two tables are built on first use: a DataFrame costs ~0.1 ms, a fit ~5 ms
+    # the two tables are built on first use: a DataFrame costs a few percent of a fit
     @functools.cached_property
     def covariance(self) -> pd.DataFrame:
         """Covariance of the free parameters (display units, ``attrs["units"]``)."""

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag, check_material, scalar
+from supercoil._checks import check_flag, scalar
 from supercoil.dna import validity as _v
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
@@ -40,7 +39,7 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
         Forces not finite, not 1-D, or not positive (as every DNA function).
     """
     thermal = check_flag(thermal, "thermal")
-    si = check_material(dna, DNA, "dna")
+    si = _v.check_dna(dna)
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
         _v.check_interaction(inter, si)
@@ -218,7 +217,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     """
     thermal = check_flag(thermal, "thermal")
     sigma_column = check_flag(sigma_column, "sigma_column")
-    check_material(dna, DNA, "dna")
+    _v.check_dna(dna)
     if extension_unit not in _EXTENSION_FACTORS:
         raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
                        f"{extension_unit!r}")

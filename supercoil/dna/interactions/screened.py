@@ -7,7 +7,7 @@ literature comparison: docs/theory/screened-interaction.md. Float kernels:
 :mod:`supercoil.core.dna.electrostatics`, :mod:`supercoil.core.dna.screened`,
 :mod:`supercoil.core.dna.equilibrium`.
 
-Per unit DNA length (docs/theory/screened-interaction.md#3, #4)::
+Per unit DNA length (docs/theory/screened-interaction.md, sections 3 and 4)::
 
     w = w_el + c_conf w_conf,
     w_el   = (nu^2 kT l_B / (2 cos alpha)) int exp(-d/lambda_D)/d dz,
@@ -182,7 +182,7 @@ class Screened(Interaction):
         (at a / lambda_D ~ 709; the branch solver already fails near 3e4 M); above,
         the repulsion is unscreened over the whole tabulated branch (R up to
         1000 a) and no confined branch exists in it (measured at 5e-8 M). A
-        salt of 1e300 M gave a ZeroDivisionError (issue 20, item 5).
+        salt of 1e300 M would otherwise end in a ZeroDivisionError.
         """
         si = _si(dna)
         a = self.values["hard_core_radius"]
