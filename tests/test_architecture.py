@@ -6,11 +6,11 @@
 * no module imports another module's private names;
 * no module is over 500 lines without a ``# long module: <why>`` line;
 * no shipped file refers to a path outside the repository;
+* no comment or docstring of the package holds a machine timing or an issue number;
 * no module switches on the type of a concrete DNA model or interaction outside that
   class's own module, nor probes a model or interaction for hidden hooks (``hasattr``,
   ``getattr`` with a default, the ``OPTIONS`` table): capabilities are declared on the
-  bases (``supercoil/dna/models/base.py``, ``supercoil/dna/interactions/base.py``);
-* no comment or docstring of the package holds a machine timing or an issue number.
+  bases (``supercoil/dna/models/base.py``, ``supercoil/dna/interactions/base.py``).
 """
 
 import ast
@@ -235,6 +235,86 @@ def test_contributing_maps_every_module():
     assert not missing, f"modules missing from CONTRIBUTING.md's map: {missing}"
 
 
+# --- dated text: machine timings and issue numbers in comments and docstrings -----------
+#: a duration in ns/us/ms, or a decimal or approximate number of seconds
+_DURATION = re.compile(r"\d(?:[\d.,]*\d)?(?:e-?\d+)?\s?(?:ns|us|µs|ms)\b"
+                       r"|(?:~\s?|about )\d+(?:\.\d+)?\s?s\b(?![\^(])"
+                       r"|\b\d+\.\d+\s?s\b(?![\^(])")
+_SMALL_DURATION = re.compile(r"\d(?:[\d.,]*\d)?(?:e-?\d+)?\s?(?:ns|us|µs|ms)\b")
+#: words that make a duration a property of the data or a chosen limit, not a measurement
+#: of the machine (a sampling interval, a settling time, a benchmark's target or budget)
+_PHYSICAL = re.compile(r"\b(?:every|late|poll\w*|sampl\w*|interval|frames?|exposure|"
+                       r"settl\w*|delay|targets?|until|budget|timeout|at least)\b", re.I)
+_COST = re.compile(r"\b(?:at import|instead of|of its|costs?|costing|takes?|took|taking|spends?|"
+                   r"spent|CPU|wall|measured|faster|slower|against|per (?:call|point|force|"
+                   r"fit|molecule|curve|hat curve|fault|worker|step|solve))\b|->|(?:~\s?|about )\d",
+                   re.I)
+_MACHINE = re.compile(r"\b(?:this|the benchmark|the 2-core|on the) (?:VM|machine)\b|\bAMD EPYC\b",
+                      re.I)
+_ISSUE = re.compile(r"\bissues? #?\d+|\bround \d+\b|(?:^|[\s(])#\d+\b", re.I)
+
+
+def _comments_and_docstrings(src):
+    """(line, text) of every comment and docstring line of a module's source."""
+    out = [(tok.start[0], tok.string) for tok in tokenize.generate_tokens(io.StringIO(src).readline)
+           if tok.type == tokenize.COMMENT]
+    for node in ast.walk(ast.parse(src)):
+        if not isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
+            continue
+        body = node.body
+        # the docstring, and attribute docstrings (a string right after an assignment)
+        strings = [body[0]] if body else []
+        strings += [b for a, b in itertools.pairwise(body)
+                    if isinstance(a, ast.Assign | ast.AnnAssign)]
+        for s in strings:
+            if isinstance(s, ast.Expr) and isinstance(s.value, ast.Constant) \
+                    and isinstance(s.value.value, str):
+                out += [(s.lineno + i, line) for i, line in enumerate(s.value.value.splitlines())]
+    return out
+
+
+def _dated_text(src):
+    """(line, kind, text) of each comment or docstring line with an issue number or a
+    machine timing (timings belong in the bench output, reasons in plain words)."""
+    bad = []
+    if not (_ISSUE.search(src) or _MACHINE.search(src) or _DURATION.search(src)):
+        return bad  # nothing to look at (most modules): no tokenizing
+    for n, text in _comments_and_docstrings(src):
+        if _ISSUE.search(text):
+            bad.append((n, "issue number", text.strip()))
+        elif _MACHINE.search(text) or (not _PHYSICAL.search(text) and (
+                _SMALL_DURATION.search(text) or (_DURATION.search(text) and _COST.search(text)))):
+            bad.append((n, "machine timing", text.strip()))
+    return sorted(bad)
+
+
+def test_no_issue_numbers_or_machine_timings_in_comments_and_docstrings():
+    offenders = [f"{p.relative_to(ROOT)}:{n}: {kind}: {text}"
+                 for p in _package_files() for n, kind, text in _dated_text(p.read_text())]
+    assert not offenders, "dated text in the package:\n" + "\n".join(offenders)
+
+
+def test_the_dated_text_rule_catches_timings_and_issue_numbers():
+    bad = textwrap.dedent('''\
+    """Fast path (issue 23): the kernel takes 1.2 ms.
+    112 ms per hat curve on this VM.
+    """
+    x = 1  # see #20 and round 3
+    y = 2  # costs ~2 s at 1e6 points
+    ''')
+    kinds = [kind for _, kind, _ in _dated_text(bad)]
+    assert kinds == ["issue number", "machine timing", "issue number", "machine timing"]
+    good = textwrap.dedent('''\
+    """Newton needs 7-8 evaluations against 127-146: about 15 times faster.
+
+    The motor is polled every 50 ms; settling time 1 s; slack S = 2 s; (docs/x.md#2-tail).
+    """
+    z = 1  # target: under 2 ms
+    t = 2  # the mean of repeats until 20 ms of CPU
+    ''')
+    assert _dated_text(good) == []
+
+
 def test_the_map_rule_fails_on_an_unmapped_module():
     rel = [Path("supercoil/dna/models/new_model.py"), Path("supercoil/core/dna/new_model.py"),
            Path("supercoil/core/dna/phases.py"), Path("supercoil/dna/models/base.py")]
@@ -400,83 +480,3 @@ def test_the_contract_rules_fail_on_bad_snippets():
         assert not hidden_hooks(good, where, {"slope_validity"}), good
     assert not hidden_hooks("OPTIONS = {}\no = self.OPTIONS", "supercoil.dna.model_parameters",
                             set())
-
-
-# --- dated text: machine timings and issue numbers in comments and docstrings -----------
-#: a duration in ns/us/ms, or a decimal or approximate number of seconds
-_DURATION = re.compile(r"\d(?:[\d.,]*\d)?(?:e-?\d+)?\s?(?:ns|us|µs|ms)\b"
-                       r"|(?:~\s?|about )\d+(?:\.\d+)?\s?s\b(?![\^(])"
-                       r"|\b\d+\.\d+\s?s\b(?![\^(])")
-_SMALL_DURATION = re.compile(r"\d(?:[\d.,]*\d)?(?:e-?\d+)?\s?(?:ns|us|µs|ms)\b")
-#: words that make a duration a property of the data or a chosen limit, not a measurement
-#: of the machine (a sampling interval, a settling time, a benchmark's target or budget)
-_PHYSICAL = re.compile(r"\b(?:every|late|poll\w*|sampl\w*|interval|frames?|exposure|"
-                       r"settl\w*|delay|targets?|until|budget|timeout|at least)\b", re.I)
-_COST = re.compile(r"\b(?:at import|instead of|of its|costs?|costing|takes?|took|taking|spends?|"
-                   r"spent|CPU|wall|measured|faster|slower|against|per (?:call|point|force|"
-                   r"fit|molecule|curve|hat curve|fault|worker|step|solve))\b|->|(?:~\s?|about )\d",
-                   re.I)
-_MACHINE = re.compile(r"\b(?:this|the benchmark|the 2-core|on the) (?:VM|machine)\b|\bAMD EPYC\b",
-                      re.I)
-_ISSUE = re.compile(r"\bissues? #?\d+|\bround \d+\b|(?:^|[\s(])#\d+\b", re.I)
-
-
-def _comments_and_docstrings(src):
-    """(line, text) of every comment and docstring line of a module's source."""
-    out = [(tok.start[0], tok.string) for tok in tokenize.generate_tokens(io.StringIO(src).readline)
-           if tok.type == tokenize.COMMENT]
-    for node in ast.walk(ast.parse(src)):
-        if not isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
-            continue
-        body = node.body
-        # the docstring, and attribute docstrings (a string right after an assignment)
-        strings = [body[0]] if body else []
-        strings += [b for a, b in itertools.pairwise(body)
-                    if isinstance(a, ast.Assign | ast.AnnAssign)]
-        for s in strings:
-            if isinstance(s, ast.Expr) and isinstance(s.value, ast.Constant) \
-                    and isinstance(s.value.value, str):
-                out += [(s.lineno + i, line) for i, line in enumerate(s.value.value.splitlines())]
-    return out
-
-
-def _dated_text(src):
-    """(line, kind, text) of each comment or docstring line with an issue number or a
-    machine timing (timings belong in the bench output, reasons in plain words)."""
-    bad = []
-    if not (_ISSUE.search(src) or _MACHINE.search(src) or _DURATION.search(src)):
-        return bad  # nothing to look at (most modules): no tokenizing
-    for n, text in _comments_and_docstrings(src):
-        if _ISSUE.search(text):
-            bad.append((n, "issue number", text.strip()))
-        elif _MACHINE.search(text) or (not _PHYSICAL.search(text) and (
-                _SMALL_DURATION.search(text) or (_DURATION.search(text) and _COST.search(text)))):
-            bad.append((n, "machine timing", text.strip()))
-    return sorted(bad)
-
-
-def test_no_issue_numbers_or_machine_timings_in_comments_and_docstrings():
-    offenders = [f"{p.relative_to(ROOT)}:{n}: {kind}: {text}"
-                 for p in _package_files() for n, kind, text in _dated_text(p.read_text())]
-    assert not offenders, "dated text in the package:\n" + "\n".join(offenders)
-
-
-def test_the_dated_text_rule_catches_timings_and_issue_numbers():
-    bad = textwrap.dedent('''\
-    """Fast path (issue 23): the kernel takes 1.2 ms.
-    112 ms per hat curve on this VM.
-    """
-    x = 1  # see #20 and round 3
-    y = 2  # costs ~2 s at 1e6 points
-    ''')
-    kinds = [kind for _, kind, _ in _dated_text(bad)]
-    assert kinds == ["issue number", "machine timing", "issue number", "machine timing"]
-    good = textwrap.dedent('''\
-    """Newton needs 7-8 evaluations against 127-146: about 15 times faster.
-
-    The motor is polled every 50 ms; settling time 1 s; slack S = 2 s; (docs/x.md#2-tail).
-    """
-    z = 1  # target: under 2 ms
-    t = 2  # the mean of repeats until 20 ms of CPU
-    ''')
-    assert _dated_text(good) == []
