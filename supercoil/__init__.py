@@ -11,7 +11,7 @@ package's single unit registry :data:`supercoil.ureg`::
     dna = sc.load_parameters("dna")
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0.dev0"
 
 from supercoil.exceptions import (
     BoundWarning,

@@ -11,8 +11,9 @@ interaction, no units):
   values, on two ranges: up to full coiling of the free-energy model
   (stretched and plectoneme phases, where tweezers data lie) and the range
   +-25 turns of :func:`supercoil.benchmark.dna.hat_cost` (7 % of it fully
-  coiled for free-energy, where each point needs a root solve on the
-  plectoneme branch: the expensive part).
+  coiled for free-energy, where each point needs the plectoneme state of its
+  linking: the expensive part); and ``coiled = (turns, points)``, default +-40 turns
+  at 2e5 points (42 % fully coiled).
 
 Rows are a dict of lists (``measurement``, ``model``, ``points``, ``time``,
 ``per_item``, ``rate``, ``ratio_to_li_zhao``) for
@@ -53,7 +54,7 @@ def _calls(d, names):
 
 
 def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, repeat=3,
-               models=MODELS):
+               models=MODELS, coiled=(40.0, 200_000)):
     """CPU time per force and points per second of each model (dict of lists).
 
     ``models[0]`` is the reference of ``ratio_to_li_zhao`` (time over its time
@@ -90,9 +91,13 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
     co = fe.coexistence(np.array([force]), d.length, d.bending_rigidity, d.torsional_rigidity,
                         d.kT, lambda T: inter.equilibrium(T, d))
     n_full = float(co.buckling_turns[0] + d.length * co.linking_rate[0] / (2 * np.pi))
-    for label, top in ((f"hat points to full coiling (|N| <= {n_full:.1f})", n_full),
-                       ("hat points, |N| <= 25", 25.0)):
-        for n in sizes:
+    ranges = [(f"hat points to full coiling (|N| <= {n_full:.1f})", n_full, sizes),
+              ("hat points, |N| <= 25", 25.0, sizes)]
+    if coiled:  # far past full coiling: 40 % of the points fully coiled at 40 turns
+        ranges.append((f"hat points past full coiling, |N| <= {coiled[0]:g}", coiled[0],
+                       (coiled[1],)))
+    for label, top, counts in ranges:
+        for n in counts:
             N = np.linspace(-top, top, n)
             F = np.full(n, force)
             t = interleaved_cpu({m: lambda m=m, N=N, F=F: points[m](N, F) for m in models},

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import pickle
 import time
+import warnings
 from concurrent.futures import Future
 
 import numpy as np
@@ -30,7 +31,8 @@ import pandas as pd
 
 from supercoil.tables import make_table, provenance
 
-__all__ = ["client_cost", "client_cpu", "synthetic_molecules", "throughput"]
+__all__ = ["client_cost", "client_cpu", "physical_throughput", "synthetic_molecules",
+           "throughput"]
 
 FORCES_PN = (0.3, 0.5, 0.7)
 
@@ -184,6 +186,67 @@ def throughput(n_molecules=20, workers=2, dask=True):
              "molecules_per_second_per_core": "1/s"}
     return make_table(cols, units, provenance(None, molecules=n_molecules,
                                               points_per_molecule=len(df) // n_molecules))
+
+
+def _children_cpu():
+    import resource
+
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def physical_throughput(n_molecules=200, workers=2, model="free-energy",
+                        interaction="hard-core"):
+    """Serial against ``ProcessPoolExecutor(workers)`` fits of the physical model.
+
+    The molecules of :func:`supercoil.benchmark.targets_fit.fit_problem` (3 forces x 110
+    points, C_t and r_0 varied), fitted with ``model`` / ``interaction``; each run starts
+    with the kernels' memo tables cleared (a forked worker would inherit the serial
+    run's), the pool run from the pool's creation to its shutdown (workers forked at the
+    first submit, as a user pays it).
+
+    Returns
+    -------
+    dict
+        ``serial_wall``, ``pool_wall`` (s); ``serial_rate`` and ``pool_rate_per_core``
+        (molecules per second per core: the pool's over ``workers``); ``per_core_ratio``
+        (pool per core / serial); ``serial_cpu`` and ``pool_cpu`` (s per molecule: the
+        pool's the workers' and the parent's together) and ``cpu_ratio`` (pool CPU per
+        molecule over serial: the pool's overhead whatever the machine's load);
+        ``pool_cores`` (the workers' CPU over the pool's wall time: the cores they got).
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    import supercoil as sc
+    from supercoil.benchmark.targets_fit import VARY, clear_kernel_caches, fit_problem
+
+    data, seed_set = fit_problem(molecules=n_molecules)
+    kw = {"vary": list(VARY), "model": model, "interaction": interaction, "progress": False}
+
+    def fit(executor=None):
+        clear_kernel_caches()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            table = sc.fit_many(data, seed_set, executor=executor, **kw)
+        if not table["success"].all():
+            raise RuntimeError(f"benchmark fits failed: {table['error'].dropna().iloc[0]}")
+
+    c0, w0 = time.process_time(), time.perf_counter()
+    fit()
+    serial_cpu, serial_wall = time.process_time() - c0, time.perf_counter() - w0
+    k0, c0, w0 = _children_cpu(), time.process_time(), time.perf_counter()
+    with ProcessPoolExecutor(workers) as pool:
+        fit(pool)
+    pool_wall = time.perf_counter() - w0
+    workers_cpu = _children_cpu() - k0
+    pool_cpu = workers_cpu + time.process_time() - c0
+    serial_rate = n_molecules / serial_wall
+    per_core = n_molecules / pool_wall / workers
+    return {"molecules": n_molecules, "workers": workers, "serial_wall": serial_wall,
+            "pool_wall": pool_wall, "serial_rate": serial_rate, "pool_rate_per_core": per_core,
+            "per_core_ratio": per_core / serial_rate, "serial_cpu": serial_cpu / n_molecules,
+            "pool_cpu": pool_cpu / n_molecules, "cpu_ratio": pool_cpu / serial_cpu,
+            "pool_cores": workers_cpu / pool_wall}
 
 
 def main():  # pragma: no cover - a command-line benchmark

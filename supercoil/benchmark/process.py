@@ -88,11 +88,11 @@ def _children_cpu():
     return ru.ru_utime + ru.ru_stime
 
 
-def _run(args, env):
+def _run(args, env, timeout=120):
     """``(stdout, wall seconds, CPU seconds)`` of ``python *args`` in a child process."""
     c0, t0 = _children_cpu(), time.perf_counter()
     proc = subprocess.run([sys.executable, *args], env=env, capture_output=True, text=True,
-                          check=False, timeout=120)
+                          check=False, timeout=timeout)
     wall, cpu = time.perf_counter() - t0, _children_cpu() - c0
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(args)} failed ({proc.returncode}): {proc.stderr[-500:]}")
@@ -207,5 +207,19 @@ def fit_many_cost_child(pooled, replayed, read_back, repeats):
     fitting script does not. Measured in a fresh child, as such a script runs.
     """
     args = [str(pooled), ",".join(str(n) for n in replayed), str(read_back), str(repeats)]
-    text, _, _ = _run(["-c", _FIT_MANY, *args], _env())
+    text, _, _ = _run(["-c", _FIT_MANY, *args], _env(), timeout=900)
+    return json.loads(text.strip().splitlines()[-1])
+
+
+_PHYSICAL = """
+import json, sys
+from supercoil.benchmark.fit_many import physical_throughput
+print(json.dumps(physical_throughput(int(sys.argv[1]))))
+"""
+
+
+def physical_throughput_child(n_molecules):
+    """:func:`~supercoil.benchmark.fit_many.physical_throughput` in a fresh interpreter
+    (as :func:`fit_many_cost_child`: the pool forks from a small process)."""
+    text, _, _ = _run(["-c", _PHYSICAL, str(n_molecules)], _env(), timeout=900)
     return json.loads(text.strip().splitlines()[-1])

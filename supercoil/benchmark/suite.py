@@ -13,6 +13,9 @@ Writes into DIR:
   model (:mod:`supercoil.benchmark.family`);
 * ``dna_model_cost.csv``: the DNA models side by side (time per force, points
   per second, ratio to li-zhao);
+* ``screened_equilibrium_cost.csv``: the screened equilibrium by Newton against the
+  direct nested solve it replaced;
+* ``bench_sections.csv``: wall and CPU seconds of each section of the run;
 * ``headline.csv`` and ``headline.md``: one row per speed or memory target
   (:mod:`supercoil.benchmark.headline`: what is timed, value, unit, target,
   met, note), with the machine and its load average.
@@ -20,6 +23,7 @@ Writes into DIR:
 
 from __future__ import annotations
 
+import contextlib
 import time
 from pathlib import Path
 
@@ -122,6 +126,38 @@ def _headline_step(out, size, log, machine, legacy):
     return head
 
 
+class _Sections:
+    """Wall and CPU seconds of each section of the run (``bench_sections.csv``)."""
+
+    def __init__(self, log):
+        self.log, self.rows = log, []
+
+    @contextlib.contextmanager
+    def __call__(self, name):
+        self.log(f"{len(self.rows) + 1}/{len(SECTIONS)} {name} ...")
+        c0, w0 = time.process_time(), time.perf_counter()
+        yield
+        wall, cpu = time.perf_counter() - w0, time.process_time() - c0
+        self.rows.append((name, wall, cpu))
+        self.log(f"    {name}: {wall:.1f} s wall, {cpu:.1f} s CPU")
+
+    def table(self, machine):
+        from supercoil.tables import make_table, provenance
+
+        cols = {"section": [r[0] for r in self.rows], "wall": [r[1] for r in self.rows],
+                "cpu": [r[2] for r in self.rows]}
+        return make_table(cols, {"section": "", "wall": "s", "cpu": "s"},
+                          provenance(None, machine=machine))
+
+
+#: the sections of :func:`run`, in order
+SECTIONS = ("rough-rod profile: closed form vs solve_ivp",
+            "plectoneme equilibrium: tolerance, vectorised vs scalar loop",
+            "hat curve: thermal vs athermal, cost per point", "unit boundary",
+            "stability map", "the model family: cost against difference from the reference",
+            "screened equilibrium: Newton against the direct solve", "headline targets")
+
+
 #: the sizes of each run: ``supercoil bench`` ("full"), ``--quick`` and ``--smoke``
 #: (the smallest run that still writes and fills every chart and table: the test suite's;
 #: its numbers say nothing about speed)
@@ -129,89 +165,117 @@ SIZES = {
     "full": {"rod_tolerances": None, "repeat": 3, "eq_forces": 200, "eq_tolerances": None,
              "hat_sizes": (100, 1_000, 10_000, 100_000, 1_000_000), "ub_sizes": None,
              "stability_quick": False, "family_points": 401, "family_repeat": 3,
-             "family_fit_below": None},
+             "family_fit_budget": None, "screened_forces": 1000},
     "quick": {"rod_tolerances": "every third", "repeat": 2, "eq_forces": 50,
               "eq_tolerances": (1e-2, 1e-6, 1e-10, 1e-14), "hat_sizes": (100, 10_000, 1_000_000),
               "ub_sizes": (1, 10_000), "stability_quick": True, "family_points": 101,
-              "family_repeat": 1, "family_fit_below": None},
+              "family_repeat": 1, "family_fit_budget": 0.05, "screened_forces": 100},
     # smoke: three tolerances still span the orders of magnitude of the charts (LSODA fails
     # at 1e-3); the stability map is the quick one (computed once per process, and the
-    # stability tests need it anyway); fits only of the models whose hat curve is cheap
-    # (the ensemble fit costs as much as the rest of the smoke run)
+    # stability tests need it anyway)
     "smoke": {"rod_tolerances": (1e-3, 1e-6, 1e-11), "repeat": 1, "eq_forces": 10,
               "eq_tolerances": (1e-2, 1e-6, 1e-10, 1e-14), "hat_sizes": (100, 10_000),
               "ub_sizes": (1, 100), "stability_quick": True, "family_points": 21,
-              "family_repeat": 1, "family_fit_below": 0.05},
+              "family_repeat": 1, "family_fit_budget": 0.05, "screened_forces": 20},
 }
-
-
-def _size(quick, smoke):
-    return "smoke" if smoke else "quick" if quick else "full"
 
 
 def run(out, quick=False, log=print, smoke=False):
     """Run every benchmark, write charts and tables into ``out``; returns the headline table.
 
+    Each section's wall and CPU seconds are logged and written to ``bench_sections.csv``.
     ``quick`` and ``smoke`` pick the sizes of :data:`SIZES` (``smoke`` wins).
     """
     import supercoil as sc
-    from supercoil.benchmark import dna, family, rod, stability, unit_boundary, work_precision
+    from supercoil.benchmark import (
+        dna,
+        dna_models,
+        family,
+        rod,
+        stability,
+        unit_boundary,
+        work_precision,
+    )
     from supercoil.core.dna import plectoneme as pl
     from supercoil.tables import make_table, provenance, write_csv
 
-    size = _size(quick, smoke)
-    z = SIZES[size]
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     machine = machine_description()
+    size = "smoke" if smoke else "quick" if quick else "full"
+    z = SIZES[size]
     log(f"supercoil bench on {machine}" + ("" if size == "full" else f" ({size} sizes)"))
+    section = _Sections(log)
+    names = iter(SECTIONS)
 
-    tols = {None: rod.TOLERANCES, "every third": rod.TOLERANCES[::3]}.get(
-        z["rod_tolerances"], z["rod_tolerances"])
-    log("1/7 rough-rod profile: closed form vs solve_ivp ...")
-    rows = rod.rough_profile_work_precision(tolerances=tols, repeat=z["repeat"])
-    log("2/7 plectoneme equilibrium: tolerance, vectorised vs scalar loop ...")
-    eq_rows = dna.equilibrium_work_precision(n_forces=z["eq_forces"],
-                                             tolerances=z["eq_tolerances"], repeat=z["repeat"])
-    d = sc.load_parameters("dna").si
-    forces = np.linspace(0.2e-12, 10e-12, 1000)
-    eq1000 = best_time(lambda: pl.equilibrium(forces, d.bending_rigidity,
-                                              d.torsional_rigidity, d.kT, d.radius),
-                       repeat=3) / 1000
+    with section(next(names)):
+        tols = {None: rod.TOLERANCES, "every third": rod.TOLERANCES[::3]}.get(
+            z["rod_tolerances"], z["rod_tolerances"])
+        rows = rod.rough_profile_work_precision(tolerances=tols, repeat=z["repeat"])
+    with section(next(names)):
+        eq_rows = dna.equilibrium_work_precision(n_forces=z["eq_forces"],
+                                                 tolerances=z["eq_tolerances"],
+                                                 repeat=z["repeat"])
+        d = sc.load_parameters("dna").si
+        forces = np.linspace(0.2e-12, 10e-12, 1000)
+        eq1000 = best_time(lambda: pl.equilibrium(forces, d.bending_rigidity,
+                                                  d.torsional_rigidity, d.kT, d.radius),
+                           repeat=3) / 1000
     for key in rows:
         rows[key] += eq_rows[key]
     wp = pd.DataFrame(rows)
     wp_table = make_table(rows, {**work_precision.UNITS}, provenance(None, machine=machine))
     write_csv(wp_table, out / "bench_measurements.csv")
 
-    log("3/7 hat curve: thermal vs athermal, cost per point ...")
-    hat_rows = dna.hat_cost(sizes=z["hat_sizes"])
+    with section(next(names)):
+        hat_rows = dna.hat_cost(sizes=z["hat_sizes"])
     hat = make_table(hat_rows, {"variant": "", "points": "", "time": "s", "time_per_point": "s",
                                 "points_per_second": "1/s"}, provenance(None, machine=machine))
     write_csv(hat, out / "hat_curve_cost.csv")
 
-    log("4/7 unit boundary ...")
-    ub = unit_boundary.run(sizes=z["ub_sizes"] or unit_boundary.SIZES)
+    with section(next(names)):
+        ub = unit_boundary.run(sizes=z["ub_sizes"] or unit_boundary.SIZES)
     write_csv(ub, out / "unit_boundary.csv")
 
     _charts(wp, hat, ub, out)
 
-    log("5/7 stability map ...")
-    smap = stability.run(quick=z["stability_quick"])
+    with section(next(names)):
+        smap = stability.run(quick=z["stability_quick"])
     write_csv(smap, out / "stability_map.csv")
     stability.plot(smap, out / "stability_map.png")
 
-    log("6/7 the model family: cost against difference from the reference ...")
-    fam = make_table(family.family_precision(turns_points=z["family_points"],
-                                             repeat=z["family_repeat"], log=log,
-                                             fit_below=z["family_fit_below"]),
-                     family.UNITS, provenance(None, machine=machine, reference=family.REFERENCE,
-                                              forces_pN=list(family.FORCES)))
+    with section(next(names)):
+        fam = make_table(family.family_precision(turns_points=z["family_points"],
+                                                 repeat=z["family_repeat"], log=log,
+                                                 fit_budget=z["family_fit_budget"]),
+                         family.UNITS, provenance(None, machine=machine,
+                                                  reference=family.REFERENCE,
+                                                  forces_pN=list(family.FORCES)))
     write_csv(fam, out / "family_precision.csv")
     family.plot(fam, out / "family_precision.png")
 
-    log("7/7 headline targets ...")
-    head = _headline_step(out, size, log, machine, _legacy_rows(wp, hat, ub, eq1000))
+    with section(next(names)):
+        screened = dna_models.screened_equilibrium_cost(n_forces=z["screened_forces"],
+                                                        repeat=1 if size != "full" else 3)
+    write_csv(make_table(screened, dna_models.UNITS, provenance(None, machine=machine)),
+              out / "screened_equilibrium_cost.csv")
+
+    with section(next(names)):
+        head = _headline_step(out, size, log, machine,
+                              _legacy_rows(wp, hat, ub, eq1000) + _screened_rows(screened))
+    write_csv(section.table(machine), out / "bench_sections.csv")
     log(f"done in {time.perf_counter() - t_start:.1f} s; outputs in {out}")
     return head
+
+
+def _screened_rows(rows):
+    """The screened equilibrium's Newton solve against the direct nested solve."""
+    from supercoil.benchmark.headline import target_row
+
+    i = rows["model"].index("newton")
+    ratio = rows["ratio_to_li_zhao"][i]
+    return [target_row(f"kernel supercoil.core.dna.equilibrium.solve_equilibrium (screened), "
+                       f"{rows['measurement'][i].split(', ')[1]}: CPU per force, Newton / the "
+                       "direct nested solve", ratio, "x", "< 1x", ratio < 1,
+                       f"Newton {rows['per_item'][i] * 1e3:.3g} ms per force")]

@@ -56,15 +56,17 @@ def best_time(func, repeat: int = 5, min_sample: float = 2e-3, max_number: int =
 
 
 def paired_best_times(func_a, func_b, repeat: int = 7, min_sample: float = 2e-3,
-                      max_number: int = 10**6):
+                      max_number: int = 10**6, warm: bool = True):
     """Minimum times of two calls measured in interleaved samples (a, b, a, b, ...).
 
     Interleaving exposes both to the same machine state, so the difference of
     the two minima (e.g. a public call minus the float kernel it wraps) is not
-    dominated by drift between two separate runs.
+    dominated by drift between two separate runs. ``warm=False`` skips the
+    discarded warm-up calls (for calls of seconds, which a first call does not slow).
     """
-    func_a()  # warm-ups, discarded
-    func_b()
+    if warm:
+        func_a()  # warm-ups, discarded
+        func_b()
     na, ta = _calls_per_sample(func_a, min_sample, max_number)
     nb, tb = _calls_per_sample(func_b, min_sample, max_number)
     a, b = [ta], [tb]

@@ -79,7 +79,8 @@ def run(sizes=SIZES):
 
     Public call and kernel are timed in interleaved samples
     (:func:`~supercoil.benchmark.timing.paired_best_times`); at 1e6 elements
-    fewer samples are taken (a plectoneme solve of 1e6 forces is the slowest sample).
+    two samples and no warm-up (a plectoneme solve of 1e6 forces is the slowest sample),
+    and the SI run skips the warm-up the display run just gave both calls.
     """
     from supercoil.tables import make_table, provenance
 
@@ -87,10 +88,11 @@ def run(sizes=SIZES):
     rows = {k: [] for k in keys}
     for name, public, kernel in _cases():
         for n in sizes:
-            repeat = 3 if n >= 1_000_000 else 7
+            big = n >= 1_000_000  # a plectoneme solve of 1e6 forces: the slowest call
             kern = kernel(n)
             for si in (False, True):
-                tp, tk = paired_best_times(public(n, si), kern, repeat=repeat)
+                tp, tk = paired_best_times(public(n, si), kern, repeat=2 if big else 7,
+                                           warm=not (big or si))
                 rows["function"].append(name)
                 rows["input_units"].append("SI" if si else "display")
                 rows["elements"].append(n)

@@ -154,6 +154,9 @@ def write_generated(root: Path, folders: dict, log) -> dict:
         "fit-example": t.fit_example_table(read_csv(
             Path(folders["examples/fit_tweezers_data"]) / "fit_parameters.csv")),
     }
+    if "bench" in folders:
+        tables["family"] = t.family_table(read_csv(Path(folders["bench"])
+                                                   / "family_precision.csv"))
     written = {}
     for name, table in tables.items():  # rendered from the kept CSV, as the test does
         written[name] = t.RENDERERS[name](read_csv(write_csv(table, gen / "data" / f"{name}.csv")))

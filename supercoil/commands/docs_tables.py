@@ -141,6 +141,44 @@ def models_markdown() -> str:
                            "(default)"], rows)
 
 
+# ---- family: `supercoil bench` family_precision.csv -> one row per construction ---------------
+
+
+def family_table(fam):
+    """The work-precision rows of the model family (``family_precision.csv``), cheapest first."""
+    fam = fam.assign(construction=[m + (f"/{i}" if isinstance(i, str) and i else "")
+                                   for m, i in zip(fam["model"], fam["interaction"],
+                                                   strict=True)])
+    fam = fam.sort_values("hat_seconds", kind="stable", na_position="last")
+    keys = ("construction", "hat_seconds", "fit_seconds", "extension_error", "torque_error",
+            "fit_rms", "status")
+    cols = {k: list(fam[k]) for k in keys}
+    units = {"construction": "", "hat_seconds": "s", "fit_seconds": "s",
+             "extension_error": "nm", "torque_error": "pN nm", "fit_rms": "nm", "status": ""}
+    prov = fam.attrs.get("provenance", {})
+    return make_table(cols, units, provenance(None, source="supercoil bench",
+                                              reference=prov.get("reference"),
+                                              forces_pN=prov.get("forces_pN"),
+                                              **_source(fam)))
+
+
+def family_markdown(table) -> str:
+    def num(x, scale=1.0, digits=3):
+        return "-" if not np.isfinite(float(x)) else f"{float(x) * scale:.{digits}g}"
+
+    rows = [[f"`{r.construction}`", num(r.hat_seconds, 1e3), num(r.fit_seconds),
+             num(r.extension_error), num(r.torque_error), num(r.fit_rms), r.status]
+            for r in table.itertuples(index=False)]
+    ref = table.attrs.get("provenance", {}).get("reference")
+    ref = "/".join(str(x) for x in ref if x) if isinstance(ref, list | tuple) else str(ref)
+    return (markdown_table(["construction", "hat curve CPU (ms)", "fit CPU (s)",
+                            "RMS extension difference (nm)", "RMS torque difference (pN nm)",
+                            "fit residual RMS (nm)", "status"], rows)
+            + f"\nReference: `{ref}` (its own row: difference 0). Differences at the same "
+            "physical parameters, no fit; the fit is to curves simulated by the reference "
+            "(5 nm noise).\n")
+
+
 def _source(table):
     prov = table.attrs.get("provenance", {})
     return {"supercoil_version_of_the_run": prov.get("supercoil_version")}
@@ -148,4 +186,4 @@ def _source(table):
 
 #: block name -> renderer of its kept table (``models`` renders the registry: no table)
 RENDERERS = {"validation": validation_markdown, "main-job": main_job_markdown,
-             "fit-example": fit_example_markdown}
+             "fit-example": fit_example_markdown, "family": family_markdown}

@@ -254,3 +254,65 @@ def test_the_screened_jump_to_contact_is_named_for_fully_coiled_turns():
     assert df.phase[0] == "fully coiled"
     with pytest.raises(ValidityError, match=r"\|N\| up to 300 turns.*jumps at tension 5\.0"):
         sc.hat_curve(dna, f, [300.0], model="free-energy", interaction="screened")
+
+
+@pytest.mark.parametrize("end_loop", [False, True])
+@pytest.mark.parametrize("path", ["inverse", "series"])
+def test_hat_points_to_full_coiling_match_the_direct_solve(si, end_loop, path, monkeypatch):
+    """hat_points solves its fully coiled points from one table of the branch per call:
+    the cubic inverse (coiled_table.inverse_of, from INVERSE_MIN_POINTS points) or Newton
+    on the Chebyshev series (fewer): torque and free energy agree with the direct solve
+    per point (the secant on every point, and brentq on seven) to 1e-12, far inside the
+    1e-8 the fits need; extension is 0 there by construction, and the other phases are
+    untouched (bit for bit the same as without the table)."""
+    monkeypatch.setattr(ct, "INVERSE_MIN_POINTS", 0 if path == "inverse" else 10**9)
+    used = []
+    evaluate = ct.evaluate_inverse
+    monkeypatch.setattr(ct, "evaluate_inverse", lambda *a: used.append(1) or evaluate(*a))
+    L, B, C, kT, _ = si
+    N = np.linspace(-40.0, 40.0, 4001)
+    F = np.full(N.size, 1.2e-12)
+    p = fe.hat_points(N, F, L, B, C, kT, equilibrium_of(si), end_loop=end_loop)
+    assert bool(used) == (path == "inverse")
+    coiled = p.phase == fe.FULLY_COILED
+    assert coiled.sum() > 1000
+    co = fe.coexistence(F[:1], L, B, C, kT, equilibrium_of(si))
+    if end_loop:
+        lc = fe.loop_constants(co, L, B, C, kT)
+        x = 2 * np.pi * (np.abs(N[coiled]) - el.LOOP_WRITHE) / L
+        start, loop = co.torque[0] / C + co.torsion[0] * (1.0 - lc.length[0] / L), (B, L)
+    else:
+        x, start, loop = 2 * np.pi * np.abs(N[coiled]) / L, co.torque[0] / C + co.torsion[0], None
+    M, T = ct.secant(x, np.full(x.size, co.pull[0]), np.full(x.size, start), C,
+                     equilibrium_of(si), loop)
+    np.testing.assert_allclose(np.abs(p.torque[coiled]), M, rtol=1e-12)
+    assert np.all(p.extension[coiled] == 0.0)
+    idx = np.linspace(0, x.size - 1, 7).astype(int)
+    ref = np.array([_brentq(x[i], C, equilibrium_of(si), loop) for i in idx])
+    np.testing.assert_allclose(np.abs(p.torque[coiled][idx]), ref[:, 0], rtol=1e-12)
+    # G = -(L [- 2 l]) T - L M^2/(2C) + 2 pi (|N| [- w]) M: T enters through G
+    q = fe.hat_points(N[~coiled], F[~coiled], L, B, C, kT, equilibrium_of(si),
+                      end_loop=end_loop)
+    for field in ("extension", "torque", "free_energy"):
+        np.testing.assert_array_equal(getattr(p, field)[~coiled], getattr(q, field))
+    lc_T = el.loop_length(T, B) if end_loop else 0.0
+    G = -(L - 2.0 * lc_T) * T - L * M * M / (2.0 * C) \
+        + 2 * np.pi * (np.abs(N[coiled]) - (el.LOOP_WRITHE if end_loop else 0.0)) * M
+    np.testing.assert_allclose(p.free_energy[coiled], G, rtol=1e-12)
+
+
+def test_inverse_table_matches_newton_on_the_table_and_gives_up_on_a_kink(si):
+    """The cubic inverse agrees with Newton on the same Chebyshev table to 1e-13 over its
+    whole domain (ends included); on a kinked branch (no converged table) it is None."""
+    _, _, C, _, _ = si
+    pull, start, _, x_full = _problem(si, 1.2e-12, False)
+    _, T_hi = ct.secant(np.array([3 * x_full]), np.array([pull]), np.array([start]), C,
+                        equilibrium_of(si), None)
+    inv = ct.inverse_table((pull, T_hi[0]), C, equilibrium_of(si))
+    x = np.linspace(inv.x_lo, inv.x_hi, 301)
+    M, T = ct.evaluate_inverse(inv, x)
+    got = ct.torque_at_linking(x, (pull, T_hi[0]), C, equilibrium_of(si))
+    np.testing.assert_allclose(M, got[0], rtol=1e-13)
+    np.testing.assert_allclose(T, got[1], rtol=1e-13)
+    eq, _, C_k = _jumping_branch()
+    assert ct.inverse_table((1e-12, 1e-10), C_k, eq) is None

@@ -70,9 +70,10 @@ def _interior(phase, neighbours):
 def free_energy_problems(dna, F, model, inter, thermal):
     """z = -dG/dF and M = dG/dN / 2 pi at interior points, by central differences.
 
-    One hat curve and one free-energy call over the forces ``F, F -+ h_F`` and the turns
-    ``N, N -+ h_N`` (force-major tables): the points, their neighbours' phases and the
-    differences all come from those two calls.
+    One hat curve over the forces ``F, F -+ h_F`` and the turns ``N, N -+ h_N``
+    (force-major tables), its ``free_energy`` column the G (one free-energy call where the
+    table has none): the points, their neighbours' phases and the differences all come
+    from that call.
     """
     import supercoil as sc
 
@@ -86,7 +87,11 @@ def free_energy_problems(dna, F, model, inter, thermal):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         df = sc.hat_curve(dna, forces * u.pN, turns, **kw)
-        g = sc.free_energy(dna, forces * u.pN, turns, **kw).m_as("J").reshape(3, 3, n.size)
+        if "free_energy" in df:  # the table carries G: a second solve of the same points
+            g = (df["free_energy"].to_numpy() * u(df.attrs["units"]["free_energy"])).m_as("J")
+        else:
+            g = sc.free_energy(dna, forces * u.pN, turns, **kw).m_as("J")
+        g = np.asarray(g).reshape(3, 3, n.size)
     z = display.from_display(df["extension"].to_numpy().reshape(3, 3, n.size)[1, 1],
                              "extension")
     M = display.from_display(df["torque"].to_numpy().reshape(3, 3, n.size)[1, 1], "torque")
@@ -134,13 +139,13 @@ def family_map(dna, name, inter, quick, thermal=True):
     u = sc.ureg
     if dna.salt is None:  # the seed set has none: the family's molecules carry 150 mM
         dna = dna.replace(salt=150 * u.mM)
-    forces = np.concatenate([[0.0], log_grid(1e-2, 1e3, 5 if quick else 24)])
+    forces = np.concatenate([[0.0], log_grid(1e-2, 1e3, 5 if quick else 16)])
     salt = _needs_salt(inter, dna)
     if salt:
-        ys = log_grid(1.0, 3000.0, 2 if quick else 10)  # mM
+        ys = log_grid(1.0, 3000.0, 2 if quick else 8)  # mM
         axis = Axis("salt", "monovalent salt [mM]", "mM", ys)
     else:
-        ys = log_grid(10.0, 200.0, 2 if quick else 10)  # nm
+        ys = log_grid(10.0, 200.0, 2 if quick else 8)  # nm
         axis = Axis("bending_persistence", "bending persistence A [nm]", "nm", ys)
     model = get_model(name)
     has_g = model.has_free_energy(thermal)

@@ -159,7 +159,7 @@ def rough_map(rod, method, k, quick):
     si = rod.si
     r, L = si.radius, si.length
     # plus the paper's own twist loads (N r / L ~ 0.05-0.1: N = 30-60, r = 1 mm, L = 56.7 cm)
-    loads = np.unique(np.concatenate([[0.0, 0.05, 0.1], log_grid(1e-9, 1e10, 7 if quick else 30)]))
+    loads = np.unique(np.concatenate([[0.0, 0.05, 0.1], log_grid(1e-9, 1e10, 7 if quick else 20)]))
     fr = end_fractions(quick)
     out = np.empty((fr.size, loads.size), dtype=object)
     kw = {"method": method}

@@ -58,6 +58,7 @@ from typing import NamedTuple
 import numpy as np
 
 from supercoil.core.blocks import points_in_blocks
+from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import moroz_nelson as _mn
@@ -67,7 +68,7 @@ from supercoil.core.dna.interface import (
     SHORT_TAIL_PERSISTENCE_LENGTHS,
     STRETCHED,
 )
-from supercoil.exceptions import NoEquilibriumError, ValidityError
+from supercoil.exceptions import ValidityError
 
 __all__ = [
     "Coexistence",
@@ -165,9 +166,9 @@ def tail_torque(linking, force, B, C, kT):
     ValidityError
         Where the bracket is closed already at M = 0 (``Q0 <= 0``).
     """
-    x, force = np.broadcast_arrays(np.asarray(linking, float), np.asarray(force, float))
+    x, force = np.asarray(linking, float), np.asarray(force, float)  # a scalar force stays one
     Q0 = B * force / (kT * kT) - 1.0 / 32.0
-    _check_bracket(Q0, force, np.zeros_like(force))
+    _check_bracket(Q0, force, 0.0)
     r0 = np.sqrt(Q0)
     MQ = 2.0 * kT * r0
     a = 1.0 / C
@@ -182,6 +183,7 @@ def tail_torque(linking, force, B, C, kT):
         if np.all(np.abs(dv) <= 2e-15 * v):
             return v * MQ
     i = np.flatnonzero(~(np.abs(dv) <= 2e-15 * v))[0]
+    x, force = np.broadcast_arrays(x, force)
     raise ValidityError(
         f"at force {force.flat[i] * 1e12:.6g} pN no tail torque carries "
         f"{x.flat[i] * 1e-6:.6g} rad/um of linking before the Moroz-Nelson bracket closes")
@@ -374,10 +376,13 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     co = coexistence(uf, length, B, C, kT, equilibrium, thermal)
     loop = loop_constants(co, length, B, C, kT, thermal) if end_loop else None
 
+    branch = _points.call_branch(turns.reshape(-1), force.reshape(-1), uf, co, loop, length,
+                                 B, C, trial_equilibrium or equilibrium, BLOCK)
+
     def block(t, f):
-        inv = np.zeros(t.shape, np.intp) if one else np.searchsorted(uf, f)
+        inv = None if one else np.searchsorted(uf, f)
         return _assemble(np.abs(t), t, f, inv, co, loop, length, B, C, kT, equilibrium,
-                         thermal, short_tail_length, trial_equilibrium)
+                         thermal, short_tail_length, trial_equilibrium, branch)
 
     out = points_in_blocks(block, turns.reshape(-1), force.reshape(-1), BLOCK)
     if turns.ndim == 1:  # the arrays themselves (owned: the public layer scales them in place)
@@ -392,18 +397,26 @@ BLOCK = 1 << 15
 
 
 def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, thermal,
-              short_tail_length, trial_equilibrium):
-    """Phases, torque, extension and G of :func:`hat_points` (``loop`` None: no end loop)."""
+              short_tail_length, trial_equilibrium, branch=None):
+    """Phases, torque, extension and G of :func:`hat_points` (``loop`` None: no end loop).
+
+    ``inv`` None: every point at the one force ``co.force[0]``, whose constants enter as
+    scalars (no gathers).
+    """
+    def at(a):
+        return a[0] if inv is None else a[inv]
+
     if loop is None:
-        Nb = co.buckling_turns[inv]
+        Nb = at(co.buckling_turns)
         stretched = n <= Nb
-        S = np.maximum(n - Nb, 0.0) * (_TWO_PI / co.linking_rate[inv])
+        S = np.maximum(n - Nb, 0.0)
+        S *= _TWO_PI / at(co.linking_rate)
         room = length
     else:  # (link) with the loop's w + t turns and its contour l [end-loop.md#7-free-energy]
-        ell = loop.length[inv]
-        stretched = n <= loop.jump_turns[inv]
-        S = (_TWO_PI * (n - loop.linking[inv]) - (length - ell) * co.tail_linking[inv]) \
-            / co.linking_rate[inv]
+        ell = at(loop.length)
+        stretched = n <= at(loop.jump_turns)
+        S = (_TWO_PI * (n - at(loop.linking)) - (length - ell) * at(co.tail_linking)) \
+            / at(co.linking_rate)
         S = np.where(stretched, 0.0, np.maximum(S, 0.0))
         room = length - ell
     coiled = S >= room
@@ -411,59 +424,66 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
     tail = room - S
     if loop is not None:  # the stretched molecule has no loop
         tail = np.where(stretched, length, tail)
-    M = co.torque[inv].copy()
-    g = co.free_energy_density[inv].copy()
-    zeta = co.long_tail_factor[inv].copy()
-    if np.any(stretched):
-        f_s, n_s = force[stretched], n[stretched]
+    M = np.full(n.shape, co.torque[0]) if inv is None else co.torque[inv]
+    g = np.full(n.shape, co.free_energy_density[0]) if inv is None \
+        else co.free_energy_density[inv]
+    zeta = np.full(n.shape, co.long_tail_factor[0]) if inv is None \
+        else co.long_tail_factor[inv]
+    stretched, coiled = _select(stretched), _select(coiled)
+    any_stretched, any_coiled = stretched is not None, coiled is not None
+    if any_stretched:
+        f_s, n_s = (force[0] if inv is None else force[stretched]), n[stretched]
         if thermal:
-            M[stretched] = tail_torque(_TWO_PI * n_s / length, f_s, B, C, kT)
+            M_s = tail_torque(_TWO_PI * n_s / length, f_s, B, C, kT)
         else:  # the li-zhao expression: C_eff (2 pi / L) n with C_eff = C / 1.0
-            M[stretched] = C / 1.0 * (_TWO_PI / length) * n_s
-        g[stretched], zeta[stretched], _ = tail_free_energy(f_s, M[stretched], B, C, kT,
-                                                            thermal)
-    if np.any(coiled):
-        Mc, Tc = _coiled(n[coiled], inv[coiled], co, loop, length, B, C, equilibrium,
-                         trial_equilibrium)
+            M_s = C / 1.0 * (_TWO_PI / length) * n_s
+        M[stretched] = M_s
+        g[stretched], zeta[stretched], _ = tail_free_energy(f_s, M_s, B, C, kT, thermal)
+    if any_coiled:
+        Mc, Tc = _points.solve(n[coiled], inv, coiled, co, loop, length, B, C, equilibrium,
+                               trial_equilibrium, branch)
         M[coiled] = Mc
         g[coiled] = -Tc - Mc * Mc / (2.0 * C)
         zeta[coiled] = 0.0
     extension = zeta * tail
-    G = length * g + _TWO_PI * n * M
+    G = _TWO_PI * n * M
+    G += length * g
     if loop is not None:
-        G = np.where(stretched | coiled, G, G + loop.excess[inv])
-        if np.any(coiled):  # -(L - 2 l) T - L M^2/(2C) + 2 pi (|N| - w) M, l T = pi B / R
+        G = np.where(_outside(n.size, stretched, coiled), G + at(loop.excess), G)
+        if any_coiled:  # -(L - 2 l) T - L M^2/(2C) + 2 pi (|N| - w) M, l T = pi B / R
             lc = _loop.loop_length(Tc, B)
             G[coiled] = -(length - 2.0 * lc) * Tc - length * Mc * Mc / (2.0 * C) \
                 + _TWO_PI * (n[coiled] - _loop.LOOP_WRITHE) * Mc
-        S = np.where(stretched, 0.0, S + ell)
-    phase = np.where(stretched, STRETCHED, np.where(coiled, FULLY_COILED, PLECTONEME))
-    return FreeEnergyPoints(extension, np.copysign(M, turns), S, phase.astype(np.int8),
+        S += ell
+        if any_stretched:
+            S[stretched] = 0.0
+    phase = np.full(n.shape, PLECTONEME, np.int8)
+    if any_stretched:
+        phase[stretched] = STRETCHED
+    if any_coiled:
+        phase[coiled] = FULLY_COILED
+    return FreeEnergyPoints(extension, np.copysign(M, turns), S, phase,
                             tail < short_tail_length, zeta, G)
 
 
-def _coiled(n, ci, co, loop, length, B, C, equilibrium, trial_equilibrium):
-    """``(M, T)`` of fully coiled points (``ci``: their force index), with or without loop."""
-    if loop is None:
-        x = _TWO_PI * n / length
-        start, args = co.torque[ci] / C + co.torsion[ci], ()
-    else:
-        x = _TWO_PI * (n - _loop.LOOP_WRITHE) / length
-        start = co.torque[ci] / C + co.torsion[ci] * (1.0 - loop.length[ci] / length)
-        args = ((B, length),)
-    try:
-        Mc, Tc = plectoneme_torque_at_linking(x, co.pull[ci], start, C,
-                                              trial_equilibrium or equilibrium, *args)
-    except NoEquilibriumError as e:
-        raise NoEquilibriumError(
-            f"no fully coiled plectoneme for |N| up to {n.max():.6g} turns "
-            f"(L = {length * 1e9:.6g} nm): {e}") from e
-    except ValidityError as e:
-        raise ValidityError(f"fully coiled points with |N| up to {n.max():.6g} turns "
-                            f"(L = {length * 1e9:.6g} nm): {e}") from e
-    if trial_equilibrium is not None:
-        Mc = np.asarray(equilibrium(Tc).torque, float)
-    return Mc, Tc
+def _select(mask):
+    """``mask`` as an index: None (no point), a slice (contiguous points: views, no copies)
+    or the indices (a gather costs a third of a boolean mask's)."""
+    idx = np.flatnonzero(mask)
+    if idx.size == 0:
+        return None
+    if idx[-1] - idx[0] + 1 == idx.size:
+        return slice(int(idx[0]), int(idx[-1]) + 1)
+    return idx
+
+
+def _outside(size, *selections):
+    """Boolean mask of the points in none of the selections (of :func:`_select`)."""
+    out = np.ones(size, bool)
+    for sel in selections:
+        if sel is not None:
+            out[sel] = False
+    return out
 
 
 def free_energy(turns, force, length, B, C, kT, equilibrium, thermal=True, end_loop=False):

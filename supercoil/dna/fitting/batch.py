@@ -116,7 +116,8 @@ def _row(task, solution, error):
         # dimensionless, as FitResult.redchi (1 by construction with unit weights); the noise
         # estimate itself is the residual RMS of the extensions (nm)
         "reduced_chi_square": float(solution.redchi) if ok else np.nan,
-        "residual_rms": float(solution.channels["extension"]["rms"] * 1e9) if ok else np.nan,
+        "residual_rms": (display.to_display(solution.channels["extension"]["rms"], "extension")
+                         if ok else np.nan),
         "nfev": int(solution.nfev) if ok else 0}
     by_name = {n: j for j, n in enumerate(solution.names)} if ok else {}
     for name, factor in layout["factors"].items():

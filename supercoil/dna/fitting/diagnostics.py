@@ -31,6 +31,8 @@ import math
 import numpy as np
 from scipy import stats
 
+from supercoil import display
+
 __all__ = ["LENGTH_OFFSET_CORRELATION", "P_THRESHOLD", "bound_records", "chi_square_test",
            "length_offset_messages", "plausibility_messages", "runaway_hint", "runs_test"]
 
@@ -108,8 +110,8 @@ def length_offset_messages(params, names, cov, undetermined, data, n0, dna):
                 1 / LENGTH_RUNAWAY["ratio"] <= ratio <= LENGTH_RUNAWAY["ratio"]):
             return []
     how = "undetermined" if not np.isfinite(r) else f"correlation {r:+.4f}"
-    seen = "" if implied is None else (f", the extensions imply about {implied * 1e9:.5g} nm "
-                                       "with no offset")
+    seen = "" if implied is None else (
+        f", the extensions imply about {display.text(implied, 'length', '.5g')} with no offset")
     return [f"length and {offset} are degenerate ({how}; fitted length "
             f"{p.value * p.factor:.6g} ± {p.stderr * p.factor:.2g} {p.unit}{seen}): with both "
             "free the extensions fix only L g(F) + extension_offset, a flat valley along which "

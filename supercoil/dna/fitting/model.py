@@ -78,7 +78,6 @@ class _CachedInteraction:
     """An interaction whose ``equilibrium`` is memoised within one fit."""
 
     def __init__(self, interaction, store):
-        self.interaction = interaction  # the bare interaction (the fit result keeps it)
         self._inter = interaction
         self._store = store
 

@@ -52,8 +52,9 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     n = m.turns_at_tail_length(F, lmin, si, thermal, inter)
     if not np.all(np.isfinite(n)):
         i = int(np.flatnonzero(~np.isfinite(n))[0])
-        raise FitError(f"model {m.name!r} does not buckle at force {F[i] * 1e12:.6g} pN: no "
-                       "finite valid turns range; give the turns explicitly")
+        raise FitError(f"model {m.name!r} does not buckle at force "
+                       f"{display.text(F[i], 'force')}: no finite valid turns range; give "
+                       "the turns explicitly")
     return n
 
 

@@ -1,0 +1,85 @@
+"""CPU of a fit with the physical models against the paper's model, on the same data.
+
+:func:`fit_model_cost` times public :func:`supercoil.fit_hat_curves` calls in
+interleaved samples (:func:`supercoil.benchmark.cpu.interleaved_cpu`, CPU time, the
+kernels' memo tables cleared before every fit: what a new molecule costs), on two
+synthetic problems of the ``dna_150mM_nacl`` set (the screened interaction needs a
+salt):
+
+* ``3 forces x 110 points``: 0.5 / 1 / 2 pN, extension only, C_t = 95 nm true (86 nm
+  start), simulated by ``li-zhao``: ``free-energy`` + ``screened`` against ``li-zhao`` +
+  ``hard-core``;
+* ``6 forces x 167 points``: 0.25-2 pN, extension and torque (5 nm, 1 pN nm noise),
+  simulated by ``free-energy`` + ``screened`` (the stand-in for real curves, which are
+  screened): ``free-energy`` + ``screened`` against its hard-core counterpart
+  ``free-energy`` + ``hard-core``.
+
+Rows as :func:`supercoil.benchmark.dna_models.model_cost` (``ratio_to_li_zhao`` here:
+CPU over the first construction of the problem).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from .cpu import interleaved_cpu
+from .dna_models import UNITS
+
+__all__ = ["PROBLEMS", "UNITS", "fit_model_cost"]
+
+#: name -> (forces pN, points per force, with torque, simulating (model, interaction),
+#: the two fitted constructions, the reference first)
+PROBLEMS = {
+    "3 forces x 110 points": ((0.5, 1.0, 2.0), 110, False, ("li-zhao", "hard-core"),
+                              (("li-zhao", "hard-core"), ("free-energy", "screened"))),
+    "6 forces x 167 points, extension and torque": (
+        (0.25, 0.5, 0.75, 1.0, 1.5, 2.0), 167, True, ("free-energy", "screened"),
+        (("free-energy", "hard-core"), ("free-energy", "screened"))),
+}
+
+
+def _data(dna, forces, points, torque, truth):
+    import supercoil as sc
+
+    u = sc.ureg
+    extra = {"torque_noise": 1.0 * u.pN * u.nm} if torque else {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return sc.simulate_rotation_curves(dna.replace(twist_persistence=95 * u.nm),
+                                           np.array(forces) * u.pN, points_per_force=points,
+                                           noise=5 * u.nm, seed=3, model=truth[0],
+                                           interaction=truth[1], **extra)
+
+
+def fit_model_cost(dna=None, samples=3, problems=None):
+    """CPU per cold fit of each construction of each problem (dict of lists, :data:`UNITS`).
+
+    ``problems``: names of :data:`PROBLEMS` (default all).
+    """
+    import supercoil as sc
+    from supercoil.benchmark.targets_fit import clear_kernel_caches
+
+    dna = dna or sc.load_parameters("dna_150mM_nacl")
+    rows = {k: [] for k in UNITS}
+    for name in problems or PROBLEMS:
+        forces, points, torque, truth, fitted = PROBLEMS[name]
+        data = _data(dna, forces, points, torque, truth)
+
+        def fit(model, inter, data=data):
+            clear_kernel_caches()
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                return sc.fit_hat_curves(data, dna, vary=["twist_persistence"], model=model,
+                                         interaction=inter)
+
+        t = interleaved_cpu({c: lambda c=c: fit(*c) for c in fitted}, samples=samples,
+                            min_sample=0.0)
+        for c in fitted:
+            for key, v in (("measurement", f"fit_hat_curves, {name} (dna_150mM_nacl)"),
+                           ("model", "/".join(c)), ("points", len(data)), ("time", t[c]),
+                           ("per_item", t[c] / len(data)), ("rate", len(data) / t[c]),
+                           ("ratio_to_li_zhao", t[c] / t[fitted[0]])):
+                rows[key].append(v)
+    return rows

@@ -1,0 +1,175 @@
+"""The fully coiled points of one free-energy hat-curve call. Float-only.
+
+:func:`supercoil.core.dna.free_energy.hat_points` classifies its points in blocks;
+the fully coiled ones need the plectoneme state whose linking per length matches the
+turns (:mod:`supercoil.core.dna.coiled_table`). :func:`call_branch` builds, once per
+call, one inverse ``x -> (M, T)`` of the branch that covers every fully coiled point
+of every block and force (a table per block would repeat the bracket and the table);
+:func:`solve` evaluates it for a block's points, or solves them by the secant where
+the call has few such points or the inverse does not resolve the branch.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from supercoil.core.dna import coiled_table as _table
+from supercoil.core.dna import end_loop as _loop
+from supercoil.exceptions import NoEquilibriumError, ValidityError
+
+__all__ = ["call_branch", "coiled_turns", "solve"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+def coiled_turns(co, loop, length):
+    """Per force: the turns from which a point is fully coiled (slightly below: rounding)."""
+    if loop is None:
+        top = co.buckling_turns + length * co.linking_rate / _TWO_PI
+    else:  # S >= L - l with S of _assemble's looped branch, and past the jump
+        top = np.maximum(loop.linking + (length - loop.length)
+                         * (co.tail_linking + co.linking_rate) / _TWO_PI, loop.jump_turns)
+    return top * (1.0 - 1e-12)
+
+
+def _start(ci, co, loop, length, B, C):
+    """``(x(n), l_p at T_eff, loop)``: the fully coiled problem at the force indices ci."""
+    if loop is None:
+        return (lambda n: _TWO_PI * n / length), co.torque[ci] / C + co.torsion[ci], None
+    start = co.torque[ci] / C + co.torsion[ci] * (1.0 - loop.length[ci] / length)
+    return (lambda n: _TWO_PI * (n - _loop.LOOP_WRITHE) / length), start, (B, length)
+
+
+def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
+    """One table of the fully coiled branch for all points of a call, or None.
+
+    A pass over the points (in blocks, no per-point temporaries kept) finds the fully
+    coiled ones: fewer than :data:`~supercoil.core.dna.coiled_table.MIN_POINTS`, None
+    (the secant per point is cheaper). Else the secant brackets the largest linking
+    from the smallest ``T_eff`` (raising, naming the turns, where the interaction
+    has no plectoneme there) and :func:`~supercoil.core.dna.coiled_table.inverse_table`
+    covers every point of every force (``l_p`` does not depend on the force); False
+    where it does not resolve the branch (the secant then solves every block).
+    """
+    thr = coiled_turns(co, loop, length)
+    count, top = 0, -np.inf
+    if uf.size == 1:
+        count = np.count_nonzero(turns >= thr[0]) + np.count_nonzero(turns <= -thr[0])
+        top = max(turns.max(), -turns.min())
+    else:
+        for lo in range(0, turns.size, block):
+            a = np.abs(turns[lo:lo + block])
+            hit = a >= thr[np.searchsorted(uf, force[lo:lo + block])]
+            if hit.any():
+                count += np.count_nonzero(hit)
+                top = max(top, a[hit].max())
+    if count < _table.MIN_POINTS:
+        return None
+    i = int(np.argmin(co.pull))
+    x_of, start, ends = _start(np.array([i]), co, loop, length, B, C)
+    x_top = x_of(top)
+    T_hi = _ladder(x_top, co.pull[i], start[0], C, equilibrium, ends)
+    if T_hi is None:
+        with _naming_turns(top, length):
+            T_hi = _table.secant(np.array([x_top]), co.pull[i:i + 1], start, C, equilibrium,
+                                 ends, upper=_table.DOMAIN_OVERSHOOT)[1][0]
+    series = _table.branch_series((co.pull[i], T_hi), C, equilibrium, ends)
+    if series is None:
+        return False
+    if count < _table.INVERSE_MIN_POINTS:
+        return series
+    return _table.inverse_of(series) or series
+
+
+#: exponents e of the ladder ``T_eff (x / l_p(T_eff))^e`` probed in one equilibrium call
+#: (measured root exponents 1.8-10.7, hard-core and screened, 0.3-5 pN, from 1.001 to 10
+#: times full coiling); rungs above :data:`LADDER_MAX` times ``T_eff`` are not probed
+LADDER = (1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.5, 8.5, 11.0)
+LADDER_MAX = 1e3
+
+
+def _ladder(x, T0, l0, C, equilibrium, loop):
+    """The lowest rung of :data:`LADDER` whose ``l_p`` reaches x (an upper end of the
+    table's domain, above the root by at most the rung spacing), or None.
+
+    One equilibrium call on up to nine tensions, about the cost of one (instead of the
+    secant's 2-6 calls on one); the probes' warnings are dropped (no probe state is a
+    result). None where no rung reaches x or the interaction fails on a rung (a probe
+    beyond its range): the secant then brackets the root and raises the interaction's
+    error where it applies.
+    """
+    x = float(np.ravel(x)[0])
+    T = T0 * (x / l0) ** np.asarray(LADDER)
+    T = T[(T > T0) & (T <= LADDER_MAX * T0)]
+    if T.size == 0:
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a probe's state is no result: its warnings neither
+        try:
+            st = equilibrium(T)
+            lp = _table.branch_linking(np.asarray(st.torque, float),
+                                       np.asarray(st.torsion, float), T, C, loop)
+        except (NoEquilibriumError, ValidityError):
+            return None
+    above = np.flatnonzero(np.isfinite(lp) & (lp >= x))
+    if above.size == 0 or not np.all(np.diff(lp[:above[0] + 1]) > 0.0):
+        return None
+    return float(T[above[0]])
+
+
+class _naming_turns:
+    """Re-raise the fully coiled solvers' errors naming the turns and the length."""
+
+    def __init__(self, top, length):
+        self.top, self.length = top, length
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, e, tb):
+        where = f"|N| up to {self.top:.6g} turns (L = {self.length * 1e9:.6g} nm)"
+        if isinstance(e, NoEquilibriumError):
+            raise NoEquilibriumError(f"no fully coiled plectoneme for {where}: {e}") from e
+        if isinstance(e, ValidityError):
+            raise ValidityError(f"fully coiled points with {where}: {e}") from e
+        return False
+
+
+def _domain(branch):
+    """``(x_lo, x_hi)``: the linkings an :class:`Inverse` or a :class:`Series` covers."""
+    if isinstance(branch, _table.Inverse):
+        return branch.x_lo, branch.x_hi
+    return branch.nodes[-1], branch.nodes[0]
+
+
+def solve(n, inv, coiled, co, loop, length, B, C, equilibrium, trial_equilibrium,
+          branch=None):
+    """``(M, T)`` of the fully coiled points n, with or without loop.
+
+    ``inv[coiled]`` is their force index (``inv`` None: all at the force ``co.force[0]``).
+
+    From the call's inverse ``branch`` (:func:`call_branch`) where it covers the
+    points, else by the secant per point (few points in the call: the table costs more;
+    or a branch the table cannot resolve: it would be tried again in every block).
+    """
+    ends = None if loop is None else (B, length)
+    x = _TWO_PI * (n if loop is None else n - _loop.LOOP_WRITHE) / length
+    got = None
+    if branch:
+        x_lo, x_hi = _domain(branch)
+        if x.max() <= x_hi and x.min() >= x_lo - 1e-9 * (x_hi - x_lo):
+            got = (_table.evaluate_inverse(branch, x) if isinstance(branch, _table.Inverse)
+                   else _table.solve_series(branch, x))
+    if got is not None:
+        Mc, Tc = got
+    else:  # few points in the call, or a branch the table cannot resolve
+        ci = np.zeros(n.size, np.intp) if inv is None else inv[coiled]
+        start = _start(ci, co, loop, length, B, C)[1]
+        with _naming_turns(n.max(), length):
+            Mc, Tc = _table.secant(x, co.pull[ci], start, C, trial_equilibrium or equilibrium,
+                                   ends)
+    if trial_equilibrium is not None:
+        Mc = np.asarray(equilibrium(Tc).torque, float)
+    return Mc, Tc
