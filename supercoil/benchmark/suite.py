@@ -180,6 +180,19 @@ SIZES = {
 }
 
 
+def _sizes(quick, smoke):
+    """``(name, sizes)`` of the run: smoke, quick or full (:data:`SIZES`)."""
+    size = "smoke" if smoke else "quick" if quick else "full"
+    return size, SIZES[size]
+
+
+def _rod_tolerances(z):
+    from supercoil.benchmark import rod
+
+    return {None: rod.TOLERANCES, "every third": rod.TOLERANCES[::3]}.get(
+        z["rod_tolerances"], z["rod_tolerances"])
+
+
 def run(out, quick=False, log=print, smoke=False):
     """Run every benchmark, write charts and tables into ``out``; returns the headline table.
 
@@ -203,16 +216,14 @@ def run(out, quick=False, log=print, smoke=False):
     out.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     machine = machine_description()
-    size = "smoke" if smoke else "quick" if quick else "full"
-    z = SIZES[size]
+    size, z = _sizes(quick, smoke)
     log(f"supercoil bench on {machine}" + ("" if size == "full" else f" ({size} sizes)"))
     section = _Sections(log)
     names = iter(SECTIONS)
 
     with section(next(names)):
-        tols = {None: rod.TOLERANCES, "every third": rod.TOLERANCES[::3]}.get(
-            z["rod_tolerances"], z["rod_tolerances"])
-        rows = rod.rough_profile_work_precision(tolerances=tols, repeat=z["repeat"])
+        rows = rod.rough_profile_work_precision(tolerances=_rod_tolerances(z),
+                                                repeat=z["repeat"])
     with section(next(names)):
         eq_rows = dna.equilibrium_work_precision(n_forces=z["eq_forces"],
                                                  tolerances=z["eq_tolerances"],
