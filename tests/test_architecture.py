@@ -3,7 +3,8 @@
 * the float kernels in supercoil/core never import pint, pandas or matplotlib,
   nor the unit-aware layers;
 * the rod and DNA domains do not import each other;
-* no module imports another module's private names;
+* no module imports another module's private names, nor reads another module's private
+  attributes (``obj._name`` where ``_name`` is not defined in the module);
 * no module is over 500 lines without a ``# long module: <why>`` line;
 * no shipped file refers to a path outside the repository;
 * no comment or docstring of the package holds a machine timing or an issue number;
@@ -91,6 +92,85 @@ def test_no_module_imports_private_names_of_another():
                 if n.startswith("_") and not n.startswith("__"):
                     offenders.append((str(path.relative_to(ROOT)), f"{name}.{n}"))
     assert not offenders, f"private names imported across modules: {offenders}"
+
+
+#: private-looking names that are other libraries' documented or unavoidable API:
+#: namedtuple's public methods; pint's quantity internals (the unit layer's fast paths,
+#: supercoil/units.py, and the registry check of a quantity); argparse's parser tree
+#: (no public way to walk the sub-parsers)
+FOREIGN_PRIVATE_API = {"_replace", "_asdict", "_fields", "_make",
+                       "_units", "_magnitude", "_REGISTRY", "_is_multiplicative",
+                       "_actions", "_SubParsersAction"}
+
+
+def _is_private(name):
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def _defined_names(tree):
+    """Every name a module binds: defs, classes, assignments (also to attributes),
+    imports, arguments and keywords."""
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            out.add(node.name)
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            out.add(node.id)
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store | ast.Del):
+            out.add(node.attr)
+        elif isinstance(node, ast.alias):
+            out.add((node.asname or node.name).split(".")[0])
+        elif isinstance(node, ast.arg):
+            out.add(node.arg)
+        elif isinstance(node, ast.keyword) and node.arg:
+            out.add(node.arg)
+    return out
+
+
+def private_attribute_reads(source, allowed=FOREIGN_PRIVATE_API):
+    """``(line, name)`` of each read of another module's private attribute in ``source``:
+    ``obj._name`` (or ``getattr``/``hasattr(obj, "_name")``) with ``obj`` not ``self``,
+    ``cls`` or ``super()``, and ``_name`` bound nowhere in the module."""
+    tree = ast.parse(source)
+    own = _defined_names(tree) | set(allowed)
+    found = []
+    for node in ast.walk(tree):
+        name = None
+        if isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Load):
+            v = node.value
+            if isinstance(v, ast.Name) and v.id in ("self", "cls"):
+                continue
+            if isinstance(v, ast.Call) and isinstance(v.func, ast.Name) and v.func.id == "super":
+                continue
+            name = node.attr
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+              and node.func.id in ("getattr", "hasattr", "setattr") and len(node.args) >= 2
+              and isinstance(node.args[1], ast.Constant) and isinstance(node.args[1].value, str)):
+            name = node.args[1].value
+        if name and _is_private(name) and name not in own:
+            found.append((node.lineno, name))
+    return found
+
+
+def test_no_module_reads_private_attributes_of_another():
+    offenders = [f"{path.relative_to(ROOT)}:{line}: {name}" for path in _package_files()
+                 for line, name in private_attribute_reads(path.read_text())]
+    assert not offenders, f"private attributes of other modules read: {offenders}"
+
+
+def test_the_private_attribute_rule_catches_a_bad_snippet():
+    bad = ("def report(result):\n"
+           "    start = result._core['start']\n"
+           "    return getattr(result, '_spec', None), start\n")
+    assert sorted(private_attribute_reads(bad)) == [(2, "_core"), (3, "_spec")]
+    good = ("class A:\n"
+            "    def __init__(self):\n"
+            "        self._x = 1\n"
+            "    def same(self, other):\n"
+            "        return other._x + self._x + other.__class__.__name__.__len__()\n"
+            "def f(t):\n"
+            "    return t._replace(a=1)\n")
+    assert private_attribute_reads(good) == []
 
 
 #: a module over 500 lines says why on a line of its own (``# long module: <why>``)

@@ -25,3 +25,15 @@ def test_authors_and_classifiers():
     py = [c for c in meta["classifiers"] if c.startswith("Programming Language :: Python :: 3.")]
     assert py and min(py) == "Programming Language :: Python :: 3.11"  # = requires-python
     assert meta["requires-python"] == ">=3.11"
+
+
+def test_version_is_the_changelog_release_in_progress():
+    """__version__ names the release the CHANGELOG's first section describes."""
+    import re
+    from pathlib import Path
+
+    import supercoil
+
+    text = (Path(__file__).resolve().parent.parent / "CHANGELOG.md").read_text()
+    release = re.search(r"^## (\d+\.\d+\.\d+)", text, re.M).group(1)
+    assert supercoil.__version__.startswith(release), (supercoil.__version__, release)

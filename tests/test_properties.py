@@ -579,6 +579,8 @@ def test_the_fitting_and_design_surface_names_its_bad_arguments(name, kind):
             pytest.fail(f"{name}={kind}: unnamed {type(exc).__name__}: {exc}")
     raw = [str(w.message) for w in rec if not issubclass(w.category, sc.SupercoilWarning)]
     assert not raw, f"{name}={kind}: raw warnings {raw}"
+    if isinstance(result, sc.Comparison):
+        result = result.table
     if isinstance(result, pd.DataFrame) and "error" in result.columns:  # compare_models:
         failed = result[~result["success"]]  # a failed fit is a row naming its error
         assert all(word in e for e in failed["error"]), (name, kind, list(failed["error"]))

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil import display
 from supercoil.benchmark.timing import paired_best_times
 
 SIZES = (1, 100, 10_000, 1_000_000)
@@ -47,7 +48,7 @@ def _cases():
             return lambda: sc.plectoneme_equilibrium(dna, f)
 
         def eq_kernel(n):
-            f = np.linspace(0.3, 5.0, n) * 1e-12
+            f = display.from_display(np.linspace(0.3, 5.0, n), "force")
             return lambda: pk.equilibrium(
                 f, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
             )

@@ -24,6 +24,7 @@ import sys
 
 import numpy as np
 
+from supercoil import display
 from supercoil.core.dna.interface import DENATURATION_FORCE
 
 DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
@@ -32,7 +33,7 @@ DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
 #: job computes no point that it would have to warn about)
 DEFAULT_TURNS = "-40:40:0.1"
 DEFAULT_TURNS_HIGH_FORCE = "0:40:0.1"
-DENATURATION_PN = DENATURATION_FORCE * 1e12  # 0.8 pN
+DENATURATION_PN = display.to_display(DENATURATION_FORCE, "force")  # 0.8 pN
 #: what to do when the denaturation warning is shown (the user asked for those points)
 DENATURATION_HINT = "give --turns=0:40 to compute positive turns only"
 
@@ -200,7 +201,7 @@ def _buckling_table(dna, force, thermal, mi, provenance_dict):
     nb = buckling_turns(dna, force, thermal=thermal, **mi).m_as("turn")
     slope = post_buckling_slope(dna, force, thermal=thermal, **mi).m_as("nm/turn")
     si, f, thermal, m, inter = resolve(dna, force, thermal, mi["model"], mi["interaction"])
-    torque = m.buckling(f, si, thermal, inter).torque * 1e21
+    torque = display.to_display(m.buckling(f, si, thermal, inter).torque, "torque")
     return make_table({"force": force.m_as("pN"), "buckling_turns": nb,
                        "buckling_torque": torque, "post_buckling_slope": slope},
                       {"force": "pN", "buckling_turns": "turn", "buckling_torque": "pN nm",

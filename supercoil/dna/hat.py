@@ -15,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 import pandas as pd
 
+from supercoil import display
 from supercoil._checks import check_flag
 from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
 from supercoil.dna import validity as _v
@@ -41,18 +42,10 @@ PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
 _PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
 _PHASE_DTYPE = pd.CategoricalDtype(_PHASE_CATEGORIES)
 
-_UNITS = {
-    "force": "pN",
-    "turns": "turn",
-    "extension": "nm",
-    "phase": "",
-    "torque": "pN nm",
-    "plectoneme_length": "nm",
-    "supercoiling_density": "",
-    "eta": "",
-    "short_tail": "",
-    "free_energy": "pN nm",
-}
+_COLUMNS = ("force", "turns", "extension", "phase", "torque", "plectoneme_length",
+            "supercoiling_density", "eta", "short_tail", "free_energy")
+#: the hat table's units: the display units, products spelled with a space (its CSV header)
+_UNITS = {k: display.unit(k).replace("*", " ") for k in _COLUMNS}
 
 
 def resolve(dna, force, thermal, model, interaction):
@@ -127,9 +120,9 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
 
         i = np.flatnonzero(~np.isfinite(b.slope))[0]
         raise ValidityError(f"the post-buckling slope is not defined at force "
-                            f"{f[i] * 1e12:.6g} pN (model {m.name!r})")
+                            f"{display.text(f[i], 'force')} (model {m.name!r})")
     _v.warn(msgs, stacklevel=2)
-    return quantity(b.slope * 1e9, U.nm_per_turn)
+    return quantity(b.slope * display.factor("extension"), U.nm_per_turn)
 
 
 def _points(dna, force, turns, thermal, model, interaction, short_tail_length, stacklevel):
@@ -195,7 +188,7 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
     N = np.tile(n, f.size)
     g = m.free_energy(N, F, si, thermal, inter)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
-    return quantity(np.asarray(g) * 1e21, U.pN_nm)
+    return display.quantity(g, "free_energy")
 
 
 def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEFAULT_MODEL,
@@ -283,13 +276,13 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)
     columns = {
-        "force": (np.full(F.size, F[0] * 1e12) if F.strides == (0,) and F.size
-                  else own.scaled(F, 1e12)),
+        "force": (np.full(F.size, F[0] * display.factor("force")) if F.strides == (0,)
+                  and F.size else own.scaled(F, display.factor("force"))),
         "turns": N,
-        "extension": own.scaled(hp.extension, 1e9),
+        "extension": own.scaled(hp.extension, display.factor("extension")),
         "phase": pd.Categorical.from_codes(hp.phase, dtype=_PHASE_DTYPE),
-        "torque": own.scaled(hp.torque, 1e21),
-        "plectoneme_length": own.scaled(hp.plectoneme_length, 1e9),
+        "torque": own.scaled(hp.torque, display.factor("torque")),
+        "plectoneme_length": own.scaled(hp.plectoneme_length, display.factor("plectoneme_length")),
         "supercoiling_density": N * (HELICAL_REPEAT / L),
         "eta": N * (2.0 * np.pi * si.wlc_persistence / L),
         "short_tail": hp.short_tail,
@@ -298,7 +291,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     if m.has_free_energy(thermal):
         g = hp.free_energy if hp.free_energy is not None else m.free_energy(N, F, si, thermal,
                                                                              inter)
-        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float), 1e21)
+        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float),
+                                            display.factor("free_energy"))
     else:
         units.pop("free_energy")
     return make_table(
@@ -312,8 +306,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
             model_options=m.options(),
             interaction=inter.name if m.uses_interaction else None,
             thermal=bool(thermal),
-            short_tail_length=f"{short * 1e9:.6g} nm",
-            helical_repeat=f"{HELICAL_REPEAT * 1e9:.6g} nm",
+            short_tail_length=display.text(short, "length"),
+            helical_repeat=display.text(HELICAL_REPEAT, "length"),
         ),
     )
 

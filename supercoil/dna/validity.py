@@ -17,6 +17,7 @@ import warnings
 
 import numpy as np
 
+from supercoil import display
 from supercoil._checks import check_material, check_scale
 from supercoil.core.dna.interface import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
@@ -110,7 +111,7 @@ def check_positive_forces(f, given=None):
         raise ValueError(f"force must be finite, got {shown}")
     if lo <= 0:
         bad = float(f[f <= 0].flat[0])
-        raise NoEquilibriumError(f"no equilibrium at force {bad * 1e12:.6g} pN: the force "
+        raise NoEquilibriumError(f"no equilibrium at force {display.text(bad, 'force')}: the force "
                                  "must be positive (a molecule stretched by a tension)")
 
 
@@ -172,7 +173,7 @@ def check_finite_output(model, force, values, turns=None, allow_inf=False):
         bad = np.isnan(x) if allow_inf else ~np.isfinite(x)
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
-            at = f"force {np.asarray(force).flat[i] * 1e12:.6g} pN"
+            at = f"force {display.text(np.asarray(force).flat[i], 'force')}"
             if turns is not None:
                 at += f", turns {np.asarray(turns).flat[i]:.6g}"
             raise ValidityError(f"model {model.name!r} gives {name} = {float(x.flat[i])!r} at "
@@ -199,8 +200,9 @@ def force_messages(force):
     hi = _extreme(f, np.max) if f.size else 0.0  # one reduction (the points' forces: no mask)
     if hi <= OVERSTRETCHING_FORCE:
         return []
-    return [f"force {hi * 1e12:.6g} pN is above {OVERSTRETCHING_FORCE * 1e12:g} pN, "
-            "where B-DNA overstretches; the model (inextensible DNA) ignores it"]
+    return [f"force {display.text(hi, 'force')} is above "
+            f"{display.text(OVERSTRETCHING_FORCE, 'force', 'g')}, where B-DNA overstretches; "
+            "the model (inextensible DNA) ignores it"]
 
 
 def denaturation_messages(force, turns):
@@ -211,8 +213,9 @@ def denaturation_messages(force, turns):
     den = (turns < 0) & (force > DENATURATION_FORCE)
     if not np.any(den):
         return []
-    return [f"negative turns at {np.asarray(force)[den].max() * 1e12:.6g} pN (> 0.8 pN): real "
-            "DNA denatures under negative supercoiling there; the model ignores denaturation"]
+    return [f"negative turns at {display.text(np.asarray(force)[den].max(), 'force')} "
+            "(> 0.8 pN): real DNA denatures under negative supercoiling there; the model "
+            "ignores denaturation"]
 
 
 def point_messages(turns, force, points, dna, describes_denaturation=False):
@@ -235,9 +238,10 @@ def plectoneme_messages(state, dna, hard_core_radius=None):
     if not np.any(tight):
         return []
     f = np.atleast_1d(state.force)[tight]
-    return [f"at {f.max() * 1e12:.6g} pN the superhelix radius R = "
-            f"{R[tight][np.argmax(f)] * 1e9:.4g} nm < r0 = {r0 * 1e9:.6g} nm: the strands are "
-            "pressed inside the hard-core radius (above ~30 pN for the seed set), where the "
+    return [f"at {display.text(f.max(), 'force')} the superhelix radius R = "
+            f"{display.text(R[tight][np.argmax(f)], 'length', '.4g')} < r0 = "
+            f"{display.text(r0, 'length')}: the strands are pressed inside the hard-core radius "
+            "(above ~30 pN for the seed set), where the "
             "interaction is extrapolated"]
 
 
@@ -257,10 +261,11 @@ def tail_torque_messages(force, turns, points, dna):
         if np.any(over):
             j = np.flatnonzero(over)[0]
             i = start + j
-            return [f"at force {force[i] * 1e12:.6g} pN, turns {turns[i]:.6g} the stretched "
-                    f"tail carries a torque {abs(points.torque[i]) * 1e21:.4g} pN nm above the "
-                    f"Euler limit 2 sqrt(B F) = {limit[j] * 1e21:.4g} pN nm: a straight tail "
-                    "is unstable there"]
+            return [f"at force {display.text(force[i], 'force')}, turns {turns[i]:.6g} the "
+                    "stretched tail carries a torque "
+                    f"{display.text(abs(points.torque[i]), 'torque', '.4g')} above the Euler limit "
+                    f"2 sqrt(B F) = {display.text(limit[j], 'torque', '.4g')}: a straight tail is "
+                    "unstable there"]
     return []
 
 
@@ -276,9 +281,10 @@ def extension_messages(force, turns, points, dna):
     if not np.any(bad):
         return []
     i = np.flatnonzero(bad)[0]
-    return [f"extension {z[i] * 1e9:.6g} nm at force {force[i] * 1e12:.6g} pN, turns "
-            f"{turns[i]:.6g} lies outside [0, L = {dna.length * 1e9:.6g} nm]: the thermal "
-            "formula is not valid there (tail of a few persistence lengths or less)"]
+    return [f"extension {display.text(z[i], 'length')} at force "
+            f"{display.text(force[i], 'force')}, turns {turns[i]:.6g} lies outside "
+            f"[0, L = {display.text(dna.length, 'length')}]: the thermal formula is not valid "
+            "there (tail of a few persistence lengths or less)"]
 
 
 #: points per block of the checks that build masks (their temporaries stay bounded)
@@ -331,8 +337,8 @@ def check_hard_core_radius(dna, radius=None):
     with np.errstate(over="ignore", divide="ignore"):
         b = dna.bending_persistence / r0
     check_scale(b, f"the reduced stiffness A/r0 (hard-core radius r0 = DNA.radius = "
-                f"{r0 * 1e9:.6g} nm, "
-                f"A = {dna.bending_persistence * 1e9:.6g} nm)", hi=MAX_REDUCED_STIFFNESS,
+                f"{display.text(r0, 'length')}, "
+                f"A = {display.text(dna.bending_persistence, 'length')})", hi=MAX_REDUCED_STIFFNESS,
                 why="the plectoneme solver works in units of r0 and loses its precision "
                     "beyond; give a hard-core radius of the order of the DNA radius (~1 nm)")
 

@@ -35,7 +35,7 @@ def test_bench_writes_every_chart_and_table(bench_dir):
 
 def _bound(target):
     """(comparison, number) of a target text such as '<= 10x', '>= 1.8x', 'about 10-15 ms'."""
-    m = re.match(r"\s*(<=|>=)\s*([0-9.e+-]+)", target)
+    m = re.match(r"\s*(<=|>=|<|>)\s*([0-9.e+-]+)", target)
     if m:
         return m.group(1), float(m.group(2))
     m = re.match(r"\s*about\s+[0-9.]+\s*-\s*([0-9.]+)", target)
@@ -61,7 +61,9 @@ def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
     for _, row in head.iterrows():
         op, bound = _bound(row["target"])
         value = float(row["value"])
-        assert bool(row["met"]) == (value <= bound if op == "<=" else value >= bound), row
+        holds = {"<=": value <= bound, ">=": value >= bound, "<": value < bound,
+                 ">": value > bound}[op]
+        assert bool(row["met"]) == holds, row
     cli = head[head["measurement"].str.startswith("supercoil hat")]["note"].iloc[0]
     for phase in ("import", "compute", "plot"):
         assert re.search(rf"{phase} [0-9.]+ s", cli), phase
@@ -95,15 +97,16 @@ def test_model_cost_measures_every_model():
     from supercoil.benchmark.dna_models import MODELS, UNITS, model_cost
     from supercoil.tables import make_table
 
-    rows = model_cost(n_forces=20, sizes=(200,), repeat=1)
-    assert make_table(rows, UNITS).shape == (6, 7)
-    assert rows["model"] == list(MODELS) * 3
+    rows = model_cost(n_forces=20, sizes=(200,), repeat=1, coiled=(40.0, 400))
+    assert make_table(rows, UNITS).shape == (8, 7)
+    assert rows["model"] == list(MODELS) * 4
+    assert "past full coiling" in rows["measurement"][6]
     ratio = np.array(rows["ratio_to_li_zhao"])
     assert np.all(ratio[::2] == 1.0) and np.all(np.isfinite(ratio)) and np.all(ratio > 0)
     assert np.all(np.array(rows["rate"]) > 0)
     assert "full coiling" in rows["measurement"][2]
     three = ("li-zhao", "free-energy", "marko2007")
-    rows = model_cost(n_forces=10, sizes=(100,), repeat=1, models=three)
+    rows = model_cost(n_forces=10, sizes=(100,), repeat=1, models=three, coiled=None)
     time, ratio = np.array(rows["time"]), np.array(rows["ratio_to_li_zhao"])
     # each ratio is the model's time over li-zhao's time of the same measurement
     np.testing.assert_allclose(ratio, time / np.repeat(time[::3], 3), rtol=1e-12)

@@ -83,8 +83,10 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     # unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
     assert "noise [nm]" in report and "red.chi2" not in report
     row = next(line for line in report.splitlines() if line.strip().startswith("m1 "))
-    assert float(row.split()[1]) == pytest.approx(np.sqrt(table["reduced_chi_square"].iloc[0]),
-                                                  rel=1e-3)
+    assert float(row.split()[1]) == pytest.approx(table["residual_rms"].iloc[0], rel=1e-3)
+    assert table.attrs["units"]["residual_rms"] == "nm"
+    assert 3 < table["residual_rms"].iloc[0] < 8  # the noise estimate, nm (default 5 nm noise)
+    assert table["reduced_chi_square"].iloc[0] == pytest.approx(1.0)  # dimensionless
     assert (out / "fit_molecules.png").exists()
     # --global: one fit, shared parameters, offsets per molecule
     ok = df[df["molecule"] != "m2"].reset_index(drop=True)
@@ -209,3 +211,24 @@ def test_fit_end_loop_flag_fits_the_model_with_its_loop(tmp_path, true_dna):
     got = params["twist_persistence"].iloc[0]
     assert got == pytest.approx(ref.parameters["twist_persistence"].m, rel=1e-9)
     assert got != pytest.approx(plain.parameters["twist_persistence"].m, rel=1e-6)
+
+
+def test_fit_command_compares_models_with_their_cost_and_start_values(tmp_path, true_dna):
+    """Several --model: the ranked table gives each model's CPU cost beside AIC and BIC; a
+    --start value reaches every model's fit (the same start as the library call)."""
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, [1.2] * u.pN, np.linspace(-20, 20, 41), seed=1)
+    path = _write(df, tmp_path / "data.csv")
+    out = tmp_path / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.SupercoilWarning)
+        assert main(["fit", str(path), "--model", "li-zhao", "--model", "marko2007",
+                     "--start", "turns_offset=0.3", "--out", str(out), "--no-plot"]) == 0
+        ref = sc.compare_models(sc.read_tweezers_csv(path), sc.load_parameters("dna"),
+                                ["li-zhao", "marko2007"], start={"turns_offset": 0.3})
+    table = sc.read_csv(out / "fit_comparison.csv")
+    assert list(table["model"]) == list(ref.table["model"]) == ["li-zhao", "marko2007"]
+    assert (table["cpu_seconds"] > 0).all() and table.attrs["units"]["cpu_seconds"] == "s"
+    np.testing.assert_allclose(table["aic"], ref.table["aic"], rtol=1e-9)
+    assert ref.results["li-zhao"].start["turns_offset"].m_as("turn") == pytest.approx(0.3)
+    assert "fit CPU s" in (out / "fit_report.txt").read_text()

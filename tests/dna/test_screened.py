@@ -527,11 +527,11 @@ def test_the_shipped_10mM_set_jumps_to_contact_at_5_03_pN():
 
 def _kernel(dna, **kw):
     inter = Screened(**kw)
-    si, lam, pref = inter._functions(dna)
+    si, lam, pref = inter.screening_functions(dna)
     B = si.bending_rigidity
     from supercoil.dna.interactions import screened as scm
 
-    f = scm._partials_function(B, si.kT, lam, pref, inter.values["confinement"])
+    f = scm.partials_function(B, si.kT, lam, pref, inter.values["confinement"])
     return B, f, inter.branch(si)
 
 

@@ -82,6 +82,12 @@ def test_fit_many_reports_failures_per_molecule(many, base):
         for name in r.parameters:
             assert table.loc[i, name] == pytest.approx(r.parameters[name].m, rel=1e-9)
             assert table.loc[i, f"{name}_stderr"] == pytest.approx(r.stderr[name].m, rel=1e-9)
+        # the fit statistics mean what FitResult's do: redchi dimensionless (1 with unit
+        # weights), the noise estimate the extension residual RMS in nm (was nm^2 variance)
+        assert table.loc[i, "reduced_chi_square"] == pytest.approx(r.redchi, rel=1e-9)
+        assert table.loc[i, "residual_rms"] == pytest.approx(r.residual_rms.m_as("nm"),
+                                                             rel=1e-9)
+        assert 4 < table.loc[i, "residual_rms"] < 6  # simulated with 5 nm noise
         assert abs(table.loc[i, "twist_persistence"] - 95) < 4 * table.loc[
             i, "twist_persistence_stderr"]
     assert abs(table.loc[1, "turns_offset"] + 0.3) < 4 * table.loc[1, "turns_offset_stderr"]

@@ -213,7 +213,7 @@ def test_kernel_failure_during_the_fit_is_step_controlled(data, base, result, mo
 
     monkeypatch.setattr(fit_model, "evaluate", flaky)
     r = sc.fit_hat_curves(data, base, vary=["twist_persistence", "radius"])
-    assert r._core["kernel_failures"] == 1
+    assert r.kernel_failures == 1
     for name in result.parameters:
         assert r.parameters[name].m == pytest.approx(result.parameters[name].m,
                                                      abs=1e-3 * result.stderr[name].m)

@@ -47,28 +47,27 @@ def _counted_fit(problem, base, monkeypatch, **kw):
 def test_kernel_calls_per_fit_do_not_grow(problem, base, monkeypatch):
     """Per accepted step one residual and one Jacobian of n_global + 1 calls, nothing more."""
     r, kernel, solves = _counted_fit(problem, base, monkeypatch)
-    core = r._core
-    assert core["kernel_calls"] == len(kernel)
+    assert r.kernel_calls == len(kernel)
     n = problem.shape[0]
     # the start points (reused by the first residual), one call per new trial point, and per
     # Jacobian one forward column per global parameter plus one N -/+ h call of 2n points
-    assert kernel.count(2 * n) == core["njev"]
-    assert len(kernel) <= r.nfev + core["njev"] * (len(VARY) + 1)
+    assert kernel.count(2 * n) == r.njev
+    assert len(kernel) <= r.nfev + r.njev * (len(VARY) + 1)
     # pinned on this problem (as before the fit's cost was cut: 24 calls of which 6 of
     # 2 n points, nfev 6); a change of the optimiser's path would show here first
-    assert (len(kernel), r.nfev, core["njev"]) == (24, 6, 6)
+    assert (len(kernel), r.nfev, r.njev) == (24, 6, 6)
     # equilibria: the C column and the N -/+ h call reuse the state of their base point
     # (hard core: C-free key); only the radius column and the new points solve
-    assert len(solves) == 2 * core["njev"]
+    assert len(solves) == 2 * r.njev
     assert len(set(solves)) == len(solves)  # never the same equilibrium twice
 
 
 def test_the_covariance_tables_are_built_on_first_use_with_the_same_numbers(problem, base):
     r = sc.fit_hat_curves(problem, base, vary=VARY)
     assert "covariance" not in vars(r) and "correlation" not in vars(r)
-    f = np.array([r._spec.params[n].factor for n in r.names])
+    f = np.array([r.params[n].factor for n in r.names])
     np.testing.assert_array_equal(r.covariance.to_numpy(),
-                                  r._core["covariance"] * np.outer(f, f))
+                                  r.solution.covariance * np.outer(f, f))
     assert r.covariance is r.covariance  # built once
     d = np.sqrt(np.diag(r.covariance.to_numpy()))
     np.testing.assert_allclose(r.correlation.to_numpy(),

@@ -149,7 +149,8 @@ def _vary():
 def _compare(data, base, models=None):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        table = sc.compare_models(data, base, models or ["li-zhao", "toy-rod"], vary=_vary())
+        table = sc.compare_models(data, base, models or ["li-zhao", "toy-rod"],
+                                  vary=_vary()).table
     return table, [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
 
 

@@ -78,7 +78,6 @@ class _CachedInteraction:
     """An interaction whose ``equilibrium`` is memoised within one fit."""
 
     def __init__(self, interaction, store):
-        self.interaction = interaction  # the bare interaction (the fit result keeps it)
         self._inter = interaction
         self._store = store
 
@@ -88,6 +87,11 @@ class _CachedInteraction:
     def unrecorded(self):
         """Itself: the cache records nothing the shared checks read (trial states stay cached)."""
         return self
+
+    @property
+    def wrapped(self):
+        """The interaction itself (without the memo)."""
+        return self._inter
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)
@@ -145,6 +149,11 @@ class HatCurveModel:
         self._calibration.update({p.kind: (None, p.value) for p in params.values()
                                   if p.owner == "calibration" and not p.vary})
         self._per_force = any(p.shared == "per-force" for p in params.values())
+
+    @property
+    def per_force(self) -> bool:
+        """Some model or DNA parameter is fitted per force (each force its own state)."""
+        return self._per_force
 
     def set_torque_sigma(self, sigma):
         """Weights of the torque channel: ``1 / sigma`` (N m, scalar or per point)."""
@@ -251,9 +260,15 @@ class HatCurveModel:
                     arr[sel] = a
         return HatPoints(*out)
 
+    def fitted(self, u, force=None):
+        """``(dna SI, model, interaction)`` at ``u`` (at ``force`` with per-force parameters),
+        the interaction without the fit's memo (plain picklable instances)."""
+        dna, model, inter = self.unpack(u, force)[:3]
+        return dna, model, inter.wrapped
+
     def states(self, u):
         """``{force: (dna, model, interaction)}`` at ``u`` for every force of the data."""
-        return {float(f): self.unpack(u, f)[:3] for f in np.unique(self.data.force)}
+        return {float(f): self.fitted(u, f) for f in np.unique(self.data.force)}
 
     # ---- model, residual ----
     def points(self, u):

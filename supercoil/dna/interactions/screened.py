@@ -65,7 +65,9 @@ def _screening(salt, temperature, kT, radius, fraction):
     return lam, lB, nu, nu * nu * kT * lB
 
 
-def _partials_function(B, kT, lam, prefactor, conf):
+def partials_function(B, kT, lam, prefactor, conf):
+    """``partials(alpha, R) -> (w, w_alpha, w_R)`` of the screened interaction with the
+    confinement term (SI: bending rigidity ``B``, ``kT``, Debye length ``lam``)."""
     def partials(alpha, R):
         w, w_a, w_R = _sc.electrostatic_partials(alpha, R, lam, prefactor)
         if conf:
@@ -78,13 +80,13 @@ def _partials_function(B, kT, lam, prefactor, conf):
 
 @lru_cache(maxsize=64)
 def _branch(B, kT, lam, prefactor, conf, radius):
-    partials = _partials_function(B, kT, lam, prefactor, conf)
+    partials = partials_function(B, kT, lam, prefactor, conf)
     return _eq.branch_table(B, partials, radius, _R_MAX_FACTOR * radius)
 
 
 @lru_cache(maxsize=64)
 def _contact(B, kT, lam, prefactor, conf, radius):
-    partials = _partials_function(B, kT, lam, prefactor, conf)
+    partials = partials_function(B, kT, lam, prefactor, conf)
     return _ct.contact_table(B, partials, radius)
 
 
@@ -200,21 +202,22 @@ class Screened(Interaction):
         return _screening(si.salt, si.temperature, si.kT, self.values["hard_core_radius"],
                           self.values["charge_fraction"])
 
-    def _functions(self, dna):
+    def screening_functions(self, dna):
+        """``(dna SI, Debye length (m), interaction prefactor (J/m))`` of ``dna``."""
         si = _si(dna)
         lam, _, _, pref = self.screening(si)
         return si, lam, pref
 
     def _partials(self, alpha, radius, dna):
         """``(w, w_alpha, w_R)`` in (J/m, J/m, J/m^2); analytic under the quadrature."""
-        si, lam, pref = self._functions(dna)
-        f = _partials_function(si.bending_rigidity, si.kT, lam, pref,
+        si, lam, pref = self.screening_functions(dna)
+        f = partials_function(si.bending_rigidity, si.kT, lam, pref,
                                self.values["confinement"])
         return f(np.asarray(alpha, float), np.asarray(radius, float))
 
     def branch(self, dna):
         """The tabulated stable branch (:class:`supercoil.core.dna.equilibrium.Branch`)."""
-        si, lam, pref = self._functions(dna)
+        si, lam, pref = self.screening_functions(dna)
         return _branch(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                        self.values["hard_core_radius"])
 
@@ -222,7 +225,7 @@ class Screened(Interaction):
         """The tabulated contact branch at R = a (:mod:`supercoil.core.dna.contact`) or None."""
         if not self.values["hard_contact"]:
             return None
-        si, lam, pref = self._functions(dna)
+        si, lam, pref = self.screening_functions(dna)
         return _contact(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                         self.values["hard_core_radius"])
 
@@ -242,9 +245,9 @@ class Screened(Interaction):
         ParameterError
             If the DNA has no salt.
         """
-        si, lam, pref = self._functions(dna)
+        si, lam, pref = self.screening_functions(dna)
         B = si.bending_rigidity
-        partials = _partials_function(B, si.kT, lam, pref, self.values["confinement"])
+        partials = partials_function(B, si.kT, lam, pref, self.values["confinement"])
         branch, contact = self.branch(si), self.contact_branch(si)
         force = np.asarray(tension, dtype=float)
         # blocks of 1024 forces: the solver's temporaries (~8 kB per force) stay bounded

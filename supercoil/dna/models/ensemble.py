@@ -159,7 +159,7 @@ class Ensemble(DNAModel):
         Mb = _en.coexistence_torque(f, par)
         t, _ = _en.tail_gibbs(f, Mb, par)
         om_t = -t.dphi_dM
-        om_p = -_en._plectoneme(f, Mb, par).dphi_dM
+        om_p = -_en.plectoneme_phase(f, Mb, par).dphi_dM
         slope = -2.0 * np.pi * (-t.dphi_dF) / (om_p - om_t)
         return Buckling(dna.length * om_t / (2.0 * np.pi), Mb, slope)
 
