@@ -70,6 +70,11 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
     si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, model,
                                  interaction or "hard-core")
     kT = si.kT
+    if quantity == "plectoneme_radius" and hasattr(m, "plectoneme_radius"):
+        r = m.plectoneme_radius(f, si)
+        if r is None:
+            return np.nan, "the model's plectoneme has no geometry (power-law P(M))"
+        return float(r[0]) * 1e9, "superhelix at the coexistence torque"
     if quantity == "plectoneme_radius":
         if not m.uses_interaction:
             return np.nan, "the model has no plectoneme geometry"

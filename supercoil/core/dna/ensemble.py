@@ -68,6 +68,9 @@ class EnsembleParameters(NamedTuple):
     max_domains: int = 2
     nodes: int = 70
     finite_size: bool = True
+    #: (M_k, T_k, tau_k) of a superhelix at fixed torque (phases.tabulated_plectoneme_gibbs)
+    #: in place of the power law P(M); None: the power law
+    plectoneme_table: tuple | None = None
 
 
 class EnsemblePoints(NamedTuple):
@@ -98,6 +101,8 @@ def tail_gibbs(F, M, par, wlc=None):
 
 def _plectoneme(F, M, par):
     M = np.where(np.abs(M) < _TINY_TORQUE, _TINY_TORQUE, M)
+    if par.plectoneme_table is not None:
+        return _ph.tabulated_plectoneme_gibbs(F, M, par.plectoneme_table, par.C, par.kT)
     return _ph.plectoneme_gibbs(F, M, par.P0, par.exponent, par.M0, par.kT)
 
 

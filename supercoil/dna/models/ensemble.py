@@ -11,11 +11,13 @@ curves: ``docs/theory/ensemble.md``.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import ClassVar
 
 import numpy as np
 
 from supercoil.core.dna import ensemble as _en
+from supercoil.core.dna import equilibrium as _eq
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import ModelError, ValidityError
@@ -54,6 +56,64 @@ def check_forces(force, dna):
             "worm-like-chain tail is not stretched: no coexistence to solve)")
 
 
+#: points of the superhelix table of the derived plectoneme (cubic Hermite in the torque)
+PLECTONEME_TABLE_POINTS = 240
+
+
+@lru_cache(maxsize=32)
+def _superhelix_table(B, kT, lam, prefactor, confinement, radius, points):
+    """``(M_k, T_k, tau_k)`` along the screened superhelix's stable branch, increasing M."""
+    from supercoil.dna.interactions.screened import _branch, _partials_function
+
+    br = _branch(B, kT, lam, prefactor, confinement, radius)
+    part = _partials_function(B, kT, lam, prefactor, confinement)
+    R = np.geomspace(br.radius[0], br.radius[-1], points)
+    alpha = _eq.solve_tilt(R, B, part)
+    M = _eq.torque(alpha, R, B, part)
+    T = _eq.tension(alpha, R, B, part)
+    tau = np.sin(alpha) * np.cos(alpha) / R
+    order = np.argsort(M)
+    keep = M[order] > 0.0
+    tables = (M[order][keep], T[order][keep], tau[order][keep], R[order][keep])
+    for a in tables:
+        a.setflags(write=False)
+    return tables
+
+
+def _table(dna, charge_fraction, confinement, radius, points=PLECTONEME_TABLE_POINTS):
+    from supercoil.dna.interactions import get_interaction
+
+    si = getattr(dna, "si", dna)
+    inter = type(get_interaction("screened"))(charge_fraction=charge_fraction,
+                                             confinement=confinement, hard_core_radius=radius)
+    lam, _, _, pref = inter.screening(si)  # ParameterError naming salt if the DNA has none
+    return _superhelix_table(float(si.bending_rigidity), float(si.kT), float(lam),
+                             float(pref), float(confinement), float(radius), int(points))
+
+
+def superhelix_table(dna, charge_fraction, confinement, radius=1e-9,
+                     points=PLECTONEME_TABLE_POINTS):
+    """Torque, tension and writhe density of the screened plectoneme's superhelix (SI).
+
+    The uniform superhelix of :mod:`supercoil.core.dna.equilibrium` with the screened
+    interaction (``interaction="screened"``: Debye-Hueckel repulsion of Stigter's
+    charge ``charge_fraction`` times the bare one, the entropic confinement term times
+    ``confinement``, hard core ``radius`` in m) for the DNA's bending stiffness, salt
+    and temperature, on ``points`` radii of its stable branch: ``(M_k [N m], T_k [N],
+    tau_k [1/m])`` with ``dT/dM = tau`` (docs/theory/ensemble.md#221-derived-plectoneme).
+    Raises :class:`~supercoil.exceptions.ParameterError` naming ``salt`` if the DNA
+    has none.
+    """
+    return _table(dna, charge_fraction, confinement, radius, points)[:3]
+
+
+def superhelix_radius(torque, dna, charge_fraction, confinement, radius=1e-9):
+    """Radius (m) of the screened superhelix at ``torque`` (N m): interpolated in log R
+    along the table of :func:`superhelix_table` (the hard core beyond its largest torque)."""
+    Mk, _, _, Rk = _table(dna, charge_fraction, confinement, radius)
+    return np.exp(np.interp(np.abs(np.asarray(torque, float)), Mk, np.log(Rk)))
+
+
 def _p(name, unit, default, lo, hi, description, source):
     return ModelParameter(name, unit, default, lo, hi, description, source)
 
@@ -67,7 +127,9 @@ class Ensemble(DNAModel):
     measured curves better, docs/theory/ensemble.md#5-fit), ``exact_wlc``
     (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
     False: first order), ``melting`` (the melted phase in the tail),
-    ``multi_domain`` (up to two domains; False: one).
+    ``multi_domain`` (up to two domains; False: one), ``screened_plectoneme`` (the
+    plectoneme phase derived from the screened superhelix at the DNA's salt; False:
+    the power law ``P(M)``).
     """
 
     name: ClassVar[str] = "ensemble"
@@ -75,7 +137,8 @@ class Ensemble(DNAModel):
                               "torque-dependent stiffness, summed at fixed turns")
     uses_interaction: ClassVar[bool] = False
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
-                               "resummed": True, "melting": True, "multi_domain": True}
+                               "resummed": True, "melting": True, "multi_domain": True,
+                               "screened_plectoneme": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
             "twist_bend_softening", "", 1.79, 0.5, 8.0,
@@ -109,6 +172,15 @@ class Ensemble(DNAModel):
         "melted_extension": _p(
             "melted_extension", "", 0.07, -0.5, 1.5,
             "extension per B-DNA contour length of the melted phase", _FIT),
+        "plectoneme_charge_fraction": _p(
+            "plectoneme_charge_fraction", "", 1.0, 0.05, 1.5,
+            "screened_plectoneme: fraction of the bare charge on Stigter's cylinder",
+            "1: the screened interaction's default (docs/theory/screened-interaction.md)"),
+        "plectoneme_confinement": _p(
+            "plectoneme_confinement", "", 0.0, 0.0, 1.0,
+            "screened_plectoneme: coefficient of the entropic confinement term",
+            "0: Clauvelin, Audoly & Neukirch, Biophys. J. 96, 3716 (2009); 1: Marko & "
+            "Siggia, Phys. Rev. E 52, 2912 (1995)"),
         "positional_length": _p(
             "positional_length", "nm", 1e-9, 0.1e-9, 100e-9,
             "b: microscopic length of a domain's positional and length entropy (degenerate "
@@ -149,7 +221,10 @@ class Ensemble(DNAModel):
             v["melted_extension"], segment=_BP, microscopic_length=v["positional_length"],
             exact_wlc=self.exact_wlc, resummed=self.resummed,
             physical_loop=self.physical_loop, max_domains=2 if self.multi_domain else 1,
-            nodes=nodes, finite_size=self.finite_size)
+            nodes=nodes, finite_size=self.finite_size,
+            plectoneme_table=superhelix_table(dna, v["plectoneme_charge_fraction"],
+                                              v["plectoneme_confinement"])
+            if self.screened_plectoneme else None)
 
     def buckling(self, force, dna, thermal, interaction=None):
         """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
@@ -162,6 +237,18 @@ class Ensemble(DNAModel):
         om_p = -_en._plectoneme(f, Mb, par).dphi_dM
         slope = -2.0 * np.pi * (-t.dphi_dF) / (om_p - om_t)
         return Buckling(dna.length * om_t / (2.0 * np.pi), Mb, slope)
+
+    def plectoneme_radius(self, force, dna):
+        """Superhelix radius (m) at the thermodynamic-limit coexistence torque, or None
+        without ``screened_plectoneme`` (the power-law plectoneme has no geometry)."""
+        if not self.screened_plectoneme:
+            return None
+        check_forces(force, dna)
+        par = self.kernel_parameters(dna)
+        Mb = _en.coexistence_torque(np.asarray(force, float), par)
+        v = self.values
+        return superhelix_radius(Mb, dna, v["plectoneme_charge_fraction"],
+                                 v["plectoneme_confinement"])
 
     def points(self, turns, force, dna, thermal, interaction=None, short_tail_length=None):
         """Ensemble averages: extension, torque, plectoneme length, phase, G."""
