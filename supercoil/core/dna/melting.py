@@ -58,10 +58,11 @@ DEFAULTS = {
     # c_m: assumed soft twist persistence of the bubble; no measured value read. It sets
     # only the torque dependence of the melted twist (fit parameter)
     "melt_twist_stiffness": 20e-9,  # m
-    # ssDNA elasticity: extensible freely jointed chain with persistence 0.75 nm (Kuhn
-    # length 1.5 nm), contour 0.56 nm per base and stretch modulus 800 pN; dsDNA contour
-    # 0.34 nm/bp (figure 2 caption of PMC33432 at pmc.ncbi.nlm.nih.gov, which cites the
-    # ssDNA values to its ref. 19; text of a figure caption)
+    # ssDNA elasticity: extensible freely jointed chain of persistence 7.5 A (Kuhn length
+    # 1.5 nm) and stretch modulus 800 pN (Smith, Cui & Bustamante, Science 271, 795,
+    # 1996, abstract); contour 0.56 nm per base and dsDNA rise 0.34 nm/bp (figure 2
+    # caption of the force-induced-melting study PMC33432 at pmc.ncbi.nlm.nih.gov, text
+    # of the caption; melting.md#sources-and-what-was-read)
     "ss_kuhn_length": 1.5e-9,  # m
     "ss_contour_per_base": 0.56e-9,  # m
     "ss_stretch_modulus": 800e-12,  # N
