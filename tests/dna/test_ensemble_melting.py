@@ -8,6 +8,7 @@ Gibbs free energies and of the ensemble's G(N, F); the Langevin function written
 import numpy as np
 import pytest
 
+import supercoil
 from supercoil.core.dna import ensemble as en
 from supercoil.core.dna import melting as ml
 from supercoil.core.dna import phases as ph
@@ -130,3 +131,23 @@ def test_ensemble_maxwell_with_the_melted_phase(case):
     assert p.torque[0] == pytest.approx(fd(G[1:5], hN) / TWO_PI, rel=1e-6)
     assert p.extension[0] == pytest.approx(-fd(G[5:9], hF), rel=1e-6)
     assert p.torque[0] < -5 * PNNM  # on the negative plateau (bubbles in tail or plectoneme)
+
+
+def test_model_options_reach_the_melted_phase():
+    """``ss_melted``/``plectoneme_melting`` change the melting side only."""
+    from supercoil.dna.models.ensemble import Ensemble
+
+    u = supercoil.ureg
+    dna = supercoil.DNA(length=1500 * u.nm, bending_persistence=45 * u.nm,
+                        twist_persistence=100 * u.nm, radius=1 * u.nm,
+                        temperature=296 * u.K).si
+    off, on = Ensemble(), Ensemble(ss_melted=True, plectoneme_melting=True)
+    par = on.kernel_parameters(dna, nodes=8)
+    assert par.melt_ss_elastic and par.plectoneme_melting
+    assert not off.kernel_parameters(dna).melt_ss_elastic
+    N, F = np.array([8.0, -25.0]), np.full(2, 2 * PN)
+    a = en.points(N, F, off.kernel_parameters(dna, nodes=8))
+    b = en.points(N, F, par)
+    assert b.extension[0] == pytest.approx(a.extension[0], rel=1e-6)  # no bubbles at N > 0
+    # two stretched single strands are longer than the constant x_m: less shortening
+    assert b.extension[1] > a.extension[1] + 1 * NM
