@@ -36,6 +36,7 @@ __all__ = [
     "tabulated_plectoneme_gibbs",
     "two_state_gibbs",
     "wlc_exact_free_energy_gain",
+    "wlc_extension",
 ]
 
 #: a_2 ... a_7 of the 7-coefficient interpolation of the exact worm-like-chain
@@ -62,6 +63,14 @@ def _bouchiat_reduced_force(x):
     return out
 
 
+def _bouchiat_reduced_stiffness(x):
+    """``d(F A / kT)/dx`` of the Bouchiat interpolation (positive on ``0 <= x < 1``)."""
+    out = 1.0 + 0.5 / (1.0 - x) ** 3
+    for i, a in enumerate(BOUCHIAT_COEFFICIENTS):
+        out = out + (i + 2) * a * x ** (i + 1)
+    return out
+
+
 def _bouchiat_reduced_work(x):
     """``(A / kT) int_0^x F dx'`` of the Bouchiat interpolation."""
     out = 0.5 * x**2 + 0.25 / (1.0 - x) - 0.25 - 0.25 * x
@@ -70,18 +79,30 @@ def _bouchiat_reduced_work(x):
     return out
 
 
-def wlc_exact_free_energy_gain(force, A, kT):
-    """``g(F) = int_0^F x dF'`` (N) and ``x(F)`` of the exact worm-like chain.
+def wlc_extension(force, A, kT):
+    """Relative extension ``x(F)`` of the exact worm-like chain and ``dx/dF`` (1/N).
 
-    ``x`` inverts the Bouchiat interpolation (root in ``0 <= x < 1``) and
-    ``g = F x - int_0^x F dx'`` (integration by parts), so ``dg/dF = x``
-    [ensemble.md#21-stretched].
+    The one inversion of the Bouchiat interpolation in the package (bracketing root in
+    ``0 <= x < 1``, where ``F A / kT`` increases with x); ``dx/dF`` is
+    ``A / (kT h'(x))``. ``force`` (N) non-negative; the callers validate it.
     """
     f = np.asarray(force, dtype=float) * A / kT
     res = elementwise.find_root(lambda x, t: _bouchiat_reduced_force(x) - t,
                                 (np.zeros_like(f), np.full_like(f, 1.0 - 1e-13)), args=(f,))
     x = res.x
-    return (f * x - _bouchiat_reduced_work(x)) * kT / A, x
+    return x, A / (kT * _bouchiat_reduced_stiffness(x))
+
+
+def wlc_exact_free_energy_gain(force, A, kT, slope=False):
+    """``g(F) = int_0^F x dF'`` (N) and ``x(F)`` of the exact worm-like chain.
+
+    ``x`` from :func:`wlc_extension` and ``g = F x - int_0^x F dx'`` (integration by
+    parts), so ``dg/dF = x`` [ensemble.md#21-stretched]. ``slope``: also ``dx/dF`` (1/N).
+    """
+    x, dx = wlc_extension(force, A, kT)
+    f = np.asarray(force, dtype=float) * A / kT
+    g = (f * x - _bouchiat_reduced_work(x)) * kT / A
+    return (g, x, dx) if slope else (g, x)
 
 
 def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed=True,

@@ -127,9 +127,12 @@ class Ensemble(DNAModel):
     measured curves better, docs/theory/ensemble.md#5-fit), ``exact_wlc``
     (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
     False: first order), ``melting`` (the melted phase in the tail),
-    ``multi_domain`` (up to two domains; False: one), ``screened_plectoneme`` (the
-    plectoneme phase derived from the screened superhelix at the DNA's salt; False:
-    the power law ``P(M)``).
+    ``multi_domain`` (up to two domains; False: one), ``ss_melted`` (the melted
+    phase's extension x_m(F) of two single strands instead of the constant
+    ``melted_extension``) and ``plectoneme_melting`` (bubbles inside the plectonemes
+    too), both docs/theory/melting.md#the-ensembles-melted-phase, and
+    ``screened_plectoneme`` (the plectoneme phase derived from the screened superhelix
+    at the DNA's salt; False: the power law ``P(M)``).
     """
 
     name: ClassVar[str] = "ensemble"
@@ -138,6 +141,7 @@ class Ensemble(DNAModel):
     uses_interaction: ClassVar[bool] = False
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
                                "resummed": True, "melting": True, "multi_domain": True,
+                               "ss_melted": False, "plectoneme_melting": False,
                                "screened_plectoneme": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
@@ -221,7 +225,8 @@ class Ensemble(DNAModel):
             v["melted_extension"], segment=_BP, microscopic_length=v["positional_length"],
             exact_wlc=self.exact_wlc, resummed=self.resummed,
             physical_loop=self.physical_loop, max_domains=2 if self.multi_domain else 1,
-            nodes=nodes, finite_size=self.finite_size,
+            nodes=nodes, finite_size=self.finite_size, melt_ss_elastic=self.ss_melted,
+            plectoneme_melting=self.plectoneme_melting,
             plectoneme_table=superhelix_table(dna, v["plectoneme_charge_fraction"],
                                               v["plectoneme_confinement"])
             if self.screened_plectoneme else None)
