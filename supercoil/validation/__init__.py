@@ -19,11 +19,13 @@ import numpy as np
 __all__ = ["DEFAULT_CONFIGS", "load_published", "plot_validation", "validate"]
 
 #: (model, parameter set, interaction): the paper's construction on the seed set,
-#: and the consistent and the Marko 2007 model on the 150 mM set
+#: the consistent and the Marko 2007 model on the 150 mM set, and the phase-ensemble
+#: model with its defaults and the set fitted to the curves of Qian et al. (2024)
 DEFAULT_CONFIGS = (
     ("li-zhao", "dna", "hard-core"),
     ("free-energy", "dna_150mM_nacl", "screened"),
     ("marko2007", "dna_150mM_nacl", None),
+    ("ensemble", "dna_qian2024_fit", None),
 )
 #: where a row gives no force (or zero force, where the models hold no plectoneme),
 #: the models are evaluated at this force (pN); the note of the row says so
@@ -135,9 +137,11 @@ def _radius(m, f, si, inter):
 def _conditions(row, set_name, model, interaction):
     """Notes on the row's conditions the evaluation cannot take from the source."""
     import supercoil as sc
+    from supercoil.dna.models import get_model
 
     dna = sc.load_parameters(set_name)
-    uses_salt = interaction == "screened" and dna.salt is not None
+    derived = getattr(get_model(model), "screened_plectoneme", False)  # ensemble's plectoneme
+    uses_salt = (interaction == "screened" or derived) and dna.salt is not None
     notes = []
     if np.isfinite(row["salt"]) and not uses_salt:
         notes.append(f"the row's {row['salt']:g} mM is no condition of {model}"

@@ -24,9 +24,9 @@ from supercoil.exceptions import ModelError, ValidityError
 
 __all__ = ["Ensemble"]
 
-_FIT = ("fit of this model to the averaged rotation curves of Qian et al., bioRxiv "
-        "10.1101/2024.10.15.618270 (2024), source data of their Fig. S5 (0.3-2 pN, both "
-        "sides), docs/theory/ensemble.md#5-fit")
+_FIT = ("fit to Qian et al. 2024 Fig. S5 source data, this package: bioRxiv "
+        "10.1101/2024.10.15.618270, averaged rotation curves at 0.3-2 pN, both sides, with "
+        "the parameter set dna_qian2024_fit, docs/theory/ensemble.md#5-fit")
 _BP = 0.34e-9  # rise per base pair of B-DNA, m
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: the forces where the ensemble is evaluated: from kT/(4A) (0.02 pN for A = 50 nm; at
@@ -140,41 +140,40 @@ class Ensemble(DNAModel):
                               "torque-dependent stiffness, summed at fixed turns")
     uses_interaction: ClassVar[bool] = False
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
-                               "resummed": True, "melting": True, "multi_domain": True,
+                               "resummed": True, "melting": True, "multi_domain": False,
                                "ss_melted": False, "plectoneme_melting": False,
                                "screened_plectoneme": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
-            "twist_bend_softening", "", 1.79, 0.5, 8.0,
+            "twist_bend_softening", "", 2.25, 0.5, 8.0,
             "factor k on the Moroz-Nelson term of 1/c_s (1: Moroz-Nelson; >1 stands for "
             "twist-bend coupling)",
-            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; default 1.79 from the "
-            "constant-nucleation fit ("
-            + _FIT + ")"),
+            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; default 2.25: "
+            + _FIT),
         "plectoneme_twist_persistence_ref": _p(
-            "plectoneme_twist_persistence_ref", "nm", 13.6e-9, 3e-9, 60e-9,
+            "plectoneme_twist_persistence_ref", "nm", 13.61e-9, 3e-9, 60e-9,
             "P0: the plectoneme's effective twist stiffness at the reference torque", _FIT),
         "plectoneme_stiffness_exponent": _p(
-            "plectoneme_stiffness_exponent", "", 0.26, -0.5, 0.9,
+            "plectoneme_stiffness_exponent", "", 0.179, -0.5, 0.9,
             "a of P(M) = P0 (|M|/M0)^a (0: Marko 2007's constant P)", _FIT),
         "reference_torque": _p(
             "reference_torque", "pN*nm", 10e-21, 1e-21, 50e-21,
             "M0 of P(M) (a convention: P0 and M0 are degenerate)", "choice"),
         "domain_nucleation": _p(
-            "domain_nucleation", "pN*nm", 79.8e-21, -100e-21, 150e-21,
+            "domain_nucleation", "pN*nm", 83.9e-21, -100e-21, 150e-21,
             "extra free energy per plectoneme domain beyond its end loop", _FIT),
         "end_loop_writhe": _p(
             "end_loop_writhe", "", 1.0, 0.5, 1.5,
             "turns of linking absorbed as writhe by each domain's end loop",
             "one closed loop, docs/theory/end-loop.md#2-loop"),
         "melting_free_energy": _p(
-            "melting_free_energy", "pN*nm", 4.19e-21, 0.5e-21, 25e-21,
+            "melting_free_energy", "pN*nm", 4.43e-21, 0.5e-21, 25e-21,
             "free energy of melting one base pair at zero force and torque", _FIT),
         "melting_cooperativity": _p(
-            "melting_cooperativity", "pN*nm", 49.5e-21, 0.0, 250e-21,
+            "melting_cooperativity", "pN*nm", 63.3e-21, 0.0, 250e-21,
             "boundary free energy of one melted bubble (both ends)", _FIT),
         "melted_extension": _p(
-            "melted_extension", "", 0.07, -0.5, 1.5,
+            "melted_extension", "", 0.165, -0.5, 1.5,
             "extension per B-DNA contour length of the melted phase", _FIT),
         "plectoneme_charge_fraction": _p(
             "plectoneme_charge_fraction", "", 1.0, 0.05, 1.5,
