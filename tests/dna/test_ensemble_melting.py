@@ -141,13 +141,14 @@ def test_model_options_reach_the_melted_phase():
     dna = supercoil.DNA(length=1500 * u.nm, bending_persistence=45 * u.nm,
                         twist_persistence=100 * u.nm, radius=1 * u.nm,
                         temperature=296 * u.K).si
-    off, on = Ensemble(), Ensemble(ss_melted=True, plectoneme_melting=True)
-    par = on.kernel_parameters(dna, nodes=8)
+    off, on = Ensemble(ss_melted=False, plectoneme_melting=False), Ensemble()  # on: defaults
+    par = on.kernel_parameters(dna)
     assert par.melt_ss_elastic and par.plectoneme_melting
     assert not off.kernel_parameters(dna).melt_ss_elastic
-    N, F = np.array([8.0, -25.0]), np.full(2, 2 * PN)
-    a = en.points(N, F, off.kernel_parameters(dna, nodes=8))
-    b = en.points(N, F, par)
-    assert b.extension[0] == pytest.approx(a.extension[0], rel=1e-6)  # no bubbles at N > 0
-    # two stretched single strands are longer than the constant x_m: less shortening
-    assert b.extension[1] > a.extension[1] + 1 * NM
+    # the tail at 2 pN: identical at positive torque (no bubbles there, to 1e-6), longer
+    # beyond the melting torque (two stretched single strands are longer than x_m = 0.07)
+    F, M = np.full(2, 2 * PN), np.array([8.0, -12.0]) * PNNM
+    a = en.tail_gibbs(F, M, off.kernel_parameters(dna))[0]
+    b = en.tail_gibbs(F, M, par)[0]
+    assert b.dphi_dF[0] == pytest.approx(a.dphi_dF[0], rel=1e-6)
+    assert -b.dphi_dF[1] > -a.dphi_dF[1] + 0.01
