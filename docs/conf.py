@@ -40,6 +40,7 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 # The generated fragments are included by api.rst and theory/index.md, not pages of their own.
 # docs/generated/ holds the README's generated blocks (`supercoil docs figures`), not pages.
 exclude_patterns = ["_build", "**/.ipynb_checkpoints", "_generated/api_names.rst",
+                    "_generated/traces_names.rst",
                     "_generated/theory_toctree.md", "generated/**"]
 root_doc = "index"
 

@@ -25,10 +25,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
 from supercoil.dna.interactions import get_interaction
 from supercoil.dna.models.free_energy import FreeEnergy
 from supercoil.dna.models.marko2007 import Marko2007
+from supercoil.example_cli import example_arguments
 
 FORCES = np.array([1.0, 2.0, 3.0, 4.0])  # pN
 UNITS = {"model": "", "set": "", "interaction": "", "force": "pN", "buckling_turns": "turn",

@@ -39,32 +39,26 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_parser
 from supercoil.datasets.published import (
     ENV_VAR,
+    SYNTHETIC_LENGTH_NM,
     published_curves_path,
     read_published_curves,
-    write_published_workbook,
+    write_synthetic_workbook,
 )
 from supercoil.dna.fitting import compare_models
 from supercoil.dna.models import get_model
+from supercoil.example_cli import example_parser
 
 #: model parameters fitted per model (others: every parameter the model declares)
 MODEL_VARY = {"marko2007": ["plectoneme_twist_persistence"]}
 DNA_VARY = ["length", "bending_persistence", "twist_persistence"]
-LENGTH_NM = 2190.0  # about 6.48 kb x 0.338 nm/bp (the paper's construct size, text)
+LENGTH_NM = SYNTHETIC_LENGTH_NM  # about 6.48 kb x 0.338 nm/bp (the paper's construct, text)
 
 
 def synthetic_workbook(out):
     """A small workbook of the Figure S5 layout: marko2007 curves, torque measured / 0.8."""
-    u = sc.ureg
-    dna = sc.load_parameters("dna").replace(length=LENGTH_NM * u.nm)
-    forces = np.array([2.0, 1.5, 1.0, 0.75, 0.5, 0.3]) * u.pN
-    table = sc.simulate_rotation_curves(dna, forces, model="marko2007", points_per_force=60,
-                                        noise=3 * u.nm, torque_noise=0.3 * u.pN * u.nm,
-                                        turns_offset=0.6, seed=20261201, extension_unit="nm")
-    table["torque"] = table["torque"] / 0.8
-    return write_published_workbook(table, out / "synthetic_figure_s5.xlsx")
+    return write_synthetic_workbook(out / "synthetic_figure_s5.xlsx", points_per_force=60)
 
 
 def fit_all(data, dna, models, quick, start=None):
@@ -75,9 +69,10 @@ def fit_all(data, dna, models, quick, start=None):
                 + (["torque_scale"] if scale else []) for m in models}
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            table, res = compare_models(data, dna, models, vary=vary,
-                                        fit_extension_offset=False, return_results=True,
+            comparison = compare_models(data, dna, models, vary=vary,
+                                        fit_extension_offset=False,
                                         max_nfev=200 if quick else None, start=start)
+        table, res = comparison.table, comparison.results
         for rec in table.to_dict("records"):
             label = rec["model"] + (" + torque_scale" if scale else "")
             rows.append((label, rec, res.get(rec["model"]), len(caught)))

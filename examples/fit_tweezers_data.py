@@ -19,7 +19,8 @@ extensions alone, and compares the registered models.
 Writes tweezers_data.csv, tweezers_many.csv, tweezers_torque.csv,
 fit_report.txt, fit_parameters.csv, fit_points.csv, fit_molecules.csv,
 fit_torque_report.txt, fit_torque_points.csv, fit_comparison.csv, fit.png,
-fit_torque.png and fit_comparison.png.
+fit_profile.png (the profile likelihood of the radius), fit_torque.png and
+fit_comparison.png.
 """
 
 from __future__ import annotations
@@ -34,9 +35,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
 from supercoil.dna.fitting import simulate_rotation_curves
 from supercoil.dna.fitting.result import fmt_pm
+from supercoil.example_cli import example_arguments
 
 FORCES = (0.3, 0.5, 0.7)  # pN
 
@@ -105,9 +106,12 @@ def main(argv=None):
     (out / "fit_report.txt").write_text(report + f"\n\nfit time: {seconds * 1e3:.1f} ms\n")
     sc.write_csv(result.to_frame(), out / "fit_parameters.csv")
     sc.write_csv(result.points_frame(), out / "fit_points.csv")
-    fig = result.plot()
-    fig.savefig(out / "fit.png", dpi=120)
-    plt.close(fig)
+    plt.close(result.plot(path=out / "fit.png", dpi=120))
+    profile = result.profile("radius")  # the other parameters refitted at each radius
+    plt.close(profile.plot(path=out / "fit_profile.png", dpi=120))
+    print(f"radius: 68 % profile-likelihood interval {profile.lower_bound:.4g} to "
+          f"{profile.upper_bound:.4g} nm (Jacobian: {result.parameters['radius'].m:.4g} "
+          f"± {result.stderr['radius'].m:.2g} nm)")
 
     # ---- four molecules, fitted separately on a process pool -----------------------------------
     many = simulate_rotation_curves(true, np.array(FORCES) * u.pN, points_per_force=110,
@@ -120,11 +124,11 @@ def main(argv=None):
                             progress=lambda done, total, mol: print(
                                 f"  molecule {mol} done ({done}/{total})"))
     sc.write_csv(table, out / "fit_molecules.csv")
-    # unit weights: the reduced chi-square is the residual variance (nm^2); show its root,
-    # the noise estimate (nm). `determined` is False where the data leave a parameter free.
+    # unit weights: the noise estimate is the residual RMS (nm; the reduced chi-square is 1
+    # by construction). `determined` is False where the data leave a parameter free.
     shown = table[["molecule", "success", "determined", "twist_persistence",
                    "twist_persistence_stderr", "radius", "radius_stderr", "turns_offset"]].copy()
-    shown["noise_estimate_nm"] = np.sqrt(table["reduced_chi_square"])
+    shown["noise_estimate_nm"] = table["residual_rms"]
     print(shown.to_string(index=False))
     joint_torque_fit(true, seed_set, out, vary)
     # ---- model comparison: every registered model fitted to the same data -----------------
@@ -137,11 +141,11 @@ def main(argv=None):
         # --quick: the closed-form and one-solve models (an "ensemble" fit costs ~100x one)
         models = (["li-zhao", "free-energy", "marko2007"] if args.quick
                   else sc.available_models())
-        comparison, fits = sc.compare_models(data, seed_set, models, vary=vary,
-                                             return_results=True)
+        result = sc.compare_models(data, seed_set, models, vary=vary)
+    comparison, fits = result.table, result.results
     print("\nmodel comparison (lmfit's AIC and BIC; the data were made by li-zhao):")
     print(comparison[["model", "nparams", "chi_square", "aic", "delta_aic", "delta_bic",
-                      "goodness_p"]].to_string(index=False))
+                      "goodness_p", "cpu_seconds", "curve_cpu_seconds"]].to_string(index=False))
     sc.write_csv(comparison, out / "fit_comparison.csv")
     fig = plot_comparison(fits)
     fig.savefig(out / "fit_comparison.png", dpi=120)

@@ -23,8 +23,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
 from supercoil.dna.hat import buckling_turns, post_buckling_slope
+from supercoil.example_cli import example_arguments
 
 
 def main(argv=None):

@@ -32,7 +32,7 @@ import numpy as np
 
 import supercoil as sc
 from supercoil import traces
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 
 FORCES = (0.3, 0.5, 0.7)  # pN
 TRUTH = {"twist_persistence": 95.0, "radius": 2.0}  # nm

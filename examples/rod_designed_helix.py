@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 from supercoil.rod.design import sinusoidal_pitch
 
 u = sc.ureg

@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 from supercoil.tables import make_table, provenance
 
 u = sc.ureg

@@ -17,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 from supercoil.tables import make_table
 
 u = sc.ureg

@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 
 u = sc.ureg
 

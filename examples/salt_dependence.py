@@ -1,4 +1,4 @@
-"""Salt dependence of the DNA plectoneme with the screened interaction (issue 12).
+"""Salt dependence of the DNA plectoneme with the screened interaction.
 
 Plectoneme radius, tilt, torque, buckling turns and post-buckling slope against force at
 10, 50, 150, 500 and 1000 mM monovalent salt for ``interaction="screened"`` (Debye-Hueckel
@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 from supercoil.tables import make_table, provenance
 
 SALTS_MM = (10, 50, 150, 500, 1000)

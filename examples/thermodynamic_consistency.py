@@ -26,7 +26,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
+from supercoil.example_cli import example_arguments
 from supercoil.tables import make_table, provenance
 
 H_N, H_F = 1e-4, 1e-5  # finite-difference steps: turns, relative force

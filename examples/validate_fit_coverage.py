@@ -7,7 +7,7 @@ are fitted from the seed set with ``supercoil.fit_many`` (each replicate is a
 "molecule"; the fits run on a process pool). For every parameter the script
 counts how often ``|estimate - truth| <= stderr``. For a correct covariance
 the fraction is 68.3 %; with n replicates its binomial standard deviation is
-sqrt(0.683 * 0.317 / n) (3.3 % for n = 200). The acceptance band of issue 6 is
+sqrt(0.683 * 0.317 / n) (3.3 % for n = 200). The acceptance band is
 61 to 75 % (about +-2.2 sd at n = 200). Also shown: the pulls
 ``(estimate - truth) / stderr``, which should be standard normal.
 
@@ -32,8 +32,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments, example_parser
 from supercoil.dna.fitting import simulate_rotation_curves
+from supercoil.example_cli import example_arguments, example_parser
 from supercoil.tables import make_table, provenance
 
 FORCES = (0.3, 0.5, 0.7)  # pN
@@ -102,7 +102,7 @@ def main(argv=None):
             rows[k].append(v)
     pooled = float(np.mean([np.abs(p) <= 1 for p in pulls.values()]))
     # one unit per row (nm, or turn for turns_offset): in the "unit" column, so that the
-    # headers keep the package convention "name [unit]" (issue 15)
+    # headers keep the package convention "name [unit]"
     units = {k: "" for k in rows}
     summary = make_table(rows, units, provenance(
         true, replicates=n_rep, fitted=n_ok, noise="5 nm", forces_pN=list(FORCES),

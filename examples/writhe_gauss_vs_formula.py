@@ -17,9 +17,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import supercoil as sc
-from supercoil.cli import example_arguments
 from supercoil.core import gauss_writhe as gw
 from supercoil.core import geometry as g
+from supercoil.example_cli import example_arguments
 from supercoil.tables import make_table, provenance
 
 

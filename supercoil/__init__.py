@@ -78,6 +78,8 @@ _LAZY = {
     "write_csv": ("supercoil.tables", 'write_csv'),
     "maxwell_check": ("supercoil.dna.fitting.consistency", 'maxwell_check'),
     "read_published_curves": ("supercoil.datasets.published", 'read_published_curves'),
+    "Comparison": ("supercoil.dna.fitting", 'Comparison'),
+    "FitOptions": ("supercoil.dna.fitting", 'FitOptions'),
 }
 
 
@@ -151,6 +153,8 @@ __all__ = [  # noqa: RUF022 (new names appended at the end: parallel merges stay
     "write_csv",
     "maxwell_check",
     "read_published_curves",
+    "Comparison",
+    "FitOptions",
 ]
 
 

@@ -59,7 +59,7 @@ def main(argv=None) -> int:
 
     out = getattr(args, "out", None)
     problem = check_out_folder(out) if out is not None else None
-    if problem:  # before any computation (issue 20 item 12)
+    if problem:  # before any computation: a bad folder costs no work
         print(f"supercoil {args.command}: error: {problem}", file=sys.stderr)
         return 2
     try:
@@ -76,27 +76,3 @@ def main(argv=None) -> int:
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())
-
-
-def example_parser(doc: str, default_out: str = "results") -> argparse.ArgumentParser:
-    """The arguments every script in ``examples/`` takes.
-
-    ``--out DIR`` (where PNG and CSV files go; created by :func:`example_arguments`)
-    and ``--quick`` (a smaller run, used by the test suite). Scripts add their
-    own arguments to the returned parser.
-    """
-    from pathlib import Path
-
-    parser = argparse.ArgumentParser(description=doc.strip().splitlines()[0])
-    parser.add_argument("--out", type=Path, default=Path(default_out), help="output folder")
-    parser.add_argument("--quick", action="store_true",
-                        help="a smaller run (the test suite uses it)")
-    return parser
-
-
-def example_arguments(doc: str, argv=None, default_out: str = "results", parser=None):
-    """Parse an example script's arguments and create its output folder."""
-    parser = parser or example_parser(doc, default_out)
-    args = parser.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
-    return args

@@ -5,11 +5,12 @@ Every result record of the public API (:class:`~supercoil.rod.smooth.SmoothHelix
 :class:`~supercoil.rod.rough.RoughHelix`,
 :class:`~supercoil.dna.plectoneme.PlectonemeEquilibrium`) is a :class:`Record`: it holds
 the kernel's SI arrays and builds the quantity of a field, in its display unit, only when
-the field is read (a scene pays for no quantity it does not use; one costs ~3 us). The
-display units of all fields live in one table, :data:`DISPLAY` (per domain: rods are
-shown in mm and N, DNA in nm and pN); the SI-to-display factors are computed from it by
-pint once per record class. ``to_table()`` gives the same fields as a table in the
-package convention (docs/theory/conventions.md), with the same units.
+the field is read (a scene pays for no quantity it does not use; building one costs more
+than the float arithmetic behind it). The display units of all fields live in one table,
+:data:`supercoil.display.DISPLAY` (per domain: rods are shown in mm and N, DNA in nm and pN); the
+SI-to-display factors are computed from it by pint once per record class. ``to_table()``
+gives the same fields as a table in the package convention (docs/theory/conventions.md),
+with the same units.
 """
 
 from __future__ import annotations
@@ -18,43 +19,11 @@ from typing import ClassVar
 
 import numpy as np
 
-from supercoil.units import Q_, ureg
+from supercoil.display import DISPLAY
+from supercoil.display import spec as _spec
+from supercoil.units import Q_
 
 __all__ = ["DISPLAY", "Record", "si_value"]
-
-#: display unit of every result field, per domain (pint unit strings; "" dimensionless)
-DISPLAY = {
-    "rod": {
-        "turns": "turn", "slack": "mm", "alpha": "rad", "pitch": "mm", "omega": "1/mm",
-        "curvature": "1/mm", "torsion": "1/mm", "tension": "N", "torque": "N*mm",
-        "normal_force": "N/m", "twist": "turn", "writhe": "turn", "linking_number": "turn",
-        "superhelical_turns": "turn", "head_tension": "N", "beta": "rad",
-        "alpha_slacking": "rad", "pitch_slacking": "mm", "pitch_increase": "",
-        "alpha0": "rad", "s_max": "mm", "slip_onset": "mm", "curvature_error_onset": "mm",
-        "s_end": "mm",
-    },
-    "dna": {
-        "force": "pN", "alpha": "rad", "radius": "nm", "pitch": "nm", "omega": "1/nm",
-        "torque": "pN*nm", "curvature": "1/nm", "torsion": "1/nm", "bending_energy": "pN",
-        "twist_energy": "pN", "interaction_energy": "pN",
-    },
-}
-
-
-def _spec(unit_text):
-    """(pint Unit, factor SI -> display) of a display unit string.
-
-    ``rad`` and ``turn`` fields are stored in radians and in counts of turns (factor 1);
-    every other field is stored in SI base units.
-    """
-    if not unit_text:
-        return ureg.dimensionless, 1.0
-    unit = ureg.Unit(unit_text)
-    if unit_text in ("rad", "turn"):
-        return unit, 1.0
-    base = Q_(1.0, unit).to_base_units().units
-    return unit, float(Q_(1.0, base).m_as(unit))
-
 
 def si_value(x):
     """A kernel result as a record stores it: a float for a 0-d value, else a float array."""

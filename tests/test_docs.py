@@ -26,7 +26,10 @@ CITATION = re.compile(r"docs/theory/([a-z0-9_-]+)\.md(?:#([a-z0-9_-]+))?")
 MD_LINK = re.compile(r"\]\(((?!https?://)[^)\s#]*\.md)?(?:#([^)\s]+))?\)")
 PAGES = sorted(p for p in DOCS.rglob("*.md")
                if not p.relative_to(DOCS).parts[0].startswith("_"))  # not the build's
-TUTORIALS = sorted((DOCS / "tutorials").glob("*.md"))
+#: the pages whose code runs in the suite: the tutorials and the getting-started page
+TUTORIALS = [*sorted((DOCS / "tutorials").glob("*.md")), DOCS / "getting-started.md"]
+#: a ```bash line that is a supercoil command (set-up and activation lines are not run)
+DOC_COMMAND = re.compile(r"^supercoil ")
 
 
 def _slugs(heading):
@@ -103,9 +106,43 @@ def test_theory_has_the_pages_the_package_needs():
     assert needed <= {p.stem for p in THEORY.glob("*.md")}
 
 
-@pytest.mark.parametrize("page", TUTORIALS, ids=[p.stem for p in TUTORIALS])
-def test_tutorial_code_runs(page, tmp_path, monkeypatch):
-    """The Python blocks of a tutorial run in order in one namespace (a reader's session)."""
+def _doc_commands(page):
+    """The ``supercoil`` lines of a page's ```bash blocks, in order."""
+    blocks = re.findall(r"^```bash\n(.*?)^```", page.read_text(), re.M | re.S)
+    return [line for block in blocks for line in block.splitlines() if DOC_COMMAND.match(line)]
+
+
+def _run_command(command, cwd):
+    """Run a page's command line as bash expands it (``$(python ...)`` with this Python),
+    in-process through :func:`supercoil.cli.main`; returns the exit status."""
+    import os
+    import subprocess
+    import sys
+
+    from supercoil import cli
+
+    bindir = cwd / "bin"
+    bindir.mkdir(exist_ok=True)
+    (bindir / "python").write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
+    (bindir / "python").chmod(0o755)
+    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ.get('PATH', '')}",
+               PYTHONPATH=str(ROOT), MPLBACKEND="Agg")
+    proc = subprocess.run(["bash", "-c", f"printf '%s\\0' {command}"], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=60, check=True)
+    argv = proc.stdout.split("\0")[:-1]
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        status = cli.main(argv[1:])
+    assert status == 0, (command, err.getvalue()[-2000:])
+
+
+def run_page(page, tmp_path, monkeypatch):
+    """Run a page as a reader would: its Python blocks in order in one namespace, then its
+    ``supercoil`` command lines, all in ``tmp_path``; returns the namespace."""
+    from supercoil.datasets.published import ENV_VAR
+
+    # the tutorials run on their synthetic stand-ins; the real files are the opt-in tests'
+    monkeypatch.delenv(ENV_VAR, raising=False)
     blocks = re.findall(r"^```python\n(.*?)^```", page.read_text(), re.M | re.S)
     assert blocks, f"{page.name} has no Python code"
     monkeypatch.chdir(tmp_path)
@@ -113,7 +150,42 @@ def test_tutorial_code_runs(page, tmp_path, monkeypatch):
     with contextlib.redirect_stdout(io.StringIO()):
         for i, block in enumerate(blocks):
             exec(compile(block, f"{page.name} block {i}", "exec"), namespace)
+        for command in _doc_commands(page):
+            _run_command(command, tmp_path)
     plt.close("all")
+    return namespace
+
+
+@pytest.mark.parametrize("page", TUTORIALS, ids=[p.stem for p in TUTORIALS])
+def test_tutorial_code_runs(page, tmp_path, monkeypatch):
+    """The Python blocks of a tutorial run in order in one namespace (a reader's session),
+    then its command lines."""
+    namespace = run_page(page, tmp_path, monkeypatch)
+    if page.stem == "own-data":  # on the stand-in the fit recovers what it was made with
+        from supercoil.datasets.published import SYNTHETIC_LENGTH_NM, SYNTHETIC_TORQUE_SCALE
+
+        fit, intervals = namespace["fit"], namespace["intervals"]
+        for name, true in (("length", SYNTHETIC_LENGTH_NM),
+                           ("torque_scale", SYNTHETIC_TORQUE_SCALE),
+                           ("plectoneme_twist_persistence", 24.0), ("turns_offset", 0.6)):
+            pull = (fit.parameters[name].m - true) / fit.stderr[name].m
+            assert abs(pull) < 5, (name, pull)
+        for name in ("length", "torque_scale"):  # the 2-sigma profile interval holds it
+            row = intervals.loc[name]
+            true = SYNTHETIC_LENGTH_NM if name == "length" else SYNTHETIC_TORQUE_SCALE
+            assert row["lower_2sigma"] < true < row["upper_2sigma"]
+        assert any("from the torque zero crossing" in n for n in fit.notes)
+        assert (tmp_path / "profile_P.png").is_file()
+        table = namespace["table"]  # the recording's beads, made with C_t = 95 nm
+        ok = table[table["success"]]
+        assert len(ok) == 3
+        assert (abs(ok["twist_persistence"] - 95) < 5 * ok["twist_persistence_stderr"]).all()
+
+
+def test_every_page_with_commands_runs_them():
+    """The command lines of the docs are run by test_tutorial_code_runs (its pages)."""
+    pages = [p for p in PAGES if _doc_commands(p)]
+    assert set(pages) <= set(TUTORIALS), sorted(set(pages) - set(TUTORIALS))
 
 
 def _docgen():
@@ -141,6 +213,14 @@ def test_generated_pages_cover_every_public_name_example_and_theory_page(tmp_pat
     assert sorted(listed) == sorted(p.stem for p in THEORY.glob("*.md") if p.stem != "index")
     assert listed[0] == "conventions"
     assert "| measurement |" in (tmp_path / "benchmarks.md").read_text()
+    # supercoil.traces (outside supercoil.__all__) has its pages too
+    from supercoil import traces
+
+    assert {p.stem for p in (tmp_path / "traces").glob("*.rst")} == set(traces.__all__)
+    assert ".. autofunction:: supercoil.traces.read_magscope" in (
+        tmp_path / "traces" / "read_magscope.rst").read_text()
+    assert "<_generated/traces/rotation_curves>" in (tmp_path / "traces_names.rst").read_text()
+    assert ".. include:: _generated/traces_names.rst" in (DOCS / "api.rst").read_text()
 
 
 # ---- supercoil docs (supercoil/commands/docs.py) --------------------------------------------
@@ -180,3 +260,65 @@ def test_docstring_pipes_are_escaped_outside_literals():
     assert escape("2 pi |N| = x") == r"2 pi \|N\| = x"
     assert escape("``2 pi |N|`` and |N|") == r"``2 pi |N|`` and \|N\|"
     assert escape(r"already \|N\|") == r"already \|N\|"
+
+
+# --- "Implements docs/theory/<page>.md (<label>, ...)" lines of the kernels ---------------
+IMPLEMENTS = re.compile(r"Implements docs/theory/([a-z0-9_-]+)\.md \(([^()]+)\)")
+#: a numbered equation of a page, ``\tag{GE1}``
+TAG = re.compile(r"\\tag\{([^}]+)\}")
+#: the paper's labels cited on a page, ``[eq da/ds]`` or ``[eq alpha def, Eq curvature1]``
+PAPER_LABELS = re.compile(r"\[([^\]\n]+)\]")
+#: the pages of the DNA models: every numbered equation there has an implementing function
+DNA_MODEL_PAGES = ("plectoneme", "li-zhao", "free-energy", "marko2007", "end-loop", "ensemble",
+                   "melting", "screened-interaction", "models")
+
+
+def equation_labels(text):
+    """Labels of a theory page: its ``\\tag`` numbers and the paper labels it cites."""
+    labels = set(TAG.findall(text))
+    for group in PAPER_LABELS.findall(text):
+        labels |= {x.strip() for x in group.split(",") if re.match(r"[Ee]q ", x.strip())}
+    return labels
+
+
+def implements_lines(files):
+    """(file, page, label) of every label of every ``Implements`` line in ``files``."""
+    return [(f, page, label.strip()) for f in files
+            for page, labels in IMPLEMENTS.findall(f.read_text()) for label in labels.split(",")]
+
+
+def unresolved(refs, theory):
+    """The references of ``implements_lines`` whose page or label does not exist."""
+    bad = []
+    for f, page, label in refs:
+        p = theory / f"{page}.md"
+        if not p.exists() or label not in equation_labels(p.read_text()):
+            bad.append(f"{f.name}: {page}.md ({label})")
+    return bad
+
+
+def test_every_implements_line_names_an_existing_page_and_equation():
+    refs = implements_lines(sorted((ROOT / "supercoil").rglob("*.py")))
+    assert len(refs) >= 30  # the kernels carry them (not a vacuous pass)
+    assert not unresolved(refs, THEORY)
+
+
+def test_an_implements_line_with_a_wrong_page_or_label_is_caught(tmp_path):
+    (tmp_path / "page.md").write_text("$$ x = 1 \\tag{E1} $$ and [eq da/ds, Eq curvature1].\n")
+    good = tmp_path / "good.py"
+    good.write_text('"""Implements docs/theory/page.md (E1, eq da/ds, Eq curvature1)."""\n')
+    bad = tmp_path / "bad.py"
+    bad.write_text('"""Implements docs/theory/page.md (E2).\n\n'
+                   'Implements docs/theory/nopage.md (E1)."""\n')
+    assert unresolved(implements_lines([good]), tmp_path) == []
+    assert unresolved(implements_lines([bad]), tmp_path) == ["bad.py: page.md (E2)",
+                                                             "bad.py: nopage.md (E1)"]
+
+
+def test_every_numbered_equation_of_the_dna_model_pages_has_an_implementing_function():
+    done = {(page, label) for _, page, label in
+            implements_lines(sorted((ROOT / "supercoil" / "core").rglob("*.py")))}
+    missing = [f"{page}.md ({label})" for page in DNA_MODEL_PAGES
+               for label in sorted(TAG.findall((THEORY / f"{page}.md").read_text()))
+               if (page, label) not in done]
+    assert not missing, f"numbered equations without an 'Implements' line: {missing}"

@@ -1,4 +1,4 @@
-"""Package metadata: LICENSE matches pyproject; authors, classifiers (issue 22 item 11)."""
+"""Package metadata: LICENSE matches pyproject; authors, classifiers."""
 
 import tomllib
 from pathlib import Path

@@ -387,7 +387,7 @@ def test_rough_helix_names_a_wrong_material(material):
 
 
 # ---------------------------------------------------------------------------
-# issue 20: empty inputs, absurd molecules, and the fitting / design surface
+# empty inputs, absurd molecules, and the fitting / design surface
 # ---------------------------------------------------------------------------
 
 #: the DNA functions of FUNCTIONS (every model and interaction) that take a force
@@ -457,24 +457,8 @@ DNA_FIELDS = {"length": u.nm, "bending_persistence": u.nm, "twist_persistence": 
 MAGNITUDES = (1e-300, 1e-30, 1e-3, 1e3, 1e30, 1e300)
 
 
-def known_model_defect(field, value, call):
-    """Outcomes still wrong in modules outside issue 20's DNA-surface fixes (listed in the
-    round-3 note): marko2007 overflows (raw warning) at
-    C_t = 1e300 nm; at t = 1e300 K li-zhao warns raw and the Moroz-Nelson C_eff is NaN;
-    the simulation at L = 1e-300 nm or t = 1e300 K warns raw before its named error."""
-    if "marko2007" in call:
-        return field == "twist_persistence" and value == 1e300
-    if call in ("hat_curve li-zhao hard-core", "buckling_turns li-zhao hard-core",
-                "effective_twist_rigidity"):
-        return field == "temperature" and value == 1e300
-    if call == "simulate_rotation_curves":
-        return (field, value) in (("length", 1e-300), ("temperature", 1e300))
-    return False
-
-
 SALTY_150 = sc.load_parameters("dna_150mM_nacl")
-ABSURD = [(f, v, c) for f in DNA_FIELDS for v in MAGNITUDES for c in DNA_CALLS
-          if not known_model_defect(f, v, c)]
+ABSURD = [(f, v, c) for f in DNA_FIELDS for v in MAGNITUDES for c in DNA_CALLS]
 
 
 def check_absurd(field, value, call):
@@ -513,17 +497,19 @@ def test_the_extreme_molecules_of_the_default_model(field, value):
     """The exhaustive corner of the sweep above for the default model (cheap calls)."""
     for call in ("hat_curve li-zhao hard-core", "buckling_turns li-zhao hard-core",
                  "plectoneme_equilibrium", "hat_curve marko2007 hard-core"):
-        if not known_model_defect(field, value, call):
-            check_absurd(field, value, call)
+        check_absurd(field, value, call)
 
 
-@pytest.mark.xfail(strict=True, reason="known model defects outside issue 20's DNA-surface "
-                                       "fixes (known_model_defect); strict: a fix shows here")
-@pytest.mark.parametrize("case", [
-    ("temperature", 1e300, "effective_twist_rigidity")])
-def test_the_known_model_defects_are_still_there(case):
-    field, value, call = case
-    assert known_model_defect(field, value, call)
+@pytest.mark.parametrize("field, value, call", [
+    ("twist_persistence", 1e300, "hat_curve marko2007 hard-core"),
+    ("temperature", 1e300, "hat_curve li-zhao hard-core"),
+    ("temperature", 1e300, "buckling_turns li-zhao hard-core"),
+    ("temperature", 1e300, "effective_twist_rigidity"),
+    ("temperature", 1e300, "simulate_rotation_curves"),
+    ("length", 1e-300, "simulate_rotation_curves")])
+def test_the_former_model_defects_give_named_errors(field, value, call):
+    """Marko's c_s overflowed (raw warning) for C_t >> A, and at 1e300 K the Moroz-Nelson
+    term was inf/inf; now the c_s > P check and the temperature limit name them."""
     check_absurd(field, value, call)
 
 
@@ -593,6 +579,8 @@ def test_the_fitting_and_design_surface_names_its_bad_arguments(name, kind):
             pytest.fail(f"{name}={kind}: unnamed {type(exc).__name__}: {exc}")
     raw = [str(w.message) for w in rec if not issubclass(w.category, sc.SupercoilWarning)]
     assert not raw, f"{name}={kind}: raw warnings {raw}"
+    if isinstance(result, sc.Comparison):
+        result = result.table
     if isinstance(result, pd.DataFrame) and "error" in result.columns:  # compare_models:
         failed = result[~result["success"]]  # a failed fit is a row naming its error
         assert all(word in e for e in failed["error"]), (name, kind, list(failed["error"]))

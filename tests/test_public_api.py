@@ -36,7 +36,7 @@ def test_every_public_name_resolves_and_star_import_works():
 
 
 def test_import_builds_only_the_registry():
-    """``import supercoil`` loads neither pandas, scipy's solvers nor matplotlib (issue 14).
+    """``import supercoil`` loads neither pandas, scipy's solvers nor matplotlib (import time).
 
     (pint itself imports the bare ``scipy`` package, a few ms; not its submodules.)
     """

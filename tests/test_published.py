@@ -126,3 +126,32 @@ def test_real_curves_slopes_and_plateaus_match_the_papers_numbers(qian_s5):
         paper = s[s["side"] == side].sort_values("force")
         np.testing.assert_allclose(mine["slope"], paper["slope"], rtol=0.03)
         np.testing.assert_allclose(mine["plateau_torque"], paper["torque"], rtol=0.03)
+
+
+def test_real_curves_give_the_numbers_the_own_data_tutorial_quotes(qian_s5):
+    """docs/tutorials/own-data.md quotes the fit of the real file (opt-in: slow, real data)."""
+    import warnings
+
+    u = sc.ureg
+    data = read_published_curves(qian_s5, points_per_force=40, turns_range=(-3, None))
+    dna = sc.load_parameters("dna").replace(length=6480 * 0.338 * u.nm)
+    vary = ["length", "bending_persistence", "twist_persistence",
+            "plectoneme_twist_persistence", "torque_scale"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fit = sc.fit_hat_curves(data, dna, vary=vary, model="marko2007",
+                                bounds={"turns_offset": (-2, 2)}, fit_extension_offset=False)
+    for name, value, err in (("length", 2124.7, 8.0), ("bending_persistence", 53.0, 1.7),
+                             ("twist_persistence", 77.1, 1.4),
+                             ("plectoneme_twist_persistence", 13.09, 0.19),
+                             ("torque_scale", 0.800, 0.008), ("turns_offset", 0.46, 0.09)):
+        assert fit.parameters[name].m == pytest.approx(value, abs=err / 10), name
+        assert fit.stderr[name].m == pytest.approx(err, rel=0.1), name
+    assert any("0.1909 turn from the torque zero crossing" in n for n in fit.notes)
+    prof = fit.profile("plectoneme_twist_persistence")
+    assert (round(prof.lower_bound, 2), round(prof.upper_bound, 2)) == (12.90, 13.28)
+    # the default offsets: the length runs away along the extension offset, named
+    with warnings.catch_warnings(), pytest.raises(sc.FitError, match="the length ran from"):
+        warnings.simplefilter("ignore")
+        sc.fit_hat_curves(data, dna, vary=vary[:4], model="marko2007",
+                          bounds={"turns_offset": (-2, 2)})

@@ -14,7 +14,7 @@ The same command lines also run as a user runs them after the set-up: in a shell
 whose environment is activated (the interpreter's ``bin`` first on ``PATH``, no
 ``PYTHONPATH``), the ``python -c`` lines in the repository folder itself (where the
 repository's ``supercoil/`` is first on ``sys.path``), the ``supercoil`` lines through
-the installed console script (issue 22 item 10).
+the installed console script.
 """
 
 from __future__ import annotations
@@ -132,7 +132,7 @@ def test_setup_commands_are_the_ones_ci_runs(tmp_path, monkeypatch):
         assert cli.main(job.split()[1:]) == 0
     plt.close("all")
     assert list((tmp_path / "results").glob("*.csv"))
-    # the user who runs the main job sees no warning (issue 15)
+    # the user who runs the main job sees no warning
     assert err.getvalue() == "" and caught == []
 
 
@@ -165,7 +165,8 @@ def _activated_env():
                          ids=[c.split()[1] for c in COMMANDS if c.split()[1] not in PARSE_ONLY])
 def test_command_runs_as_written_from_an_activated_environment(command, tmp_path):
     python_c = command.startswith("python -c ")
-    # python -c lines in the repository folder: the shadowing case of issue 22
+    # python -c lines in the repository folder, where the checkout's package shadows the
+    # installed one
     cwd = ROOT if python_c else tmp_path
     proc = subprocess.run(["bash", "-c", command], cwd=cwd, env=_activated_env(),
                           capture_output=True, text=True, timeout=600)

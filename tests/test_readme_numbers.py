@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text()
 GENERATED = ROOT / "docs" / "generated"
 BLOCKS = {m["name"]: m["body"] for m in BLOCK.finditer(README)}
-#: the blocks the README must carry (issue 15)
+#: the blocks the README must carry
 REQUIRED = {"headline", "validation", "main-job", "models", "fit-example"}
 
 

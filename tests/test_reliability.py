@@ -302,7 +302,7 @@ def test_non_positive_force_is_refused_by_every_model(dna, model, force):
 
 
 def test_empty_turns_give_an_empty_table(dna):
-    # main: numpy reduction error; round 3 (issue 20, item 3): an empty table as in 0.1
+    # it once raised numpy's reduction error; now an empty table, as in 0.1
     t = sc.hat_curve(dna, 1 * u.pN, [], model="marko2007")
     assert len(t) == 0 and "extension" in t.columns
 
@@ -424,11 +424,11 @@ def test_a_model_giving_nan_is_caught_by_the_shared_layer(dna):
         summary = "returns NaN past 3 turns, never buckles"
         uses_interaction = False
 
-        def buckling(self, force, dna, thermal, interaction):
+        def _buckling(self, force, dna, thermal, interaction):
             inf = np.full(np.shape(force), np.inf)  # never buckles: allowed
             return Buckling(inf, inf, np.zeros(np.shape(force)))
 
-        def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+        def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
             z = np.where(np.abs(turns) > 3, np.nan, dna.length)
             zeros = np.zeros(np.shape(turns))
             return HatPoints(z, zeros, zeros, zeros.astype(np.int8), zeros.astype(bool),

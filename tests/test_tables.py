@@ -72,7 +72,7 @@ def test_write_csv_requires_units(tmp_path):
 
 
 def test_read_csv_extra_field_names_the_file_line(tmp_path):
-    """Audit B3: a decimal comma adds a field; the file line counts the comment lines."""
+    """A decimal comma adds a field; the file line counts the comment lines."""
     p = tmp_path / "dc.csv"
     p.write_text("# a: 1\n# b: 2\nforce [pN],turns,extension [um]\n1,0,0.7\n1,2,1,68\n")
     with pytest.raises(sc.DataError, match=r"dc\.csv, line 5: 4 fields, but the header "
@@ -102,7 +102,7 @@ def test_read_csv_not_utf8_names_the_line(tmp_path):
 
 
 def test_read_csv_keeps_molecule_labels_as_written(tmp_path):
-    """Audit B4: "1", "01" and "1.0" were all read as the number 1."""
+    """"1", "01" and "1.0" were all read as the number 1."""
     p = tmp_path / "m.csv"
     p.write_text("molecule,force [pN],turns,extension [um]\n1,1,0,0.7\n01,1,0,0.7\n"
                  "1.0,1,0,0.7\n,1,0,0.7\n")
@@ -113,7 +113,7 @@ def test_read_csv_keeps_molecule_labels_as_written(tmp_path):
     assert list(sc.read_csv(p, text_columns=())["molecule"][:3]) == [1, 1, 1]
 
 
-# --- issue 20 items 7 and 15: CR-only files, write_csv arguments, plain attrs -----------------
+# --- CR-only files, write_csv arguments, plain attrs -----------------------------------------
 
 
 def test_read_tweezers_csv_reads_a_cr_only_file_with_its_lines(tmp_path):

@@ -5,6 +5,8 @@ a temporary folder in ``tests/test_docs.py``):
 
 * ``api/<name>.rst`` for every name of ``supercoil.__all__`` and ``api_names.rst``,
   the summary tables and the hidden toctree included by ``docs/api.rst``;
+* ``traces/<name>.rst`` and ``traces_names.rst``: the same for ``supercoil.traces``
+  (:data:`SUBPACKAGES`), the recordings' readers, outside ``supercoil.__all__``;
 * ``gallery.md``: every ``examples/*.py`` with its docstring, figure and source;
 * ``theory_toctree.md``: the theory pages in reading order, then any other page
   present in ``docs/theory/`` (pages added by later work appear without edits);
@@ -84,6 +86,41 @@ def write_api_pages(out_dir):
     (out_dir / "api_names.rst").write_text("\n".join(lines))
 
 
+#: subpackages outside ``supercoil.__all__`` with API pages of their own: module -> folder
+SUBPACKAGES = {"supercoil.traces": "traces"}
+
+
+def write_subpackage_pages(out_dir):
+    """One page per name of each :data:`SUBPACKAGES` module's ``__all__`` and its summary
+    table (``<folder>_names.rst``, included by ``docs/api.rst``)."""
+    import importlib
+
+    for module_name, folder in SUBPACKAGES.items():
+        module = importlib.import_module(module_name)
+        out = out_dir / folder
+        out.mkdir(parents=True, exist_ok=True)
+        for old in out.glob("*.rst"):
+            old.unlink()
+        lines = [".. list-table::", "   :widths: 30 70", ""]
+        for name in sorted(module.__all__, key=str.lower):
+            obj = getattr(module, name)
+            kind = _kind(obj)
+            title = f"{module_name}.{name}"
+            if kind == "function":
+                body = f".. autofunction:: {title}\n"
+            elif kind in ("class", "exception"):
+                body = f".. autoclass:: {title}\n   :members:\n   :show-inheritance:\n"
+            else:
+                body = f".. autodata:: {title}\n   :no-value:\n"
+            (out / f"{name}.rst").write_text(f"{title}\n{'=' * len(title)}\n\n{body}")
+            summary = _summary(obj) if kind != "data" else "the trace table's column units"
+            lines += [f"   * - :doc:`{title} <_generated/{folder}/{name}>`",
+                      f"     - {summary}"]
+        lines += ["", ".. toctree::", "   :hidden:", "   :glob:", "",
+                  f"   _generated/{folder}/*", ""]
+        (out_dir / f"{folder}_names.rst").write_text("\n".join(lines))
+
+
 def _data_note(name, obj):
     if name == "ureg":
         return ": the package's one pint unit registry (build every input with it)."
@@ -152,7 +189,8 @@ def generate(out):
     """Write every generated page into the folder ``out`` (created)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    for write in (write_api_pages, write_gallery, write_theory_toctree, write_benchmarks):
+    for write in (write_api_pages, write_subpackage_pages, write_gallery, write_theory_toctree,
+                  write_benchmarks):
         write(out)
 
 

@@ -41,9 +41,9 @@ def page_faults(func, repeat=5):
     """Median minor page faults of one call of ``func`` (``getrusage``), its result dropped.
 
     What fresh memory costs: the first touch of new pages faults, and the kernel
-    maps and zeroes them (on the 2-core benchmark VM: 8 us per fault, each
-    mapping 128 kB, so writing fresh memory costs about three times rewriting
-    mapped memory: 5.3 ms against 2.7 ms for 80 MB); memory the allocator
+    maps and zeroes them (each fault maps 128 kB, so writing fresh memory can cost a
+    multiple of rewriting mapped memory; the bench output has the measured ratio);
+    memory the allocator
     reuses from an earlier call faults no more. None where
     :mod:`resource` is missing (Windows).
     """
@@ -70,7 +70,7 @@ def interleaved_cpu(funcs, samples=15, min_sample=0.02):
         Rounds of samples; each round takes one sample of every callable in turn.
     min_sample : float
         CPU seconds a sample lasts at least (several calls per sample for fast
-        calls: ``time.process_time`` ticks in ~1 us to 10 ms depending on the OS).
+        calls: the resolution of ``time.process_time`` depends on the OS).
 
     Returns
     -------

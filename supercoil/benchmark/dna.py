@@ -8,7 +8,7 @@
   different equations from the solver under test.
 * :func:`hat_cost`: cost per point of the hat curve as the number of turns grows
   (1e2 to 1e6), thermal against athermal. The equilibrium is solved once per
-  call (about 60 us), so at large sizes this is the cost "once the
+  call (a fixed cost), so at large sizes this is the cost "once the
   equilibrium is known".
 """
 
@@ -82,7 +82,7 @@ def equilibrium_work_precision(dna=None, n_forces=200, tolerances=None, repeat=3
 def hat_cost(dna=None, sizes=(100, 1_000, 10_000, 100_000, 1_000_000), force=1.2e-12):
     """Time per hat-curve point against the number of turns values, thermal and athermal."""
     import supercoil as sc
-    from supercoil.core.dna.hat import hat_curve_points
+    from supercoil.core.dna.li_zhao import hat_curve_points
 
     d = (dna or sc.load_parameters("dna")).si
     args = (d.length, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius)

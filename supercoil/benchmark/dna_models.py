@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil import display
+
 from .cpu import interleaved_cpu
 
 MODELS = ("li-zhao", "free-energy")
@@ -96,7 +98,7 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
             t = interleaved_cpu({m: lambda m=m, N=N, F=F: points[m](N, F) for m in models},
                                 samples=repeat)
             for model in models:
-                add(f"{label} at {force * 1e12:g} pN", model, n, t[model])
+                add(f"{label} at {display.text(force, 'force', 'g')}", model, n, t[model])
     return rows
 
 
@@ -113,9 +115,9 @@ def screened_equilibrium_cost(dna=None, n_forces=1000, repeat=3):
 
     d = (dna or sc.load_parameters("dna_150mM_nacl")).si
     inter = Screened()
-    _, lam, pref = inter._functions(d)
+    _, lam, pref = inter.screening_functions(d)
     B = d.bending_rigidity
-    f = scm._partials_function(B, d.kT, lam, pref, inter.values["confinement"])
+    f = scm.partials_function(B, d.kT, lam, pref, inter.values["confinement"])
     branch, contact = inter.branch(d), inter.contact_branch(d)
     forces = np.geomspace(0.05e-12, 5e-12, n_forces)
     methods = ("direct", "newton")

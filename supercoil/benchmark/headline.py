@@ -6,7 +6,7 @@
 ``--quick``, :data:`QUICK`); :func:`target_rows` turns them into one row per
 target: ``measurement`` (naming exactly what is timed: a public call such as
 ``sc.hat_curve`` or a kernel such as
-``supercoil.core.dna.hat.hat_curve_points``, and the size), ``value``,
+``supercoil.core.dna.li_zhao.hat_curve_points``, and the size), ``value``,
 ``unit``, ``target``, ``met`` and ``note``. Times are CPU times
 (``time.process_time``, medians of interleaved samples) except the ones a
 subprocess or a process pool makes wall time by nature (import, CLI, pool
@@ -121,7 +121,7 @@ def _hat_rows(h, n, per_point, regime):
              f"point; writing the table's 9 fresh columns alone costs "
              f"{h['columns_write_ratio']:.3g}x; / np.multiply(turns, 2.0) "
              f"({h['numpy_pass'] * 1e3:.3g} ms): {h['public_mul_ratio']:.3g}x" + _faults(h)),
-        _row(f"kernel supercoil.core.dna.hat.hat_curve_points, {n:.0e} points (numpy path) "
+        _row(f"kernel supercoil.core.dna.li_zhao.hat_curve_points, {n:.0e} points (numpy path) "
              f"{when}: CPU per call / the same sqrt pass", h["kernel_ratio"], "x", "<= 5x",
              h["kernel_ratio"] <= 5,
              f"{h['kernel'] * 1e3:.3g} ms; / the multiply pass {h['kernel_mul_ratio']:.3g}x"),
@@ -187,7 +187,7 @@ def _fit_rows(r):
              f"{f['kernel_calls']} kernel calls (nfev {f['nfev']:.0f}); with the default "
              f"BLAS threads {f['fit_default_threads'] * 1e3:.3g} ms CPU"),
         _row("public sc.fit_hat_curves: CPU per fit / (kernel calls x CPU of "
-             "supercoil.core.dna.hat.hat_curve_points on the fit's arguments), both on the "
+             "supercoil.core.dna.li_zhao.hat_curve_points on the fit's arguments), both on the "
              "same BLAS threads", f["ratio"],
              "x", "<= 2x", f["ratio"] <= 2,
              f"{f['call_sizes']}; lower bound {f['lower_bound'] * 1e3:.3g} ms"),

@@ -107,7 +107,7 @@ def rod_scene_cost(scene, n_turns=10**7):
 
     ``scene`` is ``"smooth"`` (:func:`supercoil.smooth_helix` at 10 cm of slack) or
     ``"spinning"`` (:func:`supercoil.twist_spinning` at 2 N), on ``n_turns`` turns from 1
-    to 40 of the silicone-rubber rod (issue 20, item 13; target: within 5x of
+    to 40 of the silicone-rubber rod (target: within 5x of
     :func:`supercoil.hat_curve` at the same size and <= 64 bytes per element). The
     output is what the record holds when the call returns (traced with :mod:`tracemalloc`).
     """

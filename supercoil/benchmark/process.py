@@ -170,8 +170,8 @@ def hat_throughput_regimes(n, samples=9, compiled=True):
 
     The time of a call that returns fresh arrays depends on whether the allocator
     hands it memory freed by the previous call (no page faults) or new pages (a
-    fault per page; on the benchmark VM fresh memory costs about three times
-    mapped memory). In one process either can happen, by the heap's layout; each
+    fault per page; fresh memory can cost several times mapped memory, as the
+    bench output's two rows show). In one process either can happen, by the heap's layout; each
     child fixes one (:data:`MALLOC_REGIMES`, glibc; elsewhere the two are alike),
     and the numpy pass of the reference is measured under the same regime.
 

@@ -37,7 +37,7 @@ def _legacy_rows(wp, hat, ub, eq1000):
                  "time per force", eq1000 * 1e6, "us", "<= 20 us", eq1000 * 1e6 <= 20)]
     big = hat[(hat["variant"] == "thermal") & (hat["points"] == hat["points"].max())]
     pps = float(big["points_per_second"].iloc[0])
-    rows.append(_row(f"kernel supercoil.core.dna.hat.hat_curve_points, "
+    rows.append(_row(f"kernel supercoil.core.dna.li_zhao.hat_curve_points, "
                      f"{int(big['points'].iloc[0]):.0e} turns values, thermal: points per "
                      "second (best wall time)", pps, "points/s", ">= 1e7 points/s", pps >= 1e7,
                      "equilibrium solved once inside the call"))

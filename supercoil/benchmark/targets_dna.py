@@ -5,7 +5,7 @@ its docstring exactly what it times:
 
 * :func:`hat_throughput`: the public ``sc.hat_curve`` (a DataFrame of 9
   columns) and the kernel it calls,
-  ``supercoil.core.dna.hat.hat_curve_points`` (float arrays; ``diagnostics=False``,
+  ``supercoil.core.dna.li_zhao.hat_curve_points`` (float arrays; ``diagnostics=False``,
   as the default model calls it), against one numpy
   pass over the same turns array: ``np.sqrt(turns)`` (the issue's reference,
   a new array) and the cheaper ``np.multiply(turns, 2.0)``; CPU time, median
@@ -64,8 +64,8 @@ def hat_throughput(n, samples=9, compiled=True):
         :mod:`resource`).
     """
     import supercoil as sc
-    from supercoil.core.dna import hat as hat_kernel
-    from supercoil.core.dna import hat_fast
+    from supercoil.core.dna import li_zhao as hat_kernel
+    from supercoil.core.dna import li_zhao_numba
 
     dna = _dna()
     d = dna.si
@@ -82,7 +82,7 @@ def hat_throughput(n, samples=9, compiled=True):
         "numpy_pass": lambda: np.multiply(turns, 2.0),
         "columns_write": lambda: _columns_write(turns),
     }
-    if compiled and hat_fast.available():  # the compiled kernel (supercoil[fast]): compiled
+    if compiled and li_zhao_numba.available():  # the compiled kernel (supercoil[fast]): compiled
         # in the warm-up
         funcs["kernel_fast"] = lambda: hat_kernel.hat_curve_points(turns, forces, *args,
                                                                    fast=True,
@@ -102,17 +102,17 @@ def _with_fast(call):
     """``call()`` with ``SUPERCOIL_FAST=1`` (the public calls on the compiled kernel)."""
     import os
 
-    from supercoil.core.dna import hat_fast
+    from supercoil.core.dna import li_zhao_numba
 
-    old = os.environ.get(hat_fast.ENV)
-    os.environ[hat_fast.ENV] = "1"
+    old = os.environ.get(li_zhao_numba.ENV)
+    os.environ[li_zhao_numba.ENV] = "1"
     try:
         return call()
     finally:
         if old is None:
-            del os.environ[hat_fast.ENV]
+            del os.environ[li_zhao_numba.ENV]
         else:
-            os.environ[hat_fast.ENV] = old
+            os.environ[li_zhao_numba.ENV] = old
 
 
 def _columns_write(turns):

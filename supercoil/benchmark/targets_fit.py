@@ -3,7 +3,7 @@
 * :func:`fit_cost`: CPU time of the public ``sc.fit_hat_curves`` on the problem
   of ``examples/fit_tweezers_data.py`` (3 forces x 110 points, twist
   persistence and radius varied, both offsets fitted), the number of kernel
-  calls per fit (``supercoil.core.dna.hat.hat_curve_points`` wrapped with a
+  calls per fit (``supercoil.core.dna.li_zhao.hat_curve_points`` wrapped with a
   counter for one fit; the fit's own ``nfev`` beside it) and the CPU cost of one
   such kernel call on the arguments the fit passed, timed interleaved with the
   fit, both with BLAS limited to one thread (``threadpoolctl``), and the fit
@@ -61,12 +61,12 @@ def fit_problem(molecules=None, seed=20261121):
 
 
 class _KernelCounter:
-    """Replaces ``supercoil.core.dna.hat.hat_curve_points`` by a counting wrapper."""
+    """Replaces ``supercoil.core.dna.li_zhao.hat_curve_points`` by a counting wrapper."""
 
     def __init__(self):
-        from supercoil.core.dna import hat
+        from supercoil.core.dna import li_zhao
 
-        self.module, self.original, self.calls = hat, hat.hat_curve_points, []
+        self.module, self.original, self.calls = li_zhao, li_zhao.hat_curve_points, []
 
     def __enter__(self):
         def counted(*args, **kwargs):
@@ -84,9 +84,9 @@ class _KernelTimer:
     """Sums the CPU time spent inside ``hat_curve_points`` (no copies, only a clock)."""
 
     def __init__(self):
-        from supercoil.core.dna import hat
+        from supercoil.core.dna import li_zhao
 
-        self.module, self.original, self.cpu = hat, hat.hat_curve_points, 0.0
+        self.module, self.original, self.cpu = li_zhao, li_zhao.hat_curve_points, 0.0
 
     def __enter__(self):
         def timed(*args, **kwargs):
@@ -106,7 +106,7 @@ class _KernelTimer:
 def clear_kernel_caches():
     """Clear the process-wide memo tables of the DNA kernels (``functools.lru_cache``).
 
-    ``supercoil.core.dna.plectoneme.branch_table`` keeps the tabulated
+    ``supercoil.core.dna.plectoneme.reduced_branch_table`` keeps the tabulated
     plectoneme branch of each ``B/(kT r0)`` across fits: a fit repeated on the
     same data finds every table it needs, a new molecule's fit (new radii)
     builds its own. Clearing them before each fit measures the latter.
@@ -166,7 +166,7 @@ def fit_cost(samples=9):
     with _KernelCounter() as counter:
         result = sc.fit_hat_curves(data, seed_set, vary=vary)
     if not counter.calls:
-        raise RuntimeError("the fit made no call of supercoil.core.dna.hat.hat_curve_points")
+        raise RuntimeError("the fit made no call of supercoil.core.dna.li_zhao.hat_curve_points")
     kernel = counter.original
     groups = {}  # one representative call per call size, and how many calls had that size
     for args, kwargs in counter.calls:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil import display
 from supercoil.benchmark.timing import paired_best_times
 
 SIZES = (1, 100, 10_000, 1_000_000)
@@ -47,14 +48,14 @@ def _cases():
             return lambda: sc.plectoneme_equilibrium(dna, f)
 
         def eq_kernel(n):
-            f = np.linspace(0.3, 5.0, n) * 1e-12
+            f = display.from_display(np.linspace(0.3, 5.0, n), "force")
             return lambda: pk.equilibrium(
                 f, d.bending_rigidity, d.torsional_rigidity, d.kT, d.radius
             )
 
         cases.append(("plectoneme_equilibrium", eq_public, eq_kernel))
 
-        from supercoil.core.dna.hat import hat_curve_points
+        from supercoil.core.dna.li_zhao import hat_curve_points
 
         def hat_public(n, si=False):
             f = 1.2e-12 * u.N if si else 1.2 * u.pN
@@ -78,7 +79,7 @@ def run(sizes=SIZES):
 
     Public call and kernel are timed in interleaved samples
     (:func:`~supercoil.benchmark.timing.paired_best_times`); at 1e6 elements
-    fewer samples are taken (a plectoneme solve of 1e6 forces takes ~2 s).
+    fewer samples are taken (a plectoneme solve of 1e6 forces is the slowest sample).
     """
     from supercoil.tables import make_table, provenance
 

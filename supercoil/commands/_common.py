@@ -9,7 +9,8 @@
   once each, as plain text (no Python warning text on the terminal).
 * :data:`ARGUMENT_FLAGS`, :func:`flag_text`, :func:`error_text`: the one table from a
   library argument name to the command-line flag that sets it, and the messages built
-  from it (an exception's ``argument`` attribute names the argument; issue 21 item 4).
+  from it (an exception's ``argument`` attribute names the argument, so that no library
+  message is rewritten into command-line wording).
 * :func:`check_out_folder`: ``--out`` checked before any computation.
 * :func:`source_checkout`: the source checkout for ``supercoil docs`` (the working
   folder, else the checkout the package is in).
@@ -98,7 +99,7 @@ def plain_warnings(func, *args, **kwargs):
     return result, messages
 
 
-#: library argument name -> the command-line flag that sets it (issue 21 item 4). The
+#: library argument name -> the command-line flag that sets it. The
 #: commands name the flag with this table instead of rewriting messages: an exception
 #: whose ``argument`` attribute is a key gets the flag in front of its message, and a
 #: Python keyword hint in a message (``check_settled=False``, ``calibration=``) becomes
@@ -182,7 +183,7 @@ def error_text(command: str, exc) -> str:
 def check_out_folder(out, flag: str = "--out"):
     """``None``, or a message saying why ``out`` cannot be the output folder.
 
-    Checked before a command computes anything (issue 20 item 12): ``out`` must be a
+    Checked before a command computes anything (a bad folder costs no work): ``out`` must be a
     folder or not exist yet, and the nearest existing folder above it must be writable.
     """
     path = Path(out)

@@ -70,7 +70,8 @@ def _build(args) -> int:
     from supercoil.commands._common import source_checkout
 
     # default: docs/ of the working folder (the repository, after ``pip install .``), else
-    # docs/ of the checkout the package is in (an editable install); issue 22
+    # docs/ of the checkout the package is in (an editable install), so that a module of the
+    # same name in the working folder does not shadow the installed package
     root = source_checkout(None, needs=("docs/conf.py",)) if not args.source else None
     source = Path(args.source) if args.source else (root or Path.cwd()) / "docs"
     if not (source / "conf.py").is_file():

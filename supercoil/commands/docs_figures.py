@@ -97,7 +97,7 @@ def run_scripts(root: Path, work: Path, quick: bool, skip_bench: bool, log) -> d
         out = folders[f"main-job/{model}"] = work / "main-job" / model
         proc = _run(["-m", "supercoil.cli", "hat", "--params", "dna", "--model", model,
                      "--out", out], root, log, f"supercoil hat --params dna --model {model}")
-        if proc.stderr.strip():  # the main job must not warn (issue 15)
+        if proc.stderr.strip():  # the main job must not warn: the user who runs it sees no noise
             raise RuntimeError(f"the main job ({model}) wrote to stderr:\n{proc.stderr}")
     return folders
 
@@ -187,7 +187,7 @@ def run(args) -> int:
     from supercoil.commands._common import is_source_checkout, source_checkout
 
     # default: the working folder if it is the checkout (``pip install .`` puts the package
-    # outside it), else the checkout the package is in (an editable install); issue 22
+    # outside it), else the checkout the package is in (an editable install)
     root = source_checkout(args.root, needs=CHECKOUT)
     if root is None or not is_source_checkout(root, CHECKOUT):
         where = (f"{root} is not" if root is not None

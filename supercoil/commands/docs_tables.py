@@ -86,8 +86,8 @@ def fit_example_table(fit_parameters):
     row = fit_parameters.iloc[0]
     units = fit_parameters.attrs["units"]
     names = [c for c in fit_parameters.columns if f"{c}_stderr" in fit_parameters.columns]
-    stats = ("residual_rms", "ndata")  # (the reduced chi-square of a fit without sigma is in
-    # nm^2 but to_frame gives it no unit: the noise estimate residual_rms says the same)
+    stats = ("residual_rms", "ndata")  # (the reduced chi-square of a fit without sigma is 1
+    # by construction: the noise estimate residual_rms is the fit-quality number)
     cols = {"parameter": [*names, *stats],
             "value": [float(row[n]) for n in (*names, *stats)],
             "stderr": [*(float(row[f"{n}_stderr"]) for n in names), *[np.nan] * len(stats)],

@@ -45,7 +45,7 @@ def _parse_quantity(text, what):
     """One finite number with its unit; ArgumentTypeError naming ``what`` (the flag) else.
 
     pint reads ``[1,2]nm`` as 12 nm and ``nan`` as a number: both are refused here
-    (issue 20 item 12: a bad ``--fix`` value exits 2 naming the flag, no traceback).
+    (a bad ``--fix`` value exits 2 naming the flag, no traceback).
     """
     import math
 
@@ -225,7 +225,7 @@ def run(args) -> int:
         "interaction": args.interaction,
     }
     if len(models) > 1:
-        return _run_compare(args, models, dna, fixed, bounds, options, out)
+        return _run_compare(args, models, dna, fixed, bounds, dict(options, start=start), out)
     options["model"] = models[0]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -289,18 +289,15 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
     from supercoil.exceptions import FitError
     from supercoil.tables import write_csv
 
-    if args.start:
-        print("supercoil fit: error: --start cannot be combined with several --model",
-              file=sys.stderr)
-        return 2
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
         if "molecule" in data.columns and data["molecule"].nunique() > 1 and not args.global_fit:
             raise FitError("several --model compare models on one data set: give --global "
                            "(shared parameters, per-molecule offsets) or one molecule")
-        table, results = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
-                                        bounds=bounds, return_results=True, **options)
+        comparison = compare_models(data, dna, models, vary=args.vary, fixed=fixed,
+                                    bounds=bounds, **options)
+    table, results = comparison.table, comparison.results
     for w in caught:
         print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
@@ -324,16 +321,18 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
 
 def _compare_report(table, results):
     lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) + 2k, "
-             "bic = N ln(chi2/N) + ln(N) k; lower is better)",
+             "bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit and per "
+             "hat-curve evaluation)",
              f"    {'model':<16}{'k':>4}{'chi-square':>14}{'AIC':>12}{'dAIC':>10}{'BIC':>12}"
-             f"{'dBIC':>10}"]
+             f"{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
     for _, row in table.iterrows():
         if not row["success"]:
             lines.append(f"    {row['model']:<16}  FAILED: {_cli_text(row['error'])}")
             continue
         lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
                      f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
-                     f"{row['delta_bic']:>10.2f}")
+                     f"{row['delta_bic']:>10.2f}{row['cpu_seconds']:>11.3g}"
+                     f"{row['curve_cpu_seconds']:>13.3g}")
     for name, result in results.items():
         lines += ["", f"==== model {name} ====", result.report()]
     return "\n".join(lines)
@@ -344,7 +343,7 @@ def _run_many(args, data, dna, fixed, bounds, start, options):
     from supercoil.dna.fitting.progress import Progress
 
     n = data["molecule"].astype(str).nunique()
-    # a tqdm bar on a terminal, one line per molecule in a log (issue 15)
+    # a tqdm bar on a terminal, one line per molecule in a log (no carriage returns piling up)
     bar = Progress(False if args.no_progress else "log", n, prefix="supercoil fit: ")
     kwargs = dict(vary=args.vary, fixed=fixed, bounds=bounds, start=start,
                   progress=lambda done, total, molecule: bar.update(molecule), **options)
@@ -369,8 +368,8 @@ def _many_report(table, args):
         f"[[Per-molecule fits]] {len(table)} molecules, {int(table['success'].sum())} fitted, "
         f"{int((~table['success']).sum())} failed; varied: {', '.join(args.vary)}",
     ]
-    # issue 15: with unit weights the reduced chi-square is the residual variance in nm^2;
-    # show its root, the noise estimate in nm (the errors are scaled by it)
+    # with unit weights the reduced chi-square is 1 by construction: show the noise
+    # estimate (the residual RMS in nm, by which the errors are scaled)
     unit_weights = table.attrs.get("provenance", {}).get("weighting", "unit") == "unit"
     stat_head = "noise [nm]" if unit_weights else "red.chi2"
     head = f"    {'molecule':<12}{stat_head:>10}"
@@ -381,7 +380,7 @@ def _many_report(table, args):
         if not row["success"]:
             lines.append(f"    {row['molecule']!s:<12}  FAILED: {_cli_text(row['error'])}")
             continue
-        stat = np.sqrt(row["reduced_chi_square"]) if unit_weights else row["reduced_chi_square"]
+        stat = row["residual_rms"] if unit_weights else row["reduced_chi_square"]
         text = f"    {row['molecule']!s:<12}{stat:>10.4g}"
         for p in params:
             err = row[p + "_stderr"]
@@ -417,7 +416,7 @@ def _plot_many(table, vary, path):
     import numpy as np
 
     units = table.attrs["units"]
-    names = [v for v in vary if v in table.columns] or ["reduced_chi_square"]
+    names = [v for v in vary if v in table.columns] or ["residual_rms"]
     fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 3.6), squeeze=False,
                              layout="constrained")
     ok = table["success"].to_numpy()

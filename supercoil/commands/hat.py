@@ -24,7 +24,8 @@ import sys
 
 import numpy as np
 
-from supercoil.core.dna.hat import DENATURATION_FORCE
+from supercoil import display
+from supercoil.core.dna.interface import DENATURATION_FORCE
 
 DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
 #: default turns at forces up to DENATURATION_PN, and above it (positive turns only: real
@@ -32,7 +33,7 @@ DEFAULT_FORCES = ("0.4pN", "1.2pN", "3.0pN")
 #: job computes no point that it would have to warn about)
 DEFAULT_TURNS = "-40:40:0.1"
 DEFAULT_TURNS_HIGH_FORCE = "0:40:0.1"
-DENATURATION_PN = DENATURATION_FORCE * 1e12  # 0.8 pN
+DENATURATION_PN = display.to_display(DENATURATION_FORCE, "force")  # 0.8 pN
 #: what to do when the denaturation warning is shown (the user asked for those points)
 DENATURATION_HINT = "give --turns=0:40 to compute positive turns only"
 
@@ -141,7 +142,7 @@ def model_with_options(command, name, end_loop):
 
     if not end_loop:
         return get_model(name), None
-    if "end_loop" not in getattr(get_model(name), "OPTIONS", {}):
+    if "end_loop" not in get_model(name).options():
         with_loop = [m for m in _models_with_end_loop()]
         return None, (f"supercoil {command}: error: --end-loop: model {name!r} has no end loop "
                       f"(models with one: {', '.join(with_loop)})")
@@ -151,7 +152,7 @@ def model_with_options(command, name, end_loop):
 def _models_with_end_loop():
     from supercoil.dna.models import available_models, get_model
 
-    return [m for m in available_models() if "end_loop" in getattr(get_model(m), "OPTIONS", {})]
+    return [m for m in available_models() if "end_loop" in get_model(m).options()]
 
 
 def _interaction_arg(args):
@@ -200,7 +201,7 @@ def _buckling_table(dna, force, thermal, mi, provenance_dict):
     nb = buckling_turns(dna, force, thermal=thermal, **mi).m_as("turn")
     slope = post_buckling_slope(dna, force, thermal=thermal, **mi).m_as("nm/turn")
     si, f, thermal, m, inter = resolve(dna, force, thermal, mi["model"], mi["interaction"])
-    torque = m.buckling(f, si, thermal, inter).torque * 1e21
+    torque = display.to_display(m.buckling(f, si, thermal, inter).torque, "torque")
     return make_table({"force": force.m_as("pN"), "buckling_turns": nb,
                        "buckling_torque": torque, "post_buckling_slope": slope},
                       {"force": "pN", "buckling_turns": "turn", "buckling_torque": "pN nm",

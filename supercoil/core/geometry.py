@@ -39,7 +39,10 @@ TWO_PI = 2.0 * np.pi
 
 
 def tilt_angle(radius, pitch):
-    """Tilt angle ``alpha = arctan(2 pi R / P)`` in rad [eq alpha def]."""
+    """Tilt angle ``alpha = arctan(2 pi R / P)`` in rad [eq alpha def].
+
+    Implements docs/theory/geometry.md (eq alpha def).
+    """
     return np.arctan2(TWO_PI * np.asarray(radius, float), np.asarray(pitch, float))
 
 
@@ -55,12 +58,18 @@ def radius_from_tilt(alpha, pitch):
 
 
 def curvature(alpha, radius):
-    """Curvature ``kappa = sin^2(alpha) / R`` (1/m) [Eq curvature1]."""
+    """Curvature ``kappa = sin^2(alpha) / R`` (1/m) [Eq curvature1].
+
+    Implements docs/theory/geometry.md (Eq curvature1).
+    """
     return np.sin(alpha) ** 2 / radius
 
 
 def torsion(alpha, radius):
-    """Torsion ``tau = sin(alpha) cos(alpha) / R`` (1/m) [Eq torsion1]."""
+    """Torsion ``tau = sin(alpha) cos(alpha) / R`` (1/m) [Eq torsion1].
+
+    Implements docs/theory/geometry.md (Eq torsion1).
+    """
     return np.sin(alpha) * np.cos(alpha) / radius
 
 
@@ -107,6 +116,8 @@ def superhelical_turns(alpha, radius, slack):
 def writhe_uniform(alpha, radius, slack):
     """Writhe of a uniform double helix: ``Wr = tau S / (2 pi)`` [Eq Lk=Tw+Wr].
 
+    Implements docs/theory/geometry.md (Eq Lk=Tw+Wr).
+
     Equal to ``2 cos(alpha)`` per superhelical turn.
     """
     return torsion(alpha, radius) * np.asarray(slack, float) / TWO_PI
@@ -123,7 +134,10 @@ def writhe_one_view(alpha, radius, slack):
 
 def twist_uniform(omega_helix, omega_tail, slack, length):
     """Twist ``Tw = [omega_h S + omega_t (L - S)] / (2 pi)`` of a rod with
-    uniform twist density in the helix and in the tail [Eq Lk=Tw+Wr]."""
+    uniform twist density in the helix and in the tail [Eq Lk=Tw+Wr].
+
+    Implements docs/theory/geometry.md (Eq Lk=Tw+Wr).
+    """
     return (omega_helix * slack + omega_tail * (length - slack)) / TWO_PI
 
 

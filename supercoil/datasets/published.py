@@ -26,11 +26,14 @@ from pathlib import Path
 
 import numpy as np
 
+from supercoil import display
 from supercoil.exceptions import DataError
 from supercoil.tables import make_table, provenance, read_csv
 
-__all__ = ["CITATION", "ENV_VAR", "FILE", "REPOSITORY", "load_published_summary",
-           "published_curves_path", "read_published_curves", "write_published_workbook"]
+__all__ = ["CITATION", "ENV_VAR", "FILE", "REPOSITORY", "SYNTHETIC_LENGTH_NM",
+           "SYNTHETIC_TORQUE_SCALE", "load_published_summary",
+           "published_curves_path", "read_published_curves", "write_published_workbook",
+           "write_synthetic_workbook"]
 
 #: environment variable holding the path of the user's copy of ``Figure S5.xlsx``
 ENV_VAR = "SUPERCOIL_QIAN_S5"
@@ -286,15 +289,16 @@ def write_published_workbook(table, path):
     wb = openpyxl.Workbook()
     wb.remove(wb.active)
     forces = np.unique(rot.force)[::-1]
-    for sheet, values, head, rows in (("S5A", rot.extension * 1e9, "Extension (nm)", 0),
-                                      ("S5B", rot.torque * 1e21, "Torque (pN\u2219nm)", 1)):
+    for sheet, values, head, rows in (
+            ("S5A", display.to_display(rot.extension, "extension"), "Extension (nm)", 0),
+            ("S5B", display.to_display(rot.torque, "torque"), "Torque (pN\u2219nm)", 1)):
         ws = wb.create_sheet(sheet)
         cols = []
         for f in forces:
             sel = np.flatnonzero(rot.force == f)
             sel = sel[np.argsort(rot.turns[sel], kind="stable")][rows::2]
             cols.append((rot.turns[sel], values[sel]))
-        ws.append([x for f in forces for x in (f"{f * 1e12:.2f} pN", None)])
+        ws.append([x for f in forces for x in (display.text(f, "force", ".2f"), None)])
         ws.append(["Turns added", head] * len(forces))
         for i in range(max(len(t) for t, _ in cols)):
             ws.append([float(x) if i < len(t) else None for t, v in cols
@@ -303,3 +307,37 @@ def write_published_workbook(table, path):
     path.parent.mkdir(parents=True, exist_ok=True)
     wb.save(path)
     return path
+
+
+#: the construct's contour length the synthetic stand-in is made with: about 6.48 kb x
+#: 0.338 nm/bp (the paper's construct size, text)
+SYNTHETIC_LENGTH_NM = 2190.0
+#: the torque scale of the synthetic stand-in: measured torque = model torque / 0.8
+SYNTHETIC_TORQUE_SCALE = 0.8
+
+
+def write_synthetic_workbook(path, *, points_per_force=60, seed=20261201):
+    """A stand-in for the Figure S5 workbook: the same layout, synthetic curves (no GPL data).
+
+    ``marko2007`` curves of the ``dna`` set with the length
+    :data:`SYNTHETIC_LENGTH_NM` at the six forces of the source (2 to 0.3 pN),
+    ``points_per_force`` points each, 3 nm extension noise and 0.3 pN nm torque
+    noise, a turns offset of 0.6 turn, no extension offset (absolute extensions,
+    as the averaged published curves), and the measured torque the model torque
+    divided by :data:`SYNTHETIC_TORQUE_SCALE` (a torque calibration the fit's
+    ``torque_scale`` recovers). Written by :func:`write_published_workbook`;
+    returns the path. For tests, examples and the tutorial without the user's copy.
+    """
+    from supercoil.dna.fitting.simulate import simulate_rotation_curves
+    from supercoil.parameters import load_parameters
+    from supercoil.units import U
+
+    dna = load_parameters("dna").replace(length=SYNTHETIC_LENGTH_NM * U.nm)
+    forces = np.array([2.0, 1.5, 1.0, 0.75, 0.5, 0.3]) * U.pN
+    table = simulate_rotation_curves(dna, forces, model="marko2007",
+                                     points_per_force=points_per_force, noise=3 * U.nm,
+                                     torque_noise=0.3 * U.pN * U.nm, turns_offset=0.6,
+                                     extension_offset=0 * U.nm, seed=seed,
+                                     extension_unit="nm")
+    table["torque"] = table["torque"] / SYNTHETIC_TORQUE_SCALE
+    return write_published_workbook(table, path)

@@ -15,8 +15,9 @@ from functools import lru_cache
 import numpy as np
 import pandas as pd
 
+from supercoil import display
 from supercoil._checks import check_flag
-from supercoil.core.dna import hat as _hc
+from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
 from supercoil.dna import validity as _v
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import DEFAULT_MODEL, get_model
@@ -41,18 +42,10 @@ PHASES = np.array(["stretched", "plectoneme", "fully coiled"], dtype=object)
 _PHASE_CATEGORIES = list(PHASES)  # the phase column is categorical: cheap for long tables
 _PHASE_DTYPE = pd.CategoricalDtype(_PHASE_CATEGORIES)
 
-_UNITS = {
-    "force": "pN",
-    "turns": "turn",
-    "extension": "nm",
-    "phase": "",
-    "torque": "pN nm",
-    "plectoneme_length": "nm",
-    "supercoiling_density": "",
-    "eta": "",
-    "short_tail": "",
-    "free_energy": "pN nm",
-}
+_COLUMNS = ("force", "turns", "extension", "phase", "torque", "plectoneme_length",
+            "supercoiling_density", "eta", "short_tail", "free_energy")
+#: the hat table's units: the display units, products spelled with a space (its CSV header)
+_UNITS = {k: display.unit(k).replace("*", " ") for k in _COLUMNS}
 
 
 def resolve(dna, force, thermal, model, interaction):
@@ -93,8 +86,7 @@ def buckling_turns(dna, force, thermal=True, model=DEFAULT_MODEL, interaction=DE
         radius) as :func:`plectoneme_equilibrium` gives them.
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
-    b = _buckling(m, f, si, thermal, inter)
-    _v.check_finite_output(m, f, {"buckling turns": b.turns}, allow_inf=True)
+    b = m.buckling(f, si, thermal, inter)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     return quantity(b.turns, U.turn)
 
@@ -121,18 +113,16 @@ def post_buckling_slope(dna, force, thermal=True, model=DEFAULT_MODEL,
     """
     si, f, thermal, m, inter = resolve(dna, force, thermal, model, interaction)
     with np.errstate(invalid="ignore"):  # an undefined slope is raised as ValidityError below
-        b = _buckling(m, f, si, thermal, inter)
-        msgs = _v.force_messages(f) + inter.messages(si)
-        if thermal and hasattr(m, "slope_validity"):
-            msgs += m.slope_validity(f, b.torque, si)
+        b = m.buckling(f, si, thermal, inter)
+        msgs = m.slope_validity(f, b, si, thermal) + inter.messages(si)
     if not np.all(np.isfinite(b.slope)):
         from supercoil.exceptions import ValidityError
 
         i = np.flatnonzero(~np.isfinite(b.slope))[0]
         raise ValidityError(f"the post-buckling slope is not defined at force "
-                            f"{f[i] * 1e12:.6g} pN (model {m.name!r})")
+                            f"{display.text(f[i], 'force')} (model {m.name!r})")
     _v.warn(msgs, stacklevel=2)
-    return quantity(b.slope * 1e9, U.nm_per_turn)
+    return quantity(b.slope * display.factor("extension"), U.nm_per_turn)
 
 
 def _points(dna, force, turns, thermal, model, interaction, short_tail_length, stacklevel):
@@ -147,47 +137,17 @@ def _points(dna, force, turns, thermal, model, interaction, short_tail_length, s
                              f"got {short_tail_length}")
     F = _repeated(f, n.size)
     N = _tiled(n, f.size, turns)
-    if N.size == 0:  # no force or no turns: an empty table, no model called
-        return si, F, N, _no_points(m, thermal), m, inter.interaction, thermal, short
-    hp = m.points(N, F, si, thermal, inter, short)
-    if _v.summary_of(hp) is None:  # the kernel's summary says finite: no second pass
-        _v.check_finite_output(m, F, {"extension": hp.extension, "torque": hp.torque}, N)
-    denat = [] if m.describes_denaturation else _v.denaturation_messages(F, N)
-    msgs = (_v.force_messages(f) + denat + inter.messages(si)
-            + _v.extension_messages(F, N, hp, si) + _v.tail_torque_messages(F, N, hp, si)
-            + m.validity(N, F, hp, si, thermal))
+    hp = m.points(N, F, si, thermal, inter, short)  # no point: an empty table, no kernel call
+    msgs = m.validity(N, F, hp, si, thermal) + inter.messages(si) if N.size else []
     _v.warn(msgs, stacklevel=stacklevel + 1)
     return si, F, N, hp, m, inter.interaction, thermal, short
-
-
-def _buckling(m, f, si, thermal, inter):
-    """``m.buckling``, or empty arrays for no force (the models reduce over the forces)."""
-    if f.size == 0:
-        from supercoil.dna.models.base import Buckling
-
-        return Buckling(np.empty(0), np.empty(0), np.empty(0))
-    return m.buckling(f, si, thermal, inter)
-
-
-def _no_points(m, thermal):
-    """The :class:`~supercoil.core.dna.hat.HatPoints` of no point (empty force or turns).
-
-    One path for every model: the models reduce over their inputs (min, max,
-    the first force) and would fail on zero-size arrays with numpy's
-    messages; an empty input gives an empty result instead, as in 0.1.
-    """
-    e = np.empty(0)
-    return _hc.HatPoints(extension=e, torque=e.copy(), plectoneme_length=e.copy(),
-                         phase=np.empty(0, np.int8), short_tail=np.empty(0, bool),
-                         zeta=e.copy(),
-                         free_energy=np.empty(0) if m.has_free_energy(thermal) else None)
 
 
 def _repeated(f, size):
     """The per-point forces: each force ``size`` times, force-major.
 
-    One force: a read-only broadcast view (no array written: 0.7 ms and 8 MB
-    fewer at 1e6 points; the models only read the forces).
+    One force: a read-only broadcast view (no array written: 8 MB fewer at 1e6
+    points; the models only read the forces).
     """
     if f.size == 1:
         return np.broadcast_to(f, (size,))
@@ -226,13 +186,9 @@ def free_energy(dna, force, turns, thermal=True, model=DEFAULT_MODEL,
     n = _v.checked_turns(turns, si)
     F = np.repeat(f, n.size)
     N = np.tile(n, f.size)
-    if N.size == 0 and m.has_free_energy(thermal):
-        g = np.empty(0)  # no point: no model call (the models reduce over their inputs)
-    else:
-        g = m.free_energy(N, F, si, thermal, inter)
-    _v.check_finite_output(m, F, {"free energy": g}, N)
+    g = m.free_energy(N, F, si, thermal, inter)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
-    return quantity(np.asarray(g) * 1e21, U.pN_nm)
+    return display.quantity(g, "free_energy")
 
 
 def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEFAULT_MODEL,
@@ -315,18 +271,18 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
                                                      interaction, short_tail_length, 2)
     L = si.length
     if short is None:
-        short = _hc.SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
+        short = SHORT_TAIL_PERSISTENCE_LENGTHS * si.bending_persistence
     # The checks above read the SI arrays; now each fresh array becomes its display-unit
     # column in place (no second copy: the peak memory stays near the table's own).
     own = _Owned(N)
     columns = {
-        "force": (np.full(F.size, F[0] * 1e12) if F.strides == (0,) and F.size
-                  else own.scaled(F, 1e12)),
+        "force": (np.full(F.size, F[0] * display.factor("force")) if F.strides == (0,)
+                  and F.size else own.scaled(F, display.factor("force"))),
         "turns": N,
-        "extension": own.scaled(hp.extension, 1e9),
+        "extension": own.scaled(hp.extension, display.factor("extension")),
         "phase": pd.Categorical.from_codes(hp.phase, dtype=_PHASE_DTYPE),
-        "torque": own.scaled(hp.torque, 1e21),
-        "plectoneme_length": own.scaled(hp.plectoneme_length, 1e9),
+        "torque": own.scaled(hp.torque, display.factor("torque")),
+        "plectoneme_length": own.scaled(hp.plectoneme_length, display.factor("plectoneme_length")),
         "supercoiling_density": N * (HELICAL_REPEAT / L),
         "eta": N * (2.0 * np.pi * si.wlc_persistence / L),
         "short_tail": hp.short_tail,
@@ -335,7 +291,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
     if m.has_free_energy(thermal):
         g = hp.free_energy if hp.free_energy is not None else m.free_energy(N, F, si, thermal,
                                                                              inter)
-        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float), 1e21)
+        columns["free_energy"] = own.scaled(np.asarray(g, dtype=float),
+                                            display.factor("free_energy"))
     else:
         units.pop("free_energy")
     return make_table(
@@ -349,8 +306,8 @@ def hat_curve(dna, force, turns, thermal=True, short_tail_length=None, model=DEF
             model_options=m.options(),
             interaction=inter.name if m.uses_interaction else None,
             thermal=bool(thermal),
-            short_tail_length=f"{short * 1e9:.6g} nm",
-            helical_repeat=f"{HELICAL_REPEAT * 1e9:.6g} nm",
+            short_tail_length=display.text(short, "length"),
+            helical_repeat=display.text(HELICAL_REPEAT, "length"),
         ),
     )
 
@@ -377,5 +334,5 @@ class _Owned:
 
 @lru_cache(maxsize=32)
 def _parameters(dna):
-    """``dna.as_dict()`` once per molecule (formatting pint units costs ~50 us)."""
+    """``dna.as_dict()`` once per molecule (formatting pint units is slow)."""
     return dna.as_dict()

@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 
+from supercoil import display
 from supercoil._checks import broadcast_shape
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.dna import validity as _v
@@ -115,7 +116,7 @@ def extension_factor(dna, force, torque, tail_length):
         fb = np.broadcast_to(f, np.shape(z)).flat[i]
         warnings.warn(
             f"Moroz-Nelson zeta = {np.ravel(z)[i]:.4g} lies outside (0, 1] at force "
-            f"{fb * 1e12:.6g} pN: the extension formula is not valid there",
+            f"{display.text(fb, 'force')}: the extension formula is not valid there",
             ValidityWarning,
             stacklevel=2,
         )

@@ -7,8 +7,8 @@ import numpy as np
 __all__ = ["plot_hat_curves"]
 
 
-#: fixed margins of the 15 x 4.5 inch figure (a layout engine would cost a second
-#: draw: ~0.2 s of the CLI's ``supercoil hat``)
+#: fixed margins of the 15 x 4.5 inch figure (a layout engine would draw the figure twice
+#: in the CLI's ``supercoil hat``)
 _MARGINS = {"left": 0.05, "right": 0.99, "bottom": 0.12, "top": 0.90, "wspace": 0.22}
 
 
@@ -44,7 +44,8 @@ def plot_hat_curves(df, path=None, dna=None, pyplot=True):
             line = ln.get_color()
             ax.plot(xs, np.where(long_tail, np.nan, ys), ":", color=line)
     axes[0].set(xlabel="turns N", ylabel="extension z [nm]")
-    axes[1].set(xlabel="η = 2π N ξ_T / L", ylabel="extension z [nm]")  # no mathtext: 0.07 s
+    # plain Unicode, no mathtext: its parser is slow to load
+    axes[1].set(xlabel="η = 2π N ξ_T / L", ylabel="extension z [nm]")
     axes[2].set(xlabel="turns N", ylabel="torque [pN nm]")
     for ax in axes:
         ax.grid(alpha=0.3)

@@ -1,6 +1,17 @@
-"""Name registries for DNA models and interactions (one mechanism for both)."""
+"""Name registries for DNA models and interactions (one mechanism for both).
+
+A registry made for a package (``Registry(kind, base, package)``) registers the package's
+own classes itself: each module of the package (``base`` and private modules apart) is
+imported once, and every non-abstract subclass of the base defined there is registered
+under its ``name``. Adding a model or an interaction to the package is adding its module;
+user code registers its own with :meth:`Registry.register`.
+"""
 
 from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
 
 from supercoil._checks import check_flag
 from supercoil.exceptions import ModelError
@@ -11,10 +22,31 @@ __all__ = ["Registry"]
 class Registry:
     """Maps registry names to classes; resolves a name or an instance to an instance."""
 
-    def __init__(self, kind, base):
+    def __init__(self, kind, base, package=None):
         self.kind = kind
         self.base = base
         self._classes = {}
+        self._own = {}
+        if package is not None:
+            self._discover(package)
+
+    def _discover(self, package):
+        """Import each public module of ``package`` and register the classes defined there."""
+        pkg = importlib.import_module(package)
+        for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda i: i.name):
+            if info.name == "base" or info.name.startswith("_"):
+                continue
+            module = importlib.import_module(f"{package}.{info.name}")
+            for cls in vars(module).values():
+                if (isinstance(cls, type) and issubclass(cls, self.base)
+                        and cls.__module__ == module.__name__ and not inspect.isabstract(cls)
+                        and cls.name):
+                    self.register(cls)
+                    self._own[cls.__name__] = cls
+
+    def package_classes(self):
+        """``{class name: class}`` of the package's own classes (found in its modules)."""
+        return dict(self._own)
 
     def register(self, cls, replace=False):
         """Register a subclass of the base (or an instance's class) under ``cls.name``."""

@@ -4,10 +4,11 @@ One place for the limits of the DNA models: the input checks (a DNA, a finite
 force), the shared physical limits (overstretching above 65 pN, denaturation
 under negative turns above 0.8 pN, the strands pressed inside the hard core,
 a stretched tail carrying more than the Euler torque, an extension longer than
-the contour length) and the emission of the warnings. The model-specific
-checks (e.g. the Moroz-Nelson bracket of ``"li-zhao"``) come from each
-model's :meth:`~supercoil.dna.models.base.DNAModel.validity`; the public
-layer issues all of them through :func:`warn`.
+the contour length) and the emission of the warnings. Each text is written
+here once: :meth:`~supercoil.dna.models.base.DNAModel.validity` applies the
+shared point limits (:func:`point_messages`) to every model and adds the
+model's own (e.g. the Moroz-Nelson bracket of ``"li-zhao"``); the public layer
+and the fits issue them (:func:`warn`).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ import warnings
 import numpy as np
 
 from supercoil._checks import check_material, check_scale
-from supercoil.core.dna.hat import DENATURATION_FORCE, OVERSTRETCHING_FORCE
+from supercoil.core.dna.interface import DENATURATION_FORCE, OVERSTRETCHING_FORCE
 from supercoil.dna.material import DNA
 from supercoil.exceptions import ValidityWarning
 from supercoil.units import U, as_turns, magnitude
@@ -30,21 +31,43 @@ __all__ = [
     "check_finite_output",
     "check_hard_core_radius",
     "check_interaction",
+    "check_positive_forces",
     "checked_forces",
     "checked_turns",
     "denaturation_messages",
     "extension_messages",
     "force_messages",
     "plectoneme_messages",
+    "point_messages",
     "summary_of",
     "tail_torque_messages",
     "warn",
 ]
 
 
+#: highest temperature (K) of the DNA models: double-stranded DNA melts near 360 K, the
+#: elastic models (B = A kT, C = C_t kT, the Moroz-Nelson term C kT / (4 B sqrt(B F)))
+#: have no meaning far above, and near 1e150 K their products leave the float range
+MAX_TEMPERATURE = 1e4
+
+#: shortest contour length (m) of the DNA models: one base pair (0.34 nm); below it the
+#: twist density 2 pi N / L of any turns leaves the float range (1e-300 nm: inf x 0 at N = 0)
+MIN_LENGTH = 0.34e-9
+
+
 def check_dna(dna):
-    """The SI view of ``dna``; TypeError naming the argument if it is not a DNA."""
-    return check_material(dna, DNA, "dna")
+    """The SI view of ``dna``; TypeError naming the argument if it is not a DNA.
+
+    ValidityError naming the temperature above :data:`MAX_TEMPERATURE` or the length
+    below :data:`MIN_LENGTH`.
+    """
+    si = check_material(dna, DNA, "dna")
+    check_scale(si.length * 1e9, "the contour length (nm)", lo=MIN_LENGTH * 1e9,
+                why="a DNA shorter than one base pair has no double helix")
+    check_scale(si.temperature, "the temperature (K)",
+                hi=MAX_TEMPERATURE, why="double-stranded DNA melts near 360 K; the elastic "
+                "models have no meaning far above it")
+    return si
 
 
 def checked_forces(force, one_d=True):
@@ -58,22 +81,37 @@ def checked_forces(force, one_d=True):
         A force <= 0 (a ValueError too): every DNA model describes a molecule
         stretched by a positive tension (models differ in what else they need).
     """
-    from supercoil.exceptions import NoEquilibriumError
 
     f = magnitude(force, U.N, "force")
     if np.iscomplexobj(f):
         raise TypeError("force must be real")
-    if not np.all(np.isfinite(f)):
-        raise ValueError(f"force must be finite, got {force}")
-    if np.any(f <= 0):
-        bad = float(np.asarray(f)[np.asarray(f) <= 0].flat[0])
-        raise NoEquilibriumError(f"no equilibrium at force {bad * 1e12:.6g} pN: the force "
-                                 "must be positive (a molecule stretched by a tension)")
+    check_positive_forces(f, force)
     if one_d:
         f = np.atleast_1d(f)
         if f.ndim != 1:
             raise ValueError(f"force must be a scalar or 1-D, got shape {f.shape}")
     return f
+
+
+def check_positive_forces(f, given=None):
+    """ValueError if a force (N, float array) is not finite; NoEquilibriumError if <= 0.
+
+    The one text of the force rule, for the public functions (``given`` is the caller's
+    argument, shown in the message) and for the model interface's float level.
+    """
+    from supercoil.exceptions import NoEquilibriumError
+
+    f = np.asarray(f)
+    if f.size == 0:
+        return
+    lo, hi = _extreme(f, np.min), _extreme(f, np.max)  # NaN propagates into both
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        shown = given if given is not None else f[~np.isfinite(f)].flat[0]
+        raise ValueError(f"force must be finite, got {shown}")
+    if lo <= 0:
+        bad = float(f[f <= 0].flat[0])
+        raise NoEquilibriumError(f"no equilibrium at force {bad * 1e12:.6g} pN: the force "
+                                 "must be positive (a molecule stretched by a tension)")
 
 
 #: DNA helical repeat h (m per helical turn, 10.5 bp): Lk_0 = L / h
@@ -158,10 +196,10 @@ def warn(messages, stacklevel=3):
 def force_messages(force):
     """Forces above the B-DNA overstretching plateau (~65 pN)."""
     f = np.asarray(force)
-    over = f > OVERSTRETCHING_FORCE
-    if not np.any(over):
+    hi = _extreme(f, np.max) if f.size else 0.0  # one reduction (the points' forces: no mask)
+    if hi <= OVERSTRETCHING_FORCE:
         return []
-    return [f"force {np.max(f[over]) * 1e12:.6g} pN is above {OVERSTRETCHING_FORCE * 1e12:g} pN, "
+    return [f"force {hi * 1e12:.6g} pN is above {OVERSTRETCHING_FORCE * 1e12:g} pN, "
             "where B-DNA overstretches; the model (inextensible DNA) ignores it"]
 
 
@@ -175,6 +213,18 @@ def denaturation_messages(force, turns):
         return []
     return [f"negative turns at {np.asarray(force)[den].max() * 1e12:.6g} pN (> 0.8 pN): real "
             "DNA denatures under negative supercoiling there; the model ignores denaturation"]
+
+
+def point_messages(turns, force, points, dna, describes_denaturation=False):
+    """The shared limits at hat-curve points (SI): overstretching, denaturation (unless
+    the model describes it), an extension outside [0, L], a tail torque above Euler's.
+
+    :meth:`supercoil.dna.models.base.DNAModel.validity` applies them to every model's
+    points (docs/theory/limits.md#dna), before the model's own messages.
+    """
+    denat = [] if describes_denaturation else denaturation_messages(force, turns)
+    return (force_messages(force) + denat + extension_messages(force, turns, points, dna)
+            + tail_torque_messages(force, turns, points, dna))
 
 
 def plectoneme_messages(state, dna, hard_core_radius=None):
@@ -236,7 +286,7 @@ _BLOCK = 1 << 15
 
 
 def summary_of(points):
-    """The kernel's :class:`~supercoil.core.dna.hat.PointSummary` if it holds, else None.
+    """The kernel's :class:`~supercoil.core.dna.interface.PointSummary` if it holds, else None.
 
     Only a summary whose ranges are finite is used (else the checks pass over
     the arrays and name the point).
@@ -248,7 +298,7 @@ def summary_of(points):
 def _extreme(x, reduce):
     """``reduce(x)``; for one force broadcast over the points (stride 0) its value.
 
-    (numpy reduces a stride-0 view element by element: 0.25 ms at 1e6 points.)
+    (numpy reduces a stride-0 view element by element, as a full array.)
     """
     if x.ndim == 1 and x.size and x.strides[0] == 0:
         return x[0]
@@ -316,6 +366,10 @@ class StateRecorder:
     def check(self, dna):
         """:func:`check_interaction` of the wrapped interaction."""
         check_interaction(self.interaction, dna)
+
+    def unrecorded(self):
+        """The wrapped interaction: its states are not recorded."""
+        return self.interaction
 
     def equilibrium(self, tension, dna):
         st = self.interaction.equilibrium(tension, dna)

@@ -308,8 +308,8 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
         Singularity guard in (0, 1): ``cos 2 alpha < cos2a_min`` counts as
         alpha -> pi/4.
     max_nfev : int
-        Budget of ODE right-side evaluations (>= 1; default 100 000, about 2 s
-        with LSODA): a run that needs more ends in a SingularityError naming
+        Budget of ODE right-side evaluations (>= 1; default 100 000, about 30
+        times the longest typical run): a run that needs more ends in a SingularityError naming
         the twisting rate and the slack reached, never in an endless solver
         call (typical runs need 50-3000; ``solver["nfev"]`` reports them).
 
@@ -374,8 +374,7 @@ def rough_helix(rod, turns, twist_rate=None, method="auto", *, s=None, n_points=
     function checks the units and arguments, calls it and wraps the result).
     The profile is computed in chunks of 4096 points: beyond the table (129
     bytes per point) it needs a bounded working set, 27 bytes per point at
-    n_points = 2e5 and 5 at 1e6 (measured with tracemalloc; 1e6 points take
-    about 3 s for k = 0).
+    n_points = 2e5 and 5 at 1e6 (measured with tracemalloc).
     """
     si = check_rod(rod)
     n0 = checked_turns(turns, "turns")

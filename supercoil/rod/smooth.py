@@ -159,7 +159,7 @@ def smooth_helix(rod, turns, slack, *, cos2a_min=_sc.COS2A_MIN):
 
     n_max = max(float(np.max(n_b)), -float(np.min(n_b))) if n_b.size else 0.0
     with np.errstate(over="ignore"):
-        # one field at a time: one temporary of the input's size, not five (issue 20, item 13)
+        # one field at a time: one temporary of the input's size, not five
         for name, key, scale in (("pitch [mm]", "pitch", 1e3), ("omega [1/mm]", "omega", 1.0),
                                  ("tension [N]", "tension", 1.0),
                                  ("torque [N mm]", "torque", 1e3),

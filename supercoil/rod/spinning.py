@@ -112,9 +112,10 @@ def twist_spinning(rod, turns, head_tension):
     sign = np.broadcast_to(np.sign(n), shape)
 
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        increase = st["pitch"] / p0 - 1.0
         check_finite({"pitch [mm]": st["pitch"] * 1e3,
                               "pitch_slacking [mm]": p0 * 1e3,
-                              "pitch_increase": st["pitch"] / p0 - 1.0},
+                              "pitch_increase": increase},
                              "twist_spinning: tiny |N| or huge head_tension")
 
     warn_hard_contact(st["alpha"], "twist-spinning helix")
@@ -124,6 +125,6 @@ def twist_spinning(rod, turns, head_tension):
         alpha=si_value(st["alpha"]), beta=si_value(st["beta"]),
         pitch=si_value(st["pitch"]), omega=si_value(sign * st["omega"]),
         alpha_slacking=si_value(a0), pitch_slacking=si_value(p0),
-        pitch_increase=si_value(st["pitch"] / p0 - 1.0),
+        pitch_increase=si_value(increase),
         provenance=provenance(rod, scene="twist_spinning"))
 

@@ -90,7 +90,7 @@ def _first_order(x, c, y0=0.0, block=64):
     """The recursion ``y_i = c y_(i-1) + x_i`` (``y_(-1) = y0``), exactly, in blocks.
 
     Within a block it is a product with the lower-triangular matrix ``c**(i-j)``; the last
-    value is carried to the next block (numpy only: scipy.signal costs ~1 s to import).
+    value is carried to the next block (numpy only: scipy.signal is slow to import).
     """
     k = np.arange(block)
     tri = np.tril(c ** np.maximum(k[:, None] - k[None, :], 0).astype(float))

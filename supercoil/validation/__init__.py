@@ -32,7 +32,8 @@ DEFAULT_CONFIGS = (
 FALLBACK_FORCE_PN = {"plectoneme_radius": 0.2, "extension_jump_ratio": 2.0}
 #: quantities that depend on the contour length (the others are per length or per turn
 #: of a long molecule); a row of one of these that states no length is not compared: its
-#: prediction is bracketed over BRACKET_LENGTHS_UM instead (issue 20 item 16)
+#: prediction is bracketed over BRACKET_LENGTHS_UM instead (the comparison would
+#: otherwise rest on a length the source did not state)
 LENGTH_DEPENDENT = ("buckling_turns", "extension_jump_ratio")
 #: the contour lengths of the bundled sets (dna: 750 nm; dna_150mM_nacl: 5.03 um)
 BRACKET_LENGTHS_UM = (0.75, 5.03)
@@ -95,7 +96,7 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
         value = c_eff * 1e30 if unit == "pN nm^2" else c_eff / kT * 1e9
         return value, f"stretched-phase torque at {_FRACTION_OF_BUCKLING:g} N_b"
     if quantity == "extension_jump_ratio":
-        if "end_loop" not in getattr(m, "__dict__", {}):
+        if "end_loop" not in m.options():
             return np.nan, "the model has no end loop"
         m = m.replace(end_loop=True)
         b = m.buckling(f, si, True, inter)
@@ -109,29 +110,27 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
 def _radius(m, f, si, inter):
     """The plectoneme radius (nm) at the tension the model puts on the plectoneme, and a note.
 
-    li-zhao (the paper's construction) holds the plectoneme at the full force F; the
-    free-energy model at the tail's effective tension ``T_eff = F - (kT^2/B) sqrt(Q*)``
-    of its coexistence (docs/theory/free-energy.md#coexistence). Where that model has no
-    coexistence (e.g. 10 mM, 0.2 pN: the tail's bracket closes) there is no radius: NaN
+    :meth:`~supercoil.dna.models.base.DNAModel.plectoneme_tension`: li-zhao (the paper's
+    construction) holds the plectoneme at the full force F; the free-energy model at the
+    tail's effective tension ``T_eff = F - (kT^2/B) sqrt(Q*)`` of its coexistence
+    (docs/theory/free-energy.md#coexistence). Where the model gives no tension (e.g. the
+    free-energy model at 10 mM, 0.2 pN: the tail's bracket closes) there is no radius: NaN
     and the note says why.
     """
-    from supercoil.core.dna import free_energy as _fe
-    from supercoil.dna.models.free_energy import FreeEnergy
     from supercoil.exceptions import SupercoilError
 
-    if not isinstance(m, FreeEnergy):
-        return float(inter.equilibrium(f, si).radius[0]) * 1e9, "plectoneme at the force F"
     try:
-        co = _fe.coexistence(f, si.length, si.bending_rigidity, si.torsional_rigidity,
-                             si.kT, lambda T: inter.equilibrium(T, si), True)
+        pull = m.plectoneme_tension(f, si, True, inter)
     except SupercoilError as exc:
         salt = getattr(si, "salt", None)  # mol/m^3 = mM
         salt = f", {salt:g} mM" if salt is not None else ""
-        return np.nan, (f"no radius: the model has no tail-plectoneme coexistence at "
-                        f"{float(f[0]) * 1e12:g} pN{salt} ({type(exc).__name__}: {exc})")[:300]
-    pull = float(co.pull[0])
-    radius = float(inter.equilibrium(co.pull, si).radius[0]) * 1e9
-    return radius, f"plectoneme at the tail's effective tension T_eff = {pull * 1e12:.4g} pN"
+        return np.nan, (f"no radius at {float(f[0]) * 1e12:g} pN{salt}: "
+                        f"{type(exc).__name__}: {exc}")[:300]
+    radius = float(inter.equilibrium(pull, si).radius[0]) * 1e9
+    if np.array_equal(pull, f):
+        return radius, "plectoneme at the force F"
+    return radius, (f"plectoneme at the tail's effective tension T_eff = "
+                    f"{float(pull[0]) * 1e12:.4g} pN")
 
 
 def _conditions(row, set_name, model, interaction):

@@ -45,8 +45,8 @@ def _bound(target):
 def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
     head = sc.read_csv(bench_dir / "headline.csv")
     text = " ".join(head["measurement"])
-    # every target of issue 14 (benchmarks), issue 9 item 12 and issue 11 has its row
-    for needle in ("public sc.hat_curve", "kernel supercoil.core.dna.hat.hat_curve_points",
+    # every speed and memory target has its row
+    for needle in ("public sc.hat_curve", "kernel supercoil.core.dna.li_zhao.hat_curve_points",
                    "peak traced memory / memory of its result", "sc.fit_hat_curves",
                    "kernel calls x CPU", "sc.fit_many", "ProcessPoolExecutor(2)",
                    "molecules read by sc.read_tweezers_csv",
@@ -138,16 +138,16 @@ def test_hat_memory_result_is_the_dataframe_it_returns():
 
 def test_kernel_counter_counts_calls_and_restores_the_kernel():
     from supercoil.benchmark.targets_fit import _KernelCounter
-    from supercoil.core.dna import hat
+    from supercoil.core.dna import li_zhao
 
-    original = hat.hat_curve_points
+    original = li_zhao.hat_curve_points
     d = sc.load_parameters("dna").si
     args = (np.array([0.0, 5.0]), np.full(2, 1e-12), d.length, d.bending_rigidity,
             d.torsional_rigidity, d.kT, d.radius)
     with _KernelCounter() as counter:
-        a = hat.hat_curve_points(*args)
-        hat.hat_curve_points(*args, thermal=False)
-    assert hat.hat_curve_points is original
+        a = li_zhao.hat_curve_points(*args)
+        li_zhao.hat_curve_points(*args, thermal=False)
+    assert li_zhao.hat_curve_points is original
     assert len(counter.calls) == 2 and counter.calls[1][1] == {"thermal": False}
     np.testing.assert_array_equal(a.extension, original(*args).extension)
 

@@ -25,7 +25,7 @@ class _Broken(sc.dna.models.Marko2007):
 
     name = "family-broken"
 
-    def points(self, *args, **kwargs):
+    def _points(self, *args, **kwargs):
         raise ValidityError("family-broken: no points at any force")
 
 

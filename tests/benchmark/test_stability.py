@@ -1,4 +1,4 @@
-"""Stability map (issue 5): every failure region gives its named error or warning.
+"""Stability map: every failure region gives its named error or warning.
 
 The coarse map of :mod:`supercoil.benchmark.stability` runs every solver over its
 inputs; the targeted tests drive each method onto the boundary of each failure
@@ -22,8 +22,8 @@ from supercoil.core.dna import moroz_nelson as mn
 from supercoil.core.dna import plectoneme as pl
 from supercoil.core.rod import contact as sco
 from supercoil.core.rod import rough as rh
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models import Buckling, DNAModel, HatPoints, unregister_model
-from supercoil.dna.parameters import ModelParameter
 
 u = sc.ureg
 
@@ -293,7 +293,7 @@ def test_largest_plectoneme_force_is_named_with_its_limit(dna):
     with pytest.warns(sc.ValidityWarning, match="overstretches|hard-core radius"):
         e = sc.plectoneme_equilibrium(dna, 0.999 * f_max * u.pN)
     si = dna.si
-    res = pl.equilibrium_residuals(0.999 * f_max * 1e-12, e.alpha.m_as(u.rad),
+    res = pl.hard_core_residuals(0.999 * f_max * 1e-12, e.alpha.m_as(u.rad),
                                    e.radius.m_as(u.m), e.omega.m_as(1 / u.m),
                                    si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius)
     assert max(abs(x) for x in res) < 1e-10
@@ -343,7 +343,7 @@ def test_thermal_hat_fails_named_at_high_force(dna):
     text = " | ".join(str(w.message) for w in rec)
     assert all(issubclass(w.category, sc.ValidityWarning) for w in rec)
     assert "above 65 pN, where B-DNA overstretches" in text
-    assert "R = 1.574 nm < r0" in text  # the strands inside the hard core (issue 9, item 7)
+    assert "R = 1.574 nm < r0" in text  # the strands inside the hard core
     assert "above the Euler limit 2 sqrt(B F)" in text  # athermal tail torque > 2 sqrt(B F)
     assert np.isfinite(df["extension"]).all() and (df["extension"] <= 750).all()
     # 29.8-44 pN: the thermal curve is defined, but R < r0 is said (it was silent before)
@@ -363,7 +363,7 @@ def test_short_molecule_is_flagged_everywhere(dna):
     assert df["short_tail"].all()
     df = sc.hat_curve(short, 1 * u.pN, np.linspace(0, 0.5, 11), thermal=False)
     assert df["short_tail"].all()
-    # zeta > 1: the formula fails, as flagged, and z > L is never silent (issue 9, item 3)
+    # zeta > 1: the formula fails, as flagged, and z > L is never silent
     with pytest.warns(sc.ValidityWarning, match=r"extension 21.2\d* nm .* \[0, L = 20 nm\]"):
         df = sc.hat_curve(short, 1 * u.pN, [0.0], thermal=True)
     assert df["extension"].iloc[0] > 20
@@ -390,7 +390,7 @@ class _Parabola(DNAModel):
     def has_free_energy(self, thermal):
         return True
 
-    def buckling(self, force, dna, thermal, interaction):
+    def _buckling(self, force, dna, thermal, interaction):
         inf = np.full(np.shape(force), np.inf)
         return Buckling(inf, inf, np.zeros(np.shape(force)))
 
@@ -402,13 +402,13 @@ class _Parabola(DNAModel):
         M = (2 * force * k * a**2 * om + dna.torsional_rigidity * om)
         return G, np.clip(z, 0, None), M * (1 + self.values["torque_error"])
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         G, z, M = self._state(turns, np.asarray(force, float), dna)
         zeros = np.zeros(np.shape(turns))
         return HatPoints(z, M, zeros, zeros.astype(np.int8), zeros.astype(bool),
                          z / dna.length, G)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         return self._state(turns, np.asarray(force, float), dna)[0]
 
 

@@ -1,8 +1,7 @@
 """Bad arguments of the command line: exit status 2 and a message naming the flag.
 
-Issue 20 item 12 (``--out`` an existing file; ``--settle -5s``; a bad ``--fix``),
-issue 21 item 4 (the argument -> flag table), issue 22 item 10 (no command, CLI help
-without repository paths, keyword hints as flags).
+``--out`` an existing file, ``--settle -5s``, a bad ``--fix``; the argument -> flag table;
+no command, CLI help without repository paths, keyword hints as flags.
 """
 
 import argparse

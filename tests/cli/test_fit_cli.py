@@ -30,7 +30,7 @@ def test_fit_command_single_molecule(tmp_path, capsys, true_dna):
     assert rc == 0
     report = (out / "fit_report.txt").read_text()
     assert "twist_persistence" in report and "noise estimate" in report
-    assert "reduced chi-square" not in report  # unit weights: no chi-square (issue 15)
+    assert "reduced chi-square" not in report  # unit weights: no chi-square
     assert (out / "fit.png").stat().st_size > 0
     params = sc.read_csv(out / "fit_parameters.csv")
     assert params.attrs["units"]["twist_persistence"] == "nm"
@@ -69,7 +69,7 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     rc = main(["fit", str(path), "--out", str(out), "--jobs", "2"])
     assert rc == 1  # one molecule failed: reported, the others fitted
     captured = capsys.readouterr()
-    # issue 15: not a terminal, so one line per molecule (no carriage returns piling up)
+    # not a terminal, so one line per molecule (no carriage returns piling up)
     done = [line for line in captured.err.splitlines() if " done (" in line]
     assert sorted(line[-4:-1] for line in done) == ["1/3", "2/3", "3/3"]
     assert all(line.startswith("supercoil fit: molecule m") for line in done)
@@ -80,11 +80,13 @@ def test_fit_command_many_molecules_progress_and_failures(tmp_path, capsys, true
     assert np.isfinite(table["radius"].iloc[[0, 2]]).all()
     report = (out / "fit_report.txt").read_text()
     assert "FAILED" in report
-    # issue 15: unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
+    # unit weights, so the noise estimate in nm, not a "red.chi2" of ~25 nm^2
     assert "noise [nm]" in report and "red.chi2" not in report
     row = next(line for line in report.splitlines() if line.strip().startswith("m1 "))
-    assert float(row.split()[1]) == pytest.approx(np.sqrt(table["reduced_chi_square"].iloc[0]),
-                                                  rel=1e-3)
+    assert float(row.split()[1]) == pytest.approx(table["residual_rms"].iloc[0], rel=1e-3)
+    assert table.attrs["units"]["residual_rms"] == "nm"
+    assert 3 < table["residual_rms"].iloc[0] < 8  # the noise estimate, nm (default 5 nm noise)
+    assert table["reduced_chi_square"].iloc[0] == pytest.approx(1.0)  # dimensionless
     assert (out / "fit_molecules.png").exists()
     # --global: one fit, shared parameters, offsets per molecule
     ok = df[df["molecule"] != "m2"].reset_index(drop=True)
@@ -124,7 +126,7 @@ def test_fit_command_bad_input(tmp_path, capsys):
 
 
 def test_fit_command_malformed_row_is_an_error_not_a_traceback(tmp_path, capsys):
-    """Audit B3: a decimal comma row raised pandas' ParserError out of `supercoil fit`."""
+    """A decimal comma row raised pandas' ParserError out of `supercoil fit`."""
     path = tmp_path / "dc.csv"
     path.write_text("# rig: 2\nforce [pN],turns,extension [um]\n0.5,1,0.6\n0.5,2,0,61\n")
     assert main(["fit", str(path), "--out", str(tmp_path / "x")]) == 2
@@ -154,7 +156,7 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
     assert main(["fit", str(path), "--vary", "radius", "--start", "length=700nm",
                  "--out", out]) == 2
     assert "--start given for 'length'" in capsys.readouterr().err
-    # issue 15: values that do not parse name their flag
+    # values that do not parse name their flag
     for flag, item in (("--fix", "length=abc"), ("--start", "radius=1 parsec/"),
                        ("--bound", "radius=x:3nm"), ("--sigma", "5 blorp")):
         assert main(["fit", str(path), flag, item, "--out", out]) == 2
@@ -164,7 +166,7 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
 
 def test_fit_command_reports_a_molecule_whose_parameters_are_not_determined(
         tmp_path, capsys, true_dna):
-    """Audit B1: a nicked molecule (flat curve) is reported, and the exit status is 1."""
+    """A nicked molecule (flat curve) is reported, and the exit status is 1."""
     u = sc.ureg
     forces = [0.3, 0.5, 0.7]
     df = simulate_rotation_curves(true_dna, forces * u.pN, points_per_force=30, molecules=2,
@@ -209,3 +211,24 @@ def test_fit_end_loop_flag_fits_the_model_with_its_loop(tmp_path, true_dna):
     got = params["twist_persistence"].iloc[0]
     assert got == pytest.approx(ref.parameters["twist_persistence"].m, rel=1e-9)
     assert got != pytest.approx(plain.parameters["twist_persistence"].m, rel=1e-6)
+
+
+def test_fit_command_compares_models_with_their_cost_and_start_values(tmp_path, true_dna):
+    """Several --model: the ranked table gives each model's CPU cost beside AIC and BIC; a
+    --start value reaches every model's fit (the same start as the library call)."""
+    u = sc.ureg
+    df = simulate_rotation_curves(true_dna, [1.2] * u.pN, np.linspace(-20, 20, 41), seed=1)
+    path = _write(df, tmp_path / "data.csv")
+    out = tmp_path / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.SupercoilWarning)
+        assert main(["fit", str(path), "--model", "li-zhao", "--model", "marko2007",
+                     "--start", "turns_offset=0.3", "--out", str(out), "--no-plot"]) == 0
+        ref = sc.compare_models(sc.read_tweezers_csv(path), sc.load_parameters("dna"),
+                                ["li-zhao", "marko2007"], start={"turns_offset": 0.3})
+    table = sc.read_csv(out / "fit_comparison.csv")
+    assert list(table["model"]) == list(ref.table["model"]) == ["li-zhao", "marko2007"]
+    assert (table["cpu_seconds"] > 0).all() and table.attrs["units"]["cpu_seconds"] == "s"
+    np.testing.assert_allclose(table["aic"], ref.table["aic"], rtol=1e-9)
+    assert ref.results["li-zhao"].start["turns_offset"].m_as("turn") == pytest.approx(0.3)
+    assert "fit CPU s" in (out / "fit_report.txt").read_text()

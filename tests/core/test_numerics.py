@@ -153,7 +153,7 @@ def measure(repeat=7):
     own = best(lambda: nu.bisect_increasing(lambda a: h(a, rhs), lo, hi))
     print("bisection / find_root", best(lambda: find_root(h, (lo, hi), args=(rhs,))) / own)
     rho = np.geomspace(pl.RHO_MIN, 1e4, 600)
-    own = best(lambda: pl.solve_tilt(rho, 100.0))
+    own = best(lambda: pl.reduced_tilt(rho, 100.0))
     fr = best(lambda: find_root(lambda a, q: pl.reduced_ge2(a, q, 100.0),
                                 (np.full(rho.shape, 1e-6), np.full(rho.shape, np.pi / 4 - 1e-9)),
                                 args=(rho,)))

@@ -41,7 +41,7 @@ def test_permittivity_outside_fit_range_is_a_named_error(t):
 
 
 def test_bjerrum_length_at_25C():
-    # l_B = e^2/(4 pi eps0 eps_r kT) "about 0.715 nm" at 25 degC in water (issue 12)
+    # l_B = e^2/(4 pi eps0 eps_r kT) "about 0.715 nm" at 25 degC in water
     lB = el.bjerrum_length(T25)
     assert lB * 1e9 == pytest.approx(0.715, rel=2e-3)
     # independent: CODATA constants from scipy, eps_r from the fit
@@ -52,7 +52,7 @@ def test_bjerrum_length_at_25C():
 
 @given(st.floats(1.0, 1000.0))
 def test_debye_length_0304_over_sqrt_molar_at_25C(c_mM):
-    # lambda_D = 0.304 / sqrt(c / M) nm for a 1:1 salt at 25 degC (issue 12: to 0.5 %)
+    # lambda_D = 0.304 / sqrt(c / M) nm for a 1:1 salt at 25 degC (to 0.5 %)
     lam = el.debye_length(c_mM, T25) * 1e9
     assert lam == pytest.approx(0.304 / math.sqrt(c_mM / 1000.0), rel=5e-3)
     # independent: lambda = sqrt(eps0 eps_r kT / (2 N_A e^2 c)), c in mol/m^3

@@ -26,7 +26,8 @@ from seed_kernels import equilibrium_of
 
 import supercoil as sc
 from supercoil.core.dna import free_energy as fe
-from supercoil.core.dna import hat as hc
+from supercoil.core.dna import interface as iface
+from supercoil.core.dna import li_zhao as hc
 from supercoil.core.dna import moroz_nelson as mn
 from supercoil.core.dna import plectoneme as pl
 from supercoil.dna.interactions.hard_core import HardCore
@@ -107,7 +108,7 @@ def test_fully_coiled_is_consistent(si, F):
     """Beyond full coiling z = 0 and M depends on N only; M = (1/2 pi) dG/dN still holds."""
     _, _, coiled = _turns(si, F)
     p = _points(si, coiled, F)
-    assert np.all(p.phase == hc.FULLY_COILED) and np.all(p.extension == 0.0)
+    assert np.all(p.phase == iface.FULLY_COILED) and np.all(p.extension == 0.0)
     assert np.all(p.short_tail) and np.all(p.plectoneme_length == si[0])
     # tails shorter than 3 B/kT are flagged in the plectoneme phase too, longer ones not
     _, pc, _ = _turns(si, F)
@@ -183,10 +184,10 @@ def test_athermal_limit_equals_li_zhao_athermal(si):
         for name in ("extension", "plectoneme_length", "phase", "short_tail", "zeta"):
             np.testing.assert_array_equal(getattr(p, name), getattr(q, name), err_msg=name)
         # torque equal except beyond full coiling, where li-zhao keeps M_p by convention
-        keep = q.phase != hc.FULLY_COILED
+        keep = q.phase != iface.FULLY_COILED
         np.testing.assert_array_equal(p.torque[keep], q.torque[keep])
         # closed form of the athermal stretched phase: twist energy minus F z
-        st = p.phase == hc.STRETCHED
+        st = p.phase == iface.STRETCHED
         np.testing.assert_allclose(p.free_energy[st],
                                    -F * L + (2 * np.pi * N[st]) ** 2 * C / (2 * L), rtol=1e-13)
     co = fe.coexistence(FORCES, L, B, C, kT, equilibrium_of(si), thermal=False)
@@ -220,7 +221,7 @@ def test_coexistence_reduces_to_plectoneme_equations_at_effective_pull(si):
     L, B, C, kT, r0 = si
     co = fe.coexistence(FORCES, L, B, C, kT, equilibrium_of(si))
     st = pl.equilibrium(co.pull, B, C, kT, r0)
-    for r in pl.equilibrium_residuals(co.pull, st.alpha, st.radius, co.torque / C,
+    for r in pl.hard_core_residuals(co.pull, st.alpha, st.radius, co.torque / C,
                                       B, C, kT, r0):
         assert np.max(np.abs(r)) < 1e-11
     np.testing.assert_allclose(co.torsion, st.torsion, rtol=1e-12)
@@ -304,7 +305,7 @@ def test_model_class_wraps_the_kernel(si):
     co = fe.coexistence(FORCES, *si[:4], equilibrium_of(si))
     np.testing.assert_array_equal(b.turns, co.buckling_turns)
     np.testing.assert_array_equal(b.slope, co.slope)
-    assert model.validity(N, F, p, dna, True) == []
+    assert model._validity(N, F, p, dna, True) == []
 
 
 @pytest.mark.parametrize(("force", "words"), [(0.105e-12, "<= 0"), (0.15e-12, "not converged")])
@@ -315,9 +316,9 @@ def test_model_validity_messages(force, words):
     N = np.array([0.0, 3.0, 8.0])  # stretched, stretched, plectoneme
     F = np.full(3, force)
     p = FreeEnergy().points(N, F, dna, True, HardCore(), None)
-    msgs = FreeEnergy().validity(N, F, p, dna, True)
+    msgs = FreeEnergy()._validity(N, F, p, dna, True)
     assert len(msgs) == 1 and words in msgs[0] and f"{force * 1e12:.6g} pN" in msgs[0]
-    assert FreeEnergy().validity(N, F, p, dna, False) == []
+    assert FreeEnergy()._validity(N, F, p, dna, False) == []
 
 
 def test_model_through_the_public_functions(dna):
@@ -352,7 +353,7 @@ def test_fully_coiled_state_does_not_depend_on_force(si):
     full coiling; beyond the plectoneme's range the error names the turns."""
     N = np.array([50.0, 200.0, 800.0])
     a, b = _points(si, N, 0.3e-12), _points(si, N, 5e-12)
-    assert np.all(a.phase == hc.FULLY_COILED) and np.all(b.phase == hc.FULLY_COILED)
+    assert np.all(a.phase == iface.FULLY_COILED) and np.all(b.phase == iface.FULLY_COILED)
     np.testing.assert_allclose(a.torque, b.torque, rtol=1e-12)
     np.testing.assert_allclose(a.free_energy, b.free_energy, rtol=1e-12)
     with pytest.raises(NoEquilibriumError, match=r"fully coiled plectoneme for \|N\| up to 20000"):
@@ -370,7 +371,7 @@ def test_state_recorder_sees_final_fully_coiled_states_only(si):
     N = np.array([2.0, 10.0, 40.0, 60.0])
     F = np.full(4, 1.2e-12)
     p = FreeEnergy().points(N, F, dna, True, rec, None)
-    coiled = p.phase == hc.FULLY_COILED
+    coiled = p.phase == iface.FULLY_COILED
     assert coiled.sum() == 2
     assert len(rec.states) == 4  # three Newton solves of the pull, one final coiled solve
     assert np.all(rec.states[-1].force > 1.2e-12) and rec.states[-1].force.size == 2

@@ -23,7 +23,7 @@ from scipy.optimize import minimize_scalar
 
 import supercoil as sc
 from supercoil.core.dna import free_energy as fe
-from supercoil.core.dna.hat import FULLY_COILED, PLECTONEME, STRETCHED
+from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 from supercoil.dna.interactions import get_interaction
 from supercoil.dna.models.free_energy import FreeEnergy
 from supercoil.exceptions import ValidityError
@@ -55,7 +55,7 @@ def _coiling_turns(co, lp, dna=SEED):
 def test_off_by_default_is_bit_identical_to_the_model_before_the_loop():
     """Values recorded (float.hex) from FreeEnergy() (first before end_loop existed)."""
     # Re-recorded when the plectoneme equilibrium's scalar solve started from a table of
-    # b rounded to 10 % (issue 14): the values moved by 0-13 ulp (at most 3e-15 relative)
+    # b rounded to 10 %: the values moved by 0-13 ulp (at most 3e-15 relative)
     # against those recorded before end_loop existed; the test keeps end_loop=False
     # bit-identical to the default model from here on.
     recorded = {

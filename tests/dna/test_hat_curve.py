@@ -11,7 +11,8 @@ from hypothesis import strategies as st
 
 import supercoil as sc
 from supercoil.core import geometry as g
-from supercoil.core.dna import hat as hc
+from supercoil.core.dna import interface as iface
+from supercoil.core.dna import li_zhao as hc
 from supercoil.core.dna import moroz_nelson as mn
 from supercoil.core.dna import plectoneme as pl
 from supercoil.dna.hat import buckling_turns, post_buckling_slope
@@ -48,7 +49,7 @@ def test_continuous_at_buckling(f, thermal):
     nb = hc.buckling_turns(f, *ARGS, thermal=thermal)[()]
     eps = 1e-7
     p = points([nb - eps, nb + eps], f, thermal)
-    assert list(p.phase) == [hc.STRETCHED, hc.PLECTONEME]
+    assert list(p.phase) == [iface.STRETCHED, iface.PLECTONEME]
     assert abs(p.extension[1] - p.extension[0]) < 1e-12  # a jump would be > 1 nm
     assert p.torque[1] == pytest.approx(p.torque[0], rel=1e-6)
     # the torques match at N_b: C_eff 2 pi N_b / L = C omega
@@ -64,7 +65,7 @@ def test_slope_formula_equals_finite_difference(f, thermal):
     n = nb + 3.0
     h = 1e-3
     p = points([n - h, n + h, -n - h, -n + h], f, thermal)
-    assert np.all(p.phase == hc.PLECTONEME)
+    assert np.all(p.phase == iface.PLECTONEME)
     assert (p.extension[1] - p.extension[0]) / (2 * h) == pytest.approx(slope, rel=1e-7)
     assert (p.extension[3] - p.extension[2]) / (2 * h) == pytest.approx(-slope, rel=1e-7)
     if not thermal:
@@ -78,7 +79,7 @@ def test_linking_number_is_twist_plus_writhe_in_plectoneme_phase(f):
     nb = hc.buckling_turns(f, *ARGS, thermal=False)[()]
     n = np.linspace(nb + 0.5, nb + 10, 7)
     p = points(n, f, thermal=False)
-    assert np.all(p.phase == hc.PLECTONEME)
+    assert np.all(p.phase == iface.PLECTONEME)
     S = p.plectoneme_length
     tw = g.twist_uniform(s.omega, s.omega, S, L)
     wr = g.writhe_uniform(s.alpha, s.radius, S)
@@ -87,7 +88,7 @@ def test_linking_number_is_twist_plus_writhe_in_plectoneme_phase(f):
     nb = hc.buckling_turns(f, *ARGS, thermal=True)[()]
     n = np.linspace(nb + 0.5, nb + 10, 7)
     p = points(n, f, thermal=True)
-    assert np.all(p.phase == hc.PLECTONEME)
+    assert np.all(p.phase == iface.PLECTONEME)
     ratio = mn.twist_rigidity_ratio(f, B, C, KT)
     S = p.plectoneme_length
     tw = g.twist_uniform(s.omega, ratio * s.omega, S, L)
@@ -130,7 +131,7 @@ def test_thermal_stretched_phase_is_zeta_times_length(dna, ureg):
     M = (C / ratio) * 2 * np.pi * n / L
     z = sc.extension_factor(dna, 1.2 * ureg.pN, M * ureg.N * ureg.m, L * ureg.m).magnitude
     np.testing.assert_allclose(p.extension, z * L, rtol=1e-12)
-    assert np.all(p.phase == hc.STRETCHED)
+    assert np.all(p.phase == iface.STRETCHED)
 
 
 @pytest.mark.parametrize("f", [0.4e-12, 3e-12])
@@ -140,7 +141,7 @@ def test_fully_coiled_and_short_tail(f):
     n_full = nb + L * D / (2 * np.pi)  # S = L
     n = np.array([n_full - 1e-3, n_full + 1e-9, n_full + 1, n_full + 50])
     p = points(n, f)
-    assert list(p.phase) == [hc.PLECTONEME] + [hc.FULLY_COILED] * 3
+    assert list(p.phase) == [iface.PLECTONEME] + [iface.FULLY_COILED] * 3
     np.testing.assert_array_equal(p.extension[1:], 0.0)
     np.testing.assert_array_equal(p.plectoneme_length[1:], L)
     assert np.all(p.short_tail)
@@ -343,7 +344,7 @@ def test_blocked_points_equal_one_block_with_interleaved_forces(monkeypatch):
     for a, b in zip(whole, shuffled, strict=True):
         if a is None:
             assert b is None
-        elif isinstance(a, hc.PointSummary):  # reductions over the same points
+        elif isinstance(a, iface.PointSummary):  # reductions over the same points
             np.testing.assert_equal(tuple(b), tuple(a))
         else:
             np.testing.assert_array_equal(a[order], b)
@@ -380,7 +381,7 @@ def test_plectoneme_phase_extension_is_moroz_nelson_at_the_tail(dna, ureg):
     f = 1.2e-12
     n = np.array([10.0, 15.0, 20.0])
     p = points(n, f)
-    assert np.all(p.phase == hc.PLECTONEME)
+    assert np.all(p.phase == iface.PLECTONEME)
     tail = L - p.plectoneme_length
     z = sc.extension_factor(dna, 1.2 * ureg.pN, p.torque * ureg.N * ureg.m,
                             tail * ureg.m).magnitude
@@ -438,7 +439,7 @@ def test_scaling_in_place_copies_shared_or_foreign_arrays():
 
 
 def test_peak_memory_of_the_public_table_is_bounded(dna, ureg):
-    """Peak traced memory <= 1.5 x the returned table (issue 14), at 2e5 points."""
+    """Peak traced memory <= 1.5 x the returned table, at 2e5 points."""
     import tracemalloc
 
     turns = np.linspace(0.0, 25.0, 200_000)
@@ -470,9 +471,9 @@ def test_shared_checks_find_what_their_reductions_skip():
                               allow_inf=True)
     si = sc.load_parameters("dna").si
     for z in ([0.0, si.length * 1.01], [-1e-12, 1e-7]):
-        pts = hc.HatPoints(np.array(z), *(np.zeros(2),) * 5)
+        pts = iface.HatPoints(np.array(z), *(np.zeros(2),) * 5)
         assert "outside [0, L" in v.extension_messages([1e-12] * 2, [1.0, 2.0], pts, si)[0]
-    pts = hc.HatPoints(np.array([0.0, si.length]), *(np.zeros(2),) * 5)
+    pts = iface.HatPoints(np.array([0.0, si.length]), *(np.zeros(2),) * 5)
     assert v.extension_messages([1e-12] * 2, [1.0, 2.0], pts, si) == []
     with pytest.raises(ValueError, match="finite"):
         v.checked_turns([1.0, np.nan], si)
@@ -486,13 +487,13 @@ def _validity_by_masks(turns, force, p, dna):
     """li-zhao's validity messages by the full masks (the reference of the shortcuts)."""
     from supercoil.dna.models.li_zhao import long_tail_messages
 
-    zeta_bad = ~p.short_tail & ~((p.zeta > 0) & (p.zeta <= 1)) & (p.phase != hc.FULLY_COILED)
+    zeta_bad = ~p.short_tail & ~((p.zeta > 0) & (p.zeta <= 1)) & (p.phase != iface.FULLY_COILED)
     if np.any(zeta_bad):
         i = np.flatnonzero(zeta_bad)[0]
         return [f"Moroz-Nelson zeta = {p.zeta[i]:.4g} lies outside (0, 1] at force "
                 f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
                 "valid there"]
-    return long_tail_messages(force, p.bracket, p.phase != hc.FULLY_COILED, turns)
+    return long_tail_messages(force, p.bracket, p.phase != iface.FULLY_COILED, turns)
 
 
 @pytest.mark.parametrize("short", [None, 0.0, 400e-9])
@@ -522,7 +523,7 @@ def test_validity_shortcuts_give_the_messages_of_the_full_masks(dna, f_pN, short
     np.testing.assert_equal(tuple(lean.summary), tuple(p.summary))
     expected = _validity_by_masks(n, f, p, si)
     for q in (p, p._replace(summary=None), lean, lean._replace(summary=None)):
-        assert model.validity(n, f, q, si, True) == expected
+        assert model._validity(n, f, q, si, True) == expected
     if f_pN >= 1.2 and short is None:
         assert expected == []
     if f_pN <= 0.15 or (short == 0.0 and f_pN <= 1.2):
@@ -535,7 +536,7 @@ def test_one_phase_blocks_equal_the_general_path(monkeypatch, thermal):
     extreme turns) take the hoisted fillers; their points equal the general per-point
     formulas bit for bit, for both signs of N, across the phase boundaries (blocks of 7:
     most uniform, some mixed), at three forces."""
-    from supercoil.core.dna import hat_block as hb
+    from supercoil.core.dna import li_zhao_numpy as hb
 
     F = np.repeat(np.array([0.4, 1.2, 3.0]) * 1e-12, 1201)
     N = np.tile(np.linspace(-60.0, 60.0, 1201), 3)
@@ -544,7 +545,7 @@ def test_one_phase_blocks_equal_the_general_path(monkeypatch, thermal):
     one_phase = hb.one_phase
     monkeypatch.setattr(hb, "one_phase", lambda *a: kinds.append(one_phase(*a)) or kinds[-1])
     fast = hc.hat_curve_points(N, F, *ARGS, thermal=thermal, fast=False)
-    assert {hc.STRETCHED, hc.PLECTONEME, hc.FULLY_COILED, None} <= set(kinds)
+    assert {iface.STRETCHED, iface.PLECTONEME, iface.FULLY_COILED, None} <= set(kinds)
     monkeypatch.setattr(hb, "one_phase", lambda *a: None)
     general = hc.hat_curve_points(N, F, *ARGS, thermal=thermal, fast=False)
     for name, a, b in zip(general._fields, general, fast, strict=True):

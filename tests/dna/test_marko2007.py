@@ -18,6 +18,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import supercoil
+from supercoil.core.dna import interface as iface
 from supercoil.core.dna import marko2007 as mk
 from supercoil.core.dna import moroz_nelson as mn
 from supercoil.dna.models.marko2007 import Marko2007
@@ -64,7 +65,7 @@ def test_closed_forms_match_the_matlab_reimplementation(A, C, P):
     # stretched extension at 3 turns (below buckling at every force here)
     pt = mk.points(3.0, f * 1e-12, dna.length, dna.bending_persistence,
                    dna.twist_persistence, P * 1e-9, dna.kT)
-    assert np.all(pt.phase == mk.STRETCHED)
+    assert np.all(pt.phase == iface.STRETCHED)
     np.testing.assert_allclose(pt.extension * 1e9, _z_wlc(f, 750.0, A, C, 3.0, 4.114),
                                rtol=1e-12)
 
@@ -202,10 +203,10 @@ def test_validity_errors_name_the_quantity_and_limit():
             plectoneme_twist_persistence=75e-9).parameters_at(np.array([1e-12]),
                                                               _dna(C=70.0), False)
     # low-force warning messages (the public layer warns them)
-    msgs = m.validity(None, np.array([0.2e-12, 1e-12]), None, dna, True)
+    msgs = m._validity(None, np.array([0.2e-12, 1e-12]), None, dna, True)
     assert msgs and "kT/A" in msgs[0]
-    assert m.validity(None, np.array([1e-12]), None, dna, True) == []
-    assert m.validity(None, np.array([0.2e-12]), None, dna, False) == []
+    assert m._validity(None, np.array([1e-12]), None, dna, True) == []
+    assert m._validity(None, np.array([0.2e-12]), None, dna, False) == []
 
 
 def test_model_object():
@@ -282,7 +283,7 @@ def test_blocked_points_equal_one_block(monkeypatch, end_loop):
     args = (dna.length, dna.bending_persistence, dna.twist_persistence, 24e-9, dna.kT, True,
             end_loop)
     whole = mk.points(N, F, *args)
-    assert set(whole.phase.tolist()) == {mk.STRETCHED, mk.PLECTONEME, mk.FULLY_COILED}
+    assert set(whole.phase.tolist()) == {iface.STRETCHED, iface.PLECTONEME, iface.FULLY_COILED}
     monkeypatch.setattr(mk, "BLOCK", 7)
     blocked = mk.points(N, F, *args)
     for name, a, b in zip(whole._fields, whole, blocked, strict=True):

@@ -26,6 +26,7 @@ import pytest
 
 import supercoil as sc
 from supercoil.dna.interactions import available_interactions, get_interaction
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models import (
     Buckling,
     DNAModel,
@@ -35,7 +36,6 @@ from supercoil.dna.models import (
     register_model,
     unregister_model,
 )
-from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import ModelError
 
 u = sc.ureg
@@ -57,7 +57,7 @@ class ParabolaRod(DNAModel):
     def has_free_energy(self, thermal):
         return True
 
-    def buckling(self, force, dna, thermal, interaction):
+    def _buckling(self, force, dna, thermal, interaction):
         inf = np.full(np.shape(force), np.inf)
         return Buckling(inf, inf, np.full(np.shape(force), -0.0))
 
@@ -72,14 +72,14 @@ class ParabolaRod(DNAModel):
         M = 2 * force * k * a**2 * om + dna.torsional_rigidity * om
         return G, z, M
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         turns = np.asarray(turns, float)
         G, z, M = self._g(turns, np.asarray(force, float), dna)
         zeros = np.zeros(turns.shape)
         return HatPoints(z, M, zeros, zeros.astype(np.int8), zeros.astype(bool),
                          z / dna.length, G)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         return self._g(turns, np.asarray(force, float), dna)[0]
 
 
@@ -227,3 +227,97 @@ def test_a_model_that_describes_denaturation_gets_no_denaturation_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         sc.hat_curve(dna, 1.5 * u.pN, [-0.5], model=Melting())
+
+
+# ---- the template methods: one place checks the inputs, steps are what a model writes --
+
+
+def test_overriding_a_public_method_or_leaving_a_step_out_is_a_type_error():
+    with pytest.raises(TypeError, match=r"overrides DNAModel.points.*implement _points"):
+        class Overrides(ParabolaRod):
+            def points(self, *args):
+                return None
+
+    class NoPoints(DNAModel):
+        name = "contract-no-points"
+
+        def _buckling(self, force, dna, thermal, interaction):
+            return None
+
+    with pytest.raises(TypeError, match="abstract"):
+        NoPoints()
+    from supercoil.dna.interactions.base import Interaction
+
+    with pytest.raises(TypeError, match=r"overrides Interaction.equilibrium"):
+        class Bad(Interaction):
+            def equilibrium(self, tension, dna):
+                return None
+
+
+def test_the_base_checks_the_inputs_once_for_every_model(molecule):
+    dna, model = molecule.si, ParabolaRod()
+    N, F = np.array([0.0, 1.0]), np.full(2, 1e-12)
+    with pytest.raises(ValueError, match="one shape"):
+        model.points(N, F[:1], dna, True)
+    with pytest.raises(ValueError, match="turns must be finite"):
+        model.points(np.array([0.0, np.nan]), F, dna, True)
+    with pytest.raises(sc.NoEquilibriumError, match=r"-1 pN.*positive"):
+        model.buckling(np.array([-1e-12]), dna, True)
+    with pytest.raises(TypeError, match=r"DNA\.si"):
+        model.points(N, F, molecule, True)
+    with pytest.raises(TypeError, match="thermal"):
+        model.points(N, F, dna, "yes")
+    with pytest.raises(ModelError, match="needs an interaction"):
+        get_model("li-zhao").buckling(F[:1], dna, True, None)
+    empty = model.points(np.empty(0), np.empty(0), dna, True)
+    assert empty.extension.shape == (0,) and empty.free_energy.shape == (0,)
+    assert model.buckling(np.empty(0), dna, True).turns.shape == (0,)
+
+
+def test_a_nan_of_a_step_is_a_named_error_and_the_shared_limits_come_from_validity(molecule):
+    class Holey(ParabolaRod):
+        name = "contract-holey"
+
+        def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
+            p = super()._points(turns, force, dna, thermal, interaction, short_tail_length)
+            return p._replace(extension=np.where(turns > 2, np.nan, p.extension))
+
+    dna = molecule.si
+    with pytest.raises(sc.ValidityError, match=r"'contract-holey' gives extension = nan at "
+                                               r"force 1 pN, turns 3"):
+        Holey().points(np.array([1.0, 3.0]), np.full(2, 1e-12), dna, True)
+    N, F = np.array([-3.0, 3.0]), np.array([70e-12, 70e-12])
+    p = ParabolaRod().points(N, F, dna, True)
+    msgs = ParabolaRod().validity(N, F, p, dna, True)
+    assert any("overstretches" in m for m in msgs) and any("denatures" in m for m in msgs)
+
+
+def test_a_module_in_a_model_package_is_registered_by_being_there(tmp_path, monkeypatch):
+    """The package's registries find their modules: adding a model adds no import line."""
+    from supercoil.dna.registry import Registry
+
+    pkg = tmp_path / "contract_pkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "base.py").write_text("raise ImportError('base is not a model module')\n")
+    (pkg / "rod.py").write_text(
+        "from supercoil.dna.models.base import DNAModel\n\n\n"
+        "class Rod(DNAModel):\n    name = 'contract-pkg-rod'\n\n"
+        "    def _buckling(self, *args):\n        pass\n\n"
+        "    def _points(self, *args):\n        pass\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    reg = Registry("model", DNAModel, "contract_pkg")
+    assert reg.names() == ["contract-pkg-rod"]  # the imported DNAModel is not its own
+    assert list(reg.package_classes()) == ["Rod"]
+
+
+@pytest.mark.parametrize("inter", ["hard-core", "screened"])
+def test_li_zhao_turns_at_a_tail_length_are_exact_for_any_interaction(inter, molecule):
+    """li-zhao's step is exact: at the returned turns its points have that tail, L - S = l."""
+    dna, model, interaction = molecule.si, get_model("li-zhao"), get_interaction(inter)
+    tail = 4 * dna.bending_persistence
+    n = model.turns_at_tail_length(FORCES, tail, dna, True, interaction)
+    p = model.points(n, FORCES, dna, True, interaction)
+    np.testing.assert_allclose(dna.length - p.plectoneme_length, tail, rtol=1e-6)
+    never = ParabolaRod().turns_at_tail_length(FORCES, tail, dna, True)
+    assert np.all(np.isposinf(never))  # a model that never buckles keeps its whole tail

@@ -13,9 +13,9 @@ from hypothesis import strategies as st
 
 import supercoil as sc
 from supercoil.core import geometry as g
+from supercoil.core.dna import hard_core_equations as pr
 from supercoil.core.dna import marko_siggia as ms
 from supercoil.core.dna import plectoneme as pl
-from supercoil.core.dna import plectoneme_reduced as pr
 from supercoil.units import BOLTZMANN
 
 KT = BOLTZMANN * 300.0
@@ -28,7 +28,7 @@ b = B / (KT * R0)
 def test_residuals_below_1e_10_at_many_forces():
     F = np.geomspace(0.05e-12, 20e-12, 300)
     s = pl.equilibrium(F, B, C, KT, R0)
-    for res in pl.equilibrium_residuals(F, s.alpha, s.radius, s.omega, B, C, KT, R0):
+    for res in pl.hard_core_residuals(F, s.alpha, s.radius, s.omega, B, C, KT, R0):
         assert np.max(np.abs(res)) < 1e-10
 
 
@@ -38,14 +38,14 @@ def test_residuals_for_other_parameters(f_pN, A_nm, Ct_nm, r0_nm):
     B_, C_, r0 = A_nm * 1e-9 * KT, Ct_nm * 1e-9 * KT, r0_nm * 1e-9
     f = f_pN * 1e-12
     s = pl.equilibrium(f, B_, C_, KT, r0)
-    res = pl.equilibrium_residuals(f, s.alpha, s.radius, s.omega, B_, C_, KT, r0)
+    res = pl.hard_core_residuals(f, s.alpha, s.radius, s.omega, B_, C_, KT, r0)
     assert max(abs(float(r)) for r in res) < 1e-10
     assert 0 < s.alpha < np.pi / 4
 
 
 def test_residuals_detect_a_wrong_solution():
     s = pl.equilibrium(1e-12, B, C, KT, R0)
-    res = pl.equilibrium_residuals(1e-12, s.alpha * (1 + 1e-6), s.radius, s.omega, B, C, KT, R0)
+    res = pl.hard_core_residuals(1e-12, s.alpha * (1 + 1e-6), s.radius, s.omega, B, C, KT, R0)
     assert max(abs(float(r)) for r in res) > 1e-8
 
 
@@ -93,7 +93,7 @@ def test_ge2_has_one_root_in_alpha_for_every_radius():
 def test_positive_force_has_exactly_one_solution_on_the_ge2_curve():
     """Scan the whole (GE2) curve: T' - T has one sign change, at the solution."""
     rho = np.geomspace(0.5, 1e4, 20000)
-    a = pl.solve_tilt(rho, b)
+    a = pl.reduced_tilt(rho, b)
     T_curve = pl.reduced_tension(a, rho, b)
     for f in (0.05e-12, 0.4e-12, 3e-12, 20e-12):
         d = T_curve - f * R0 / KT
@@ -224,7 +224,7 @@ def test_scalar_solve_started_from_a_nearby_table_is_the_root(ratio):
     whole branch: the root of the vectorised solve on b's own table, over the whole held
     range of tensions (down to 1e-4 and up to just below the largest one, R -> r0/2)."""
     b2 = b * ratio
-    T_max = pl.branch_table(b2)[2][0]
+    T_max = pl.reduced_branch_table(b2)[2][0]
     T = np.concatenate([np.geomspace(1e-4, 50, 25), [0.5 * T_max, 0.999 * T_max]])
     a_v, r_v = pl.solve_reduced(T, b2)
     for i, t in enumerate(T):
@@ -238,9 +238,9 @@ def test_scalar_solve_does_not_depend_on_earlier_calls():
     (a fit on a process pool gives the serial fit's numbers)."""
     b2 = 1.03 * b
     first = pl._solve_scalar(2.0, b2)
-    pl.branch_table.cache_clear()
+    pl.reduced_branch_table.cache_clear()
     for other in (0.96 * b, 1.07 * b, b2):
-        pl.branch_table(other)
+        pl.reduced_branch_table(other)
     again = pl._solve_scalar(2.0, b2)
     assert first[0][0] == again[0][0] and first[1][0] == again[1][0]
     assert pl._start_table(b2) is pl._start_table(1.01 * b)  # one table serves 10 % of b
@@ -249,7 +249,7 @@ def test_scalar_solve_does_not_depend_on_earlier_calls():
 def test_largest_tension_without_a_table_is_the_tables_first_entry():
     b2 = 1.1 * b
     T_scalar = pl._largest_tension(b2)  # one scalar tilt solve, no table
-    T_table = pl.branch_table(b2)[2][0]
+    T_table = pl.reduced_branch_table(b2)[2][0]
     assert T_scalar == pytest.approx(T_table, rel=1e-13)
     # above it: the named error; just below: held
     r2 = B / (KT * b2)

@@ -1,4 +1,4 @@
-"""Screened interaction and the generic uniform-plectoneme solver (issue 12).
+"""Screened interaction and the generic uniform-plectoneme solver.
 
 Independent references: K0 (parallel rods), a direct double integral over both strands
 (scipy cubature on 3-D strand positions), finite differences, the paper's Marko-Siggia
@@ -522,16 +522,16 @@ def test_the_shipped_10mM_set_jumps_to_contact_at_5_03_pN():
         assert radius(jump - 1e-3) > 2.4 and radius(jump + 1e-3) == pytest.approx(1.0)
 
 
-# ---- the Newton solver against the direct nested solve (issue 24) ------------------
+# ---- the Newton solver against the direct nested solve -----------------------------
 
 
 def _kernel(dna, **kw):
     inter = Screened(**kw)
-    si, lam, pref = inter._functions(dna)
+    si, lam, pref = inter.screening_functions(dna)
     B = si.bending_rigidity
     from supercoil.dna.interactions import screened as scm
 
-    f = scm._partials_function(B, si.kT, lam, pref, inter.values["confinement"])
+    f = scm.partials_function(B, si.kT, lam, pref, inter.values["confinement"])
     return B, f, inter.branch(si)
 
 

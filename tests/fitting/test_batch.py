@@ -24,7 +24,7 @@ def _flat_molecule(base, forces, points, seed):
 
 
 def test_fit_many_marks_a_flat_molecule_as_not_determined(true_dna, base):
-    """Audit B1: a flat curve in fit_many had success True and stderr ~1e-11."""
+    """A flat curve in fit_many had success True and stderr ~1e-11."""
     u = sc.ureg
     df = simulate_rotation_curves(true_dna, np.array(FORCES) * u.pN, points_per_force=40,
                                   noise=5 * u.nm, molecules=2, seed=1)
@@ -82,6 +82,12 @@ def test_fit_many_reports_failures_per_molecule(many, base):
         for name in r.parameters:
             assert table.loc[i, name] == pytest.approx(r.parameters[name].m, rel=1e-9)
             assert table.loc[i, f"{name}_stderr"] == pytest.approx(r.stderr[name].m, rel=1e-9)
+        # the fit statistics mean what FitResult's do: redchi dimensionless (1 with unit
+        # weights), the noise estimate the extension residual RMS in nm (was nm^2 variance)
+        assert table.loc[i, "reduced_chi_square"] == pytest.approx(r.redchi, rel=1e-9)
+        assert table.loc[i, "residual_rms"] == pytest.approx(r.residual_rms.m_as("nm"),
+                                                             rel=1e-9)
+        assert 4 < table.loc[i, "residual_rms"] < 6  # simulated with 5 nm noise
         assert abs(table.loc[i, "twist_persistence"] - 95) < 4 * table.loc[
             i, "twist_persistence_stderr"]
     assert abs(table.loc[1, "turns_offset"] + 0.3) < 4 * table.loc[1, "turns_offset_stderr"]
@@ -165,7 +171,7 @@ def test_fit_many_checks_and_splits_the_table_once(many, base, monkeypatch):
 
 
 def test_each_task_carries_its_molecule_only_not_the_table():
-    """A task's pickled size does not grow with the number of molecules (issue 16: the
+    """A task's pickled size does not grow with the number of molecules (the
     template once held the whole table, 26 MB per task at 2,000 molecules)."""
     from supercoil.benchmark.fit_many import client_cost
 

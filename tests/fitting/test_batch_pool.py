@@ -97,7 +97,7 @@ def _threads_around_fit(task, parent_pid):
 
 @pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="counts threads in /proc")
 def test_small_fit_starts_no_blas_thread_in_a_fresh_worker(many, base):
-    """The cause of issue 14's missing speed-up: a worker's first BLAS limit started the
+    """The cause of a missing pool speed-up: a worker's first BLAS limit started the
     BLAS threads (which then spin); a small fit now starts none."""
     one = many[many["molecule"] == "m1"].drop(columns="molecule").reset_index(drop=True)
     one.attrs = dict(many.attrs)

@@ -130,15 +130,15 @@ def test_compare_models_takes_the_scale_and_start_values(scaled_torque, base):
     from supercoil.dna.fitting import compare_models
 
     start = {"turns_offset": 0.2}
-    table, res = compare_models(scaled_torque, base, ["li-zhao"],
-                                vary={"li-zhao": ["twist_persistence", "radius", "torque_scale"]},
-                                start=start, return_results=True)
+    comparison = compare_models(scaled_torque, base, ["li-zhao"], start=start,
+                                vary={"li-zhao": ["twist_persistence", "radius", "torque_scale"]})
+    table, res = comparison.table, comparison.results
     single = sc.fit_hat_curves(scaled_torque, base,
                                vary=["twist_persistence", "radius", "torque_scale"],
                                start=start)
     assert table["torque_scale"].iloc[0] == pytest.approx(
         single.parameters["torque_scale"].m, rel=1e-9)
-    assert res["li-zhao"]._core["start"][-2] == pytest.approx(0.2)  # the turns offset
+    assert res["li-zhao"].start["turns_offset"].m_as("turn") == pytest.approx(0.2)
 
 
 def test_plot_and_fit_many_carry_the_scales(scaled_torque, base):

@@ -51,8 +51,8 @@ def test_the_same_model_twice_is_a_value_error(data, dna, models):
 def test_one_row_and_one_result_per_model(data, dna):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", sc.SupercoilWarning)  # the fits' own diagnostics
-        table, results = sc.compare_models(data, dna, ["marko2007", Marko2007(end_loop=True)],
-                                           return_results=True)
+        comparison = sc.compare_models(data, dna, ["marko2007", Marko2007(end_loop=True)])
+    table, results = comparison.table, comparison.results
     assert sorted(table["model"]) == ["marko2007", "marko2007(end_loop=True)"]
     assert sorted(results) == sorted(table["model"])
     assert results["marko2007(end_loop=True)"].model.end_loop is True

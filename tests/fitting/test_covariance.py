@@ -32,7 +32,7 @@ def test_singular_jacobian_warns_and_uses_pseudo_inverse(base):
 
 
 def test_undetermined_parameter_gets_infinite_stderr(base):
-    """Audit B1: one force, stretched phase only (|N| <= 3 at 1 pN), only r0 varied.
+    """One force, stretched phase only (|N| <= 3 at 1 pN), only r0 varied.
 
     Before the fix the pseudo-inverse gave r0 a standard error of exactly 0 nm.
     """
@@ -58,7 +58,7 @@ def test_undetermined_parameter_gets_infinite_stderr(base):
 
 
 def test_chi_square_is_in_the_units_of_the_weighting(result, true_dna, base):
-    """Audit B2, issue 22: the chi-square is dimensionless; with unit weights the noise
+    """The chi-square is dimensionless; with unit weights the noise
     estimate is the sigma (chi_square == nfree), the sum of squares is in nm^2."""
     resid = result.residuals.m_as("nm")
     assert result.sum_squares.m_as("nm**2") == pytest.approx(np.sum(resid**2), rel=1e-9)

@@ -1,4 +1,4 @@
-"""Plausible limits and goodness of fit (issue 9 item 4): warnings, report, test statistics."""
+"""Plausible limits and goodness of fit: warnings, report, test statistics."""
 
 import math
 import warnings
@@ -61,7 +61,7 @@ def test_constant_data_warn_about_implausible_values_and_misfit(base):
     fit = [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
     assert any(m.startswith("twist_persistence = ") and "plausible lower limit 43 nm" in m
                for m in fit), fit
-    # issue 22: the turns offset starts at 0 here (no channel locates zero in a flat curve),
+    # the turns offset starts at 0 here (no channel locates zero in a flat curve),
     # and the radius ends undetermined instead of at an implausible value: both say it
     assert any((m.startswith("radius = ") and "plausible lower limit 0.4375 nm" in m)
                or "do not determine radius" in m for m in fit), fit

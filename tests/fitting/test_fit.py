@@ -35,7 +35,7 @@ def test_recovers_non_default_parameters_within_reported_errors(result, true_dna
     # unit weights: the scatter estimates the noise level
     assert result.weighting == "unit"
     assert result.residual_rms.m_as("nm") == pytest.approx(NOISE, rel=0.15)
-    assert result.reduced_chi_square == 1.0  # issue 22: the noise estimate is the sigma
+    assert result.reduced_chi_square == 1.0  # the noise estimate is the sigma
     assert result.residuals.check("[length]")
     assert np.std(result.residuals.m_as("nm")) == pytest.approx(NOISE, rel=0.15)
     assert result.dna.twist_persistence.m_as("nm") == pytest.approx(
@@ -213,7 +213,7 @@ def test_kernel_failure_during_the_fit_is_step_controlled(data, base, result, mo
 
     monkeypatch.setattr(fit_model, "evaluate", flaky)
     r = sc.fit_hat_curves(data, base, vary=["twist_persistence", "radius"])
-    assert r._core["kernel_failures"] == 1
+    assert r.kernel_failures == 1
     for name in result.parameters:
         assert r.parameters[name].m == pytest.approx(result.parameters[name].m,
                                                      abs=1e-3 * result.stderr[name].m)

@@ -8,8 +8,8 @@ from fitting_helpers import simulate
 import supercoil as sc
 from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting import model as fit_model
+from supercoil.dna.fitting.fit_parameters import display_factor, parse_unit
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.fitting.parameters import display_factor, parse_unit
 from supercoil.dna.interactions.hard_core import HardCore
 
 VARY = ["twist_persistence", "radius"]
@@ -35,7 +35,7 @@ def _counted_fit(problem, base, monkeypatch, **kw):
 
     monkeypatch.setattr(fit_model, "evaluate", counted)
     monkeypatch.setattr(HardCore, "equilibrium", solve)
-    # the pre-fit check which parameters the model uses (issue 22: 1 + len(vary) kernel
+    # the pre-fit check which parameters the model uses (1 + len(vary) kernel
     # calls on a 48-point grid, before the optimiser) is not the fit's cost counted here
     from supercoil.dna.fitting import start
 
@@ -47,28 +47,27 @@ def _counted_fit(problem, base, monkeypatch, **kw):
 def test_kernel_calls_per_fit_do_not_grow(problem, base, monkeypatch):
     """Per accepted step one residual and one Jacobian of n_global + 1 calls, nothing more."""
     r, kernel, solves = _counted_fit(problem, base, monkeypatch)
-    core = r._core
-    assert core["kernel_calls"] == len(kernel)
+    assert r.kernel_calls == len(kernel)
     n = problem.shape[0]
     # the start points (reused by the first residual), one call per new trial point, and per
     # Jacobian one forward column per global parameter plus one N -/+ h call of 2n points
-    assert kernel.count(2 * n) == core["njev"]
-    assert len(kernel) <= r.nfev + core["njev"] * (len(VARY) + 1)
-    # pinned on this problem (main before issue 14: 24 calls of which 6 of 2 n points,
-    # nfev 6); a change of the optimiser's path would show here first
-    assert (len(kernel), r.nfev, core["njev"]) == (24, 6, 6)
+    assert kernel.count(2 * n) == r.njev
+    assert len(kernel) <= r.nfev + r.njev * (len(VARY) + 1)
+    # pinned on this problem (as before the fit's cost was cut: 24 calls of which 6 of
+    # 2 n points, nfev 6); a change of the optimiser's path would show here first
+    assert (len(kernel), r.nfev, r.njev) == (24, 6, 6)
     # equilibria: the C column and the N -/+ h call reuse the state of their base point
     # (hard core: C-free key); only the radius column and the new points solve
-    assert len(solves) == 2 * core["njev"]
+    assert len(solves) == 2 * r.njev
     assert len(set(solves)) == len(solves)  # never the same equilibrium twice
 
 
 def test_the_covariance_tables_are_built_on_first_use_with_the_same_numbers(problem, base):
     r = sc.fit_hat_curves(problem, base, vary=VARY)
     assert "covariance" not in vars(r) and "correlation" not in vars(r)
-    f = np.array([r._spec.params[n].factor for n in r.names])
+    f = np.array([r.params[n].factor for n in r.names])
     np.testing.assert_array_equal(r.covariance.to_numpy(),
-                                  r._core["covariance"] * np.outer(f, f))
+                                  r.solution.covariance * np.outer(f, f))
     assert r.covariance is r.covariance  # built once
     d = np.sqrt(np.diag(r.covariance.to_numpy()))
     np.testing.assert_allclose(r.correlation.to_numpy(),
@@ -109,7 +108,7 @@ def test_display_units_are_parsed_once_and_convert_as_pint_does():
         parse_unit("furlongs_per_nm")
 
 
-#: Recorded with the code before issue 14's changes (main 1b57562) on ``problem``:
+#: Recorded with the code before the fit's cost was cut (main 1b57562) on ``problem``:
 #: (value, stderr) in nm / turn, and the sum of squares (nm^2).
 BEFORE = {
     "twist_persistence": (95.9335335923661, 0.6124963411768019),
@@ -127,7 +126,7 @@ def test_the_benchmark_fit_gives_the_numbers_of_the_code_before(problem, base):
     for name, (v, e) in BEFORE.items():
         assert r.parameters[name].m == pytest.approx(v, rel=1e-9), name
         assert r.stderr[name].m == pytest.approx(e, rel=1e-7), name
-    # issue 22: chi_square is dimensionless now (nfree with unit weights); the sum of
+    # chi_square is dimensionless now (nfree with unit weights); the sum of
     # squares is the number recorded before
     assert r.sum_squares.m_as("nm**2") == pytest.approx(BEFORE_CHI2, rel=1e-9)
 

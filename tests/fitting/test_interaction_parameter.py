@@ -15,7 +15,7 @@ import supercoil as sc
 from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting.model import HatCurveModel
 from supercoil.dna.interactions import HardCore, get_interaction
-from supercoil.dna.parameters import ModelParameter
+from supercoil.dna.model_parameters import ModelParameter
 
 
 class ScaledCore(HardCore):
@@ -29,11 +29,11 @@ class ScaledCore(HardCore):
     def _scaled(self, dna):
         return dna._replace(radius=dna.radius * self.values["core_scale"])
 
-    def partials(self, alpha, radius, dna):
-        return super().partials(alpha, radius, self._scaled(dna))
+    def _partials(self, alpha, radius, dna):
+        return super()._partials(alpha, radius, self._scaled(dna))
 
-    def equilibrium(self, tension, dna):
-        return super().equilibrium(tension, self._scaled(dna))
+    def _equilibrium(self, tension, dna):
+        return super()._equilibrium(tension, self._scaled(dna))
 
 
 sc.register_interaction(ScaledCore, replace=True)

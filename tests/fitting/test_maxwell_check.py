@@ -100,6 +100,6 @@ def test_real_curves_are_inconsistent_by_the_issues_factor(qian_s5):
 
     check = sc.maxwell_check(read_published_curves(qian_s5, points_per_force=200))
     s = check.summary["+"]
-    assert 1.25 < s["ratio"] < 1.40  # issue 23: 1.34 (13.5 against 10.1 pN nm)
+    assert 1.25 < s["ratio"] < 1.40  # measured: 1.34 (13.5 against 10.1 pN nm)
     assert s["torque_rise"] == pytest.approx(13.5, abs=0.5)
     assert s["slope_rise"] == pytest.approx(10.1, abs=0.3)

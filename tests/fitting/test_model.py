@@ -1,5 +1,5 @@
 """HatCurveModel: every Jacobian column against central differences, caches, start values,
-and the numbers of the fit before the split (issue 14: identical parameters and errors)."""
+and the numbers of the fit before the split (identical parameters and errors)."""
 
 import numpy as np
 import pytest
@@ -153,7 +153,7 @@ def test_fits_give_the_numbers_of_the_code_before_the_split(base, true_dna):
                                    extension_offset=[20, -10] * u.nm, seed=5)
     for key, df, vary in (("single", single, ["twist_persistence", "radius"]),
                           ("two_mol", two, ["length", "bending_persistence"])):
-        # issue 22: a varied length starts from the data unless given; the old start here
+        # a varied length starts from the data unless given; the old start here
         start = {"length": base.length} if "length" in vary else None
         r = sc.fit_hat_curves(df, base, vary=vary, start=start)
         for name, (v, e) in BEFORE[key].items():

@@ -29,13 +29,16 @@ def test_near_linear_profile_matches_the_jacobian_errors(result):
     assert table.attrs["units"]["extension_offset"] == "nm"
 
 
-def test_profile_plot_and_errors(result):
+def test_profile_plot_and_errors(result, tmp_path):
     import matplotlib.pyplot as plt
 
     p = result.profile("radius")
-    fig = p.plot()
+    fig = p.plot(path=tmp_path / "profile.png", dpi=40)  # saved where asked, figure returned
+    assert (tmp_path / "profile.png").read_bytes()[:4] == b"\x89PNG"
     ax = fig.axes[0]
     assert ax.get_ylabel() == "Δχ²" and len(ax.lines) >= 3
+    x, y = ax.lines[0].get_data()  # the profile passes through the best fit at zero
+    assert np.all(np.diff(x) > 0) and y[list(x).index(p.best)] == 0.0
     plt.close(fig)
     with pytest.raises(FitError, match="not a free parameter"):
         result.profile("length")

@@ -41,11 +41,18 @@ def test_result_tables_report_and_plot(result, tmp_path):
     np.testing.assert_allclose(pts["residual"], result.residuals.m_as("nm"))
     np.testing.assert_allclose(pts["best_fit"] + pts["residual"], pts["extension"], rtol=1e-12)
 
-    fig = result.plot()
+    # in a plain script plot() showed and saved nothing: path= saves (its folder made)
+    assert matplotlib.get_backend().lower() == "agg"  # as a script without a display
+    path = tmp_path / "new folder" / "fit.png"
+    fig = result.plot(path=path, dpi=40)
     assert isinstance(fig, matplotlib.figure.Figure)
     assert len(fig.axes) == 2 * len(FORCES)
-    fig.savefig(tmp_path / "fit.png")
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    import matplotlib.image
     import matplotlib.pyplot as plt
+
+    width, height = fig.get_size_inches()
+    assert matplotlib.image.imread(path).shape[:2] == (round(height * 40), round(width * 40))
 
     plt.close(fig)
 
@@ -63,7 +70,7 @@ def test_unit_weights_show_the_noise_estimate_not_a_chi_square(result, true_dna,
     text = result.report()
     stats = text.split("[[Fit statistics]]")[1].split("[[Parameters]]")[0]
     first = next(line for line in stats.splitlines() if "chi" in line or "noise" in line)
-    # issue 15: the residual RMS in the data's unit (um here), no reduced chi-square in nm^2
+    # the residual RMS in the data's unit (um here), no reduced chi-square in nm^2
     assert first.strip().startswith(f"noise estimate     = {noise / 1000:.4g} um ({noise:.4g} nm)")
     assert "reduced chi-square" not in stats and "sum of squares" in stats
     assert "chi-square" not in repr(result)

@@ -31,7 +31,7 @@ def test_lmfit_and_scipy_names(result):
 
 
 def test_reduced_chi_square_is_dimensionless(result, true_dna, base):
-    """It was the residual variance in nm^2 with unit weights (issue 22)."""
+    """It was the residual variance in nm^2 with unit weights."""
     assert result.reduced_chi_square == pytest.approx(1.0, rel=1e-12)
     assert result.residual_rms.m_as("nm") == pytest.approx(NOISE, rel=0.15)
     r = sc.fit_hat_curves(simulate(true_dna, seed=11, sigma_column=True), base,

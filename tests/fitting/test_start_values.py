@@ -85,15 +85,14 @@ def test_varied_length_warns_and_starts_from_the_data(one_sided, base, long_dna)
     fit = [str(w.message) for w in caught if issubclass(w.category, FitWarning)]
     assert any("beyond the contour length L = 750 nm" in m and "starts the length from the "
                "data" in m for m in fit), fit
-    start = dict(zip(r.names, r._core["start"], strict=True))["length"] * 1e9
+    start = r.start["length"].m_as("nm")
     assert start == pytest.approx(2000, rel=0.05)  # worm-like chain at the turns nearest 0
     assert r.parameters["length"].m_as("nm") == pytest.approx(2000, rel=0.01)
     assert any(n.startswith("length starts at") for n in r.notes)
     # a start given by the user wins
     r2 = sc.fit_hat_curves(one_sided, long_dna, vary=["length", "twist_persistence"],
                            start={"length": 1900 * sc.ureg.nm})
-    assert dict(zip(r2.names, r2._core["start"], strict=True))["length"] == pytest.approx(
-        1.9e-6)
+    assert r2.start["length"].m_as("nm") == pytest.approx(1900)
 
 
 def test_length_check_allows_noise_and_a_fitted_offset():

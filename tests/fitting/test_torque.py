@@ -192,7 +192,7 @@ def test_compare_models_on_torque_data_uses_fixed_scales(torque_data, base):
     the fixed unit scales (1 nm, 1 pN nm), so it still ranks the models."""
     from supercoil.dna.fitting import compare_models
 
-    table = compare_models(torque_data, base, models=["li-zhao", "marko2007"])
+    table = compare_models(torque_data, base, models=["li-zhao", "marko2007"]).table
     assert table["success"].all()
     rows = {m: r for m, r in zip(table["model"], table.to_dict("records"), strict=True)}
     for m in ("li-zhao", "marko2007"):

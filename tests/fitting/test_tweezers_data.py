@@ -145,7 +145,7 @@ def test_check_frame_names_index_rows_for_in_memory_tables():
 
 
 def test_molecule_labels_are_text_as_written(tmp_path):
-    """Audit B4: labels "1", "01", "1.0" are three molecules, not one."""
+    """Labels "1", "01", "1.0" are three molecules, not one."""
     text = ("molecule, force [pN], turns, extension [um]\n"
             "1, 0.5, 0, 0.6\n01, 0.5, 0, 0.6\n1.0, 0.5, 0, 0.6\n1, 0.5, 1, 0.6\n")
     df = sc.read_tweezers_csv(write(tmp_path, text))
@@ -154,7 +154,7 @@ def test_molecule_labels_are_text_as_written(tmp_path):
 
 
 def test_extra_field_is_a_data_error_with_the_file_line(tmp_path):
-    """Audit B3: pandas' ParserError (wrong line number) becomes a DataError."""
+    """Pandas' ParserError (wrong line number) becomes a DataError."""
     text = "# a: 1\nforce [pN], turns, extension [um]\n1, 0, 0.7\n1, 2, 1,68\n"
     with pytest.raises(DataError, match=r"data\.csv, line 4: 4 fields.*decimal comma"):
         sc.read_tweezers_csv(write(tmp_path, text))

@@ -63,8 +63,8 @@ def test_explicit_unused_parameter_is_undetermined_and_not_counted(marko_data, b
 def test_compare_models_drops_the_unused_loop_writhe(marko_data, base):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        table, res = sc.compare_models(marko_data, base, ["marko2007", "li-zhao"],
-                                       return_results=True)
+        comparison = sc.compare_models(marko_data, base, ["marko2007", "li-zhao"])
+    table, res = comparison.table, comparison.results
     mk = res["marko2007"]
     assert "end_loop_writhe" not in mk.names and "radius" not in mk.names
     assert "plectoneme_twist_persistence" in mk.names

@@ -290,7 +290,7 @@ def test_profile_table_convention():
 
 @settings(max_examples=25)
 @given(N=st.floats(2.0, 300.0), r_mm=st.floats(0.3, 3.0), L_cm=st.floats(30.0, 300.0))
-# issue 9 item 11: DOP853 ended 5.4e-7 (relative) short of s_max here (the case as
+# an accuracy outlier: DOP853 ended 5.4e-7 (relative) short of s_max here (the case as
 # reported, rounded, and an unrounded neighbour that reproduced it)
 @example(N=2.3326, r_mm=2.00001, L_cm=59.507)
 @example(N=2.3330754336164494, r_mm=2.0000874659683334, L_cm=59.5262881778452)

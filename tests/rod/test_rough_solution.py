@@ -8,7 +8,7 @@ import pytest
 import supercoil as sc
 from supercoil.core.rod import contact as sco
 from supercoil.core.rod import rough as rh
-from supercoil.core.rod import rough_ode as ro
+from supercoil.core.rod import rough_solution as ro
 
 u = sc.ureg
 
@@ -23,7 +23,7 @@ def _si(rod):
     return s.radius, s.length, s.bending_rigidity, s.torsional_rigidity
 
 
-# --- issue 9 item 2: every ODE run ends in bounded time ----------------------------------
+# --- every ODE run ends in bounded time -------------------------------------------------
 
 
 def test_absurd_twist_rate_ends_in_a_named_error_within_the_budget():
@@ -50,7 +50,7 @@ def test_budget_is_an_argument_and_counts_every_evaluation():
         sc.rough_helix(rod_a(), 40, method="ode", max_nfev=1e5)
 
 
-# --- issue 9 item 11: accuracy outliers ------------------------------------------------------
+# --- accuracy outliers ----------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(("N", "r_mm", "L_cm", "old"), [
@@ -120,7 +120,7 @@ def test_solution_object_segments_and_dense_output(k):
             # (s ~ 0.21 m), so y can return only to |dy/ds| ulp(s) (dy/ds = -146 /m at
             # y = 1.6e-6 for k = -20: 4e-15, a relative 2.5e-9, where rtol 1e-10 failed),
             # plus the inversion's own stop |dy| <= 1e-15 + 1e-13 |y| (RoughSolution s(y)
-            # in supercoil/core/rod/rough_ode.py). Factor 2 for the rounding of dy/ds itself.
+            # in supercoil/core/rod/rough_solution.py). Factor 2 for the rounding of dy/ds itself.
             slope = np.abs(interp._rate(s_nodes, ys))
             tol = 2.0 * np.spacing(s_nodes) * slope + 1e-15 + 1e-13 * np.abs(ys)
             err = np.abs(interp(s_nodes) - ys)

@@ -1,4 +1,4 @@
-"""MultiMT .mtdat files (issue 22 item 9), written here exactly as MultiMT's writer lays them out.
+"""MultiMT .mtdat files, written here exactly as MultiMT's writer lays them out.
 
 Layout (github.com/ddunlap91/MagTweezer, multiMTgui_PylonMEX/Functions/mtdat_fileio/
 mtdatwriteheader.m and mtdat_writerecord.m): '#!!#YAML_START\\n', SnakeYAML's dump of the

@@ -1,4 +1,4 @@
-"""Every recording reader names a bad path, a directory and a non-UTF-8 byte (issue 20 item 11).
+"""Every recording reader names a bad path, a directory and a non-UTF-8 byte.
 
 The checks are the ones of read_tweezers_csv (one shared check, supercoil._csvfile).
 """

@@ -228,8 +228,8 @@ def test_missing_h5py_names_the_extra(written, monkeypatch):
 
 
 def test_magscope_bead_with_no_frames(written, tmp_path):
-    """A bead whose z is NaN in every record (no Z-LUT for it) is dropped and named (issue 22
-    item 8: it aborted the whole read)."""
+    """A bead whose z is NaN in every record (no Z-LUT for it) is dropped and named (it
+    once aborted the whole read)."""
     path = _copy_magscope(written, tmp_path)
     with h5py.File(path, "a") as fh:
         ids = fh["tracking/bead_ids"][()]

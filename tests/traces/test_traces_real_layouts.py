@@ -1,4 +1,4 @@
-"""Readers against files in the instruments' own layouts, odd tokens included (issue 22 item 8).
+"""Readers against files in the instruments' own layouts, odd tokens included.
 
 * CALISTO text (github.com/lipfertlab/calisto, README "Input File Formats" and
   ``load_bead_datafile`` in src/CALISTO/engines/landing_engine.py): headerless,

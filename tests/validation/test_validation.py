@@ -1,4 +1,4 @@
-"""The shipped published measurements and the validation command (issue 13)."""
+"""The shipped published measurements and the validation command."""
 
 import numpy as np
 import pytest

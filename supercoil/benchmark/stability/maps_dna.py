@@ -7,6 +7,7 @@ import warnings
 
 import numpy as np
 
+from supercoil import display
 from supercoil.benchmark.stability.classify import (
     Axis,
     call,
@@ -14,6 +15,11 @@ from supercoil.benchmark.stability.classify import (
     log_grid,
     verdict,
 )
+
+
+def _pn(force_pn):
+    """A force in pN (the maps' grid unit) in newtons."""
+    return display.from_display(force_pn, "force")
 
 
 def plectoneme_map(dna, quick):
@@ -36,7 +42,7 @@ def plectoneme_map(dna, quick):
                     a, R = float(e.alpha.m_as(u.rad)), float(e.radius.m_as(u.m))
                     om = float(e.omega.m_as(1 / u.m))
                     with np.errstate(all="ignore"):
-                        res = pl.equilibrium_residuals(F * 1e-12, a, R, om, si.bending_rigidity,
+                        res = pl.hard_core_residuals(_pn(F), a, R, om, si.bending_rigidity,
                                                        si.torsional_rigidity, si.kT, si.radius)
                     worst = max(abs(float(x)) for x in res)
                     if not 0 < a < np.pi / 4 or not R >= 0.5 * si.radius:
@@ -77,7 +83,8 @@ def extension_map(dna, quick):
                 zz = float(z.magnitude)
                 problems = finite_problems({"zeta": zz})
                 if not problems:
-                    ref = zeta_decimal(F * 1e-12, M * 1e-21, tail, si.bending_rigidity, si.kT)
+                    ref = zeta_decimal(_pn(F), display.from_display(M, "torque"), tail,
+                                       si.bending_rigidity, si.kT)
                     if ref is None:
                         problems.append("zeta returned where its bracket is not positive")
                     elif abs(zz - ref) > 1e-12 * max(1.0, abs(ref)):
@@ -89,14 +96,14 @@ def extension_map(dna, quick):
 
 def hat_turns(d, F, thermal):
     """17 turns from 0 to the point where the plectoneme holds half the molecule."""
-    from supercoil.core.dna import hat as hc
+    from supercoil.core.dna import li_zhao as hc
 
     si = d.si
     args = (si.length, si.bending_rigidity, si.torsional_rigidity, si.kT, si.radius, thermal)
     try:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
-            p = hc.hat_parameters(np.array([F * 1e-12]), *args, check_zeta=False)
+            p = hc.hat_parameters(np.array([_pn(F)]), *args, check_zeta=False)
         n_half = p.buckling_turns[0] + 0.5 * si.length * p.linking_rate[0] / (2 * np.pi)
         if np.isfinite(n_half) and n_half > 0:
             return np.linspace(0.0, n_half, 17)
@@ -111,20 +118,20 @@ def hat_checks(df, d, F, thermal):
     Returns ``(problems, soft)``: points that do not match their phase, and
     unflagged points outside ``0 <= z <= L`` or with z growing with N.
     """
-    from supercoil.core.dna import hat as hc
+    from supercoil.core.dna import li_zhao as hc
     from supercoil.core.dna import moroz_nelson as mn
 
     si = d.si
     L, B, C, kT = si.length, si.bending_rigidity, si.torsional_rigidity, si.kT
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")
-        p = hc.hat_parameters(np.array([F * 1e-12]), L, B, C, kT, si.radius, thermal,
+        p = hc.hat_parameters(np.array([_pn(F)]), L, B, C, kT, si.radius, thermal,
                               check_zeta=False)
     ratio, Mp, om, tau = p.twist_ratio[0], p.torque[0], p.omega[0], p.torsion[0]
     N = df["turns"].to_numpy()
-    z = df["extension"].to_numpy() * 1e-9
-    M = np.abs(df["torque"].to_numpy()) * 1e-21
-    S = df["plectoneme_length"].to_numpy() * 1e-9
+    z = display.from_display(df["extension"].to_numpy(), "extension")
+    M = display.from_display(np.abs(df["torque"].to_numpy()), "torque")
+    S = display.from_display(df["plectoneme_length"].to_numpy(), "plectoneme_length")
     phase = df["phase"].to_numpy()
     short = df["short_tail"].to_numpy(bool)
     problems = []
@@ -140,7 +147,7 @@ def hat_checks(df, d, F, thermal):
                 lk_err = abs(lk - 2 * np.pi * n) / (2 * np.pi * max(n, 1e-300))
             else:
                 continue
-            zeta = float(mn.extension_factor(F * 1e-12, M_ref, tail, B, kT, check=False)) \
+            zeta = float(mn.extension_factor(_pn(F), M_ref, tail, B, kT, check=False)) \
                 if thermal else 1.0
             z_ref = zeta * tail
             if abs(M[m] - M_ref) > 1e-9 * abs(M_ref) or lk_err > 1e-9 or \
@@ -154,7 +161,7 @@ def hat_checks(df, d, F, thermal):
     good = ~short
     if np.any(good & ((z < -1e-9 * L) | (z > L * (1 + 1e-9)))):
         m = np.flatnonzero(good & ((z < -1e-9 * L) | (z > L * (1 + 1e-9))))[0]
-        soft.append(f"unflagged extension z = {z[m] * 1e9:.6g} nm outside [0, L] at "
+        soft.append(f"unflagged extension z = {display.text(z[m], 'extension')} outside [0, L] at "
                     f"N = {N[m]:.6g}")
     zg = z[good]
     if zg.size > 1 and np.any(np.diff(zg) > 1e-9 * L):

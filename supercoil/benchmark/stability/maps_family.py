@@ -26,6 +26,7 @@ import warnings
 
 import numpy as np
 
+from supercoil import display
 from supercoil.benchmark.stability.classify import (
     Axis,
     call,
@@ -86,14 +87,15 @@ def free_energy_problems(dna, F, model, inter, thermal):
         warnings.simplefilter("ignore")
         df = sc.hat_curve(dna, forces * u.pN, turns, **kw)
         g = sc.free_energy(dna, forces * u.pN, turns, **kw).m_as("J").reshape(3, 3, n.size)
-    z = df["extension"].to_numpy().reshape(3, 3, n.size)[1, 1] * 1e-9
-    M = df["torque"].to_numpy().reshape(3, 3, n.size)[1, 1] * 1e-21
+    z = display.from_display(df["extension"].to_numpy().reshape(3, 3, n.size)[1, 1],
+                             "extension")
+    M = display.from_display(df["torque"].to_numpy().reshape(3, 3, n.size)[1, 1], "torque")
     ph = df["phase"].to_numpy().reshape(3, 3, n.size)
     inner = _interior(ph[1, 1], [ph[1, 0], ph[1, 2], ph[0, 1], ph[2, 1]]) & (z > 1e-3 * L)
     if not inner.any():
         return []
     dGdN = (g[1, 2] - g[1, 0]) / (2 * hN)
-    dGdF = (g[2, 1] - g[0, 1]) / (2 * hF * 1e-12)
+    dGdF = (g[2, 1] - g[0, 1]) / (2 * display.from_display(hF, "force"))
     dz = np.abs(-dGdF - z)[inner].max()
     dM = np.abs(dGdN / (2 * np.pi) - M)[inner].max()
     out = []
@@ -108,7 +110,7 @@ def contract_problems(df, dna, symmetric=True):
     """The contract's bounds (and, for a model symmetric in N, its symmetries) on one hat
     curve over symmetric turns."""
     L = dna.si.length
-    z = df["extension"].to_numpy() * 1e-9
+    z = display.from_display(df["extension"].to_numpy(), "extension")
     M = df["torque"].to_numpy()
     short = df["short_tail"].to_numpy(bool)
     out = []

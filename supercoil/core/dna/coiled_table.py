@@ -30,16 +30,15 @@ typically 5e-15, against 9e-14 for the secant it replaces (tests/dna/
 test_coiled_table.py asserts 1e-13). Degree 16 (17 equilibrium nodes in two calls)
 for ``|N| <= 25`` at 1.2 pN, 32 for three times full coiling, 64 for 800 turns.
 
-Cost (1.2 pN, seed set, N in linspace(-25, 25, n), CPU, medians of 7, load ~1):
-n = 1000, 74 fully coiled points: 4.5 ms by the secant, 0.93-1.0 ms by the table
-(bracket 0.17 ms, table 0.59 ms, the rest 0.28 ms); n = 1e5, 7,362 points: 36 ms,
-1.5 ms. With the screened interaction (150 mM, ~15 ms per call) 300 points
-1.2-1.9 s -> 63-114 ms. Fewer than :data:`MIN_POINTS` points: the secant on all of
-them is cheaper (measured crossover 6-12 points, 0.6 ms for 2 points against 1.0 ms
-by the table). Where the table does not converge by :data:`MAX_DEGREE`, converges
-too slowly (a kink in ``l_p``: screened, 150 mM, 5 pN, where the strands reach hard
-contact; the wasted table costs 13 % there) or Newton does not settle,
-:func:`torque_at_linking` returns None and the caller falls back to its secant.
+Cost (1.2 pN, seed set, N in linspace(-25, 25, n), CPU, medians of 7): with 74 fully
+coiled points (n = 1000) the table costs about a fifth of the secant, with 7,362 points
+(n = 1e5) about 1/24; with the screened interaction (150 mM, where an equilibrium call is
+expensive) 300 points cost about 1/18 of the secant. Fewer than :data:`MIN_POINTS` points:
+the secant on all of them is cheaper (measured crossover 6-12 points; at 2 points the
+table costs about 1.7 times the secant). Where the table does not converge by
+:data:`MAX_DEGREE`, converges too slowly (a kink in ``l_p``: screened, 150 mM, 5 pN, where
+the strands reach hard contact; the wasted table costs 13 % there) or Newton does not
+settle, :func:`torque_at_linking` returns None and the caller falls back to its secant.
 """
 
 from __future__ import annotations

@@ -28,15 +28,15 @@ from math import factorial
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise
 
+from supercoil.core.numerics import find_root
 from supercoil.exceptions import ValidityError
 
 from . import melting as _melt
 from . import phases as _ph
 
-__all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque", "points",
-           "tail_gibbs"]
+__all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque",
+           "plectoneme_phase", "points", "tail_gibbs"]
 
 _TWO_PI = 2.0 * np.pi
 #: bracket of the torque solves, N m (200 pN nm: far beyond B-DNA's torques)
@@ -105,7 +105,9 @@ def tail_gibbs(F, M, par, wlc=None):
     return _ph.two_state_gibbs(s, m, par.segment, par.melt_cooperativity, par.kT)
 
 
-def _plectoneme(F, M, par):
+def plectoneme_phase(F, M, par):
+    """The plectoneme phase's Gibbs energy and derivatives at force ``F`` and torque ``M``
+    (SI; a torque below the smallest resolved one is raised to it)."""
     M = np.where(np.abs(M) < _TINY_TORQUE, _TINY_TORQUE, M)
     if par.plectoneme_table is not None:
         p = _ph.tabulated_plectoneme_gibbs(F, M, par.plectoneme_table, par.C, par.kT)
@@ -125,7 +127,7 @@ def _wlc(F, par):
 def _configuration(F, M, par, Lp, m, chirality, wlc=None):
     """Phi(M) (J), linking -dPhi/dM (rad), extension -dPhi/dF (m), melted fraction."""
     t, theta = tail_gibbs(F, M, par, wlc)
-    p = _plectoneme(F, M, par)
+    p = plectoneme_phase(F, M, par)
     Ls = par.length - Lp
     Phi = Ls * t.phi + Lp * p.phi
     link = -(Ls * t.dphi_dM + Lp * p.dphi_dM)
@@ -143,12 +145,15 @@ def _solve(F, N, par, Lp, m, chirality, wlc):
         return _configuration(F, M, par, Lp, m, chirality, wlc or None)[1] - _TWO_PI * N
 
     lo = np.full(np.shape(N), -TORQUE_BRACKET)
-    res = elementwise.find_root(h, (lo, -1.03 * lo), args=(F, N, Lp, *(wlc or ())))
+    res = find_root(h, (lo, -1.03 * lo), args=(F, N, Lp, *(wlc or ())))
     return res.x, res.success
 
 
 def points(turns, force, par):
-    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape)."""
+    """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape).
+
+    Implements docs/theory/ensemble.md (E6, E7).
+    """
     N = np.asarray(turns, float)
     F = np.asarray(force, float)
     if not par.finite_size:
@@ -201,11 +206,11 @@ def coexistence_torque(force, par, sign=1.0, strict=True):
     F = np.asarray(force, float)
 
     def f(M, F):
-        return tail_gibbs(F, M, par)[0].phi - _plectoneme(F, M, par).phi
+        return tail_gibbs(F, M, par)[0].phi - plectoneme_phase(F, M, par).phi
 
     a = np.full(F.shape, sign * 1e-24)
     b = np.full(F.shape, sign * TORQUE_BRACKET)
-    res = elementwise.find_root(f, (np.minimum(a, b), np.maximum(a, b)), args=(F,))
+    res = find_root(f, (np.minimum(a, b), np.maximum(a, b)), args=(F,))
     if not strict:
         return np.where(res.success, res.x, np.nan)
     if not np.all(res.success):
@@ -219,12 +224,12 @@ def coexistence_torque(force, par, sign=1.0, strict=True):
 def _single(F, N, par, phase):
     """Stretched (phase 0) or fully plectonemic (1) molecule: G, M, z."""
     def h(M, F, N):
-        g = tail_gibbs(F, M, par)[0] if phase == 0 else _plectoneme(F, M, par)
+        g = tail_gibbs(F, M, par)[0] if phase == 0 else plectoneme_phase(F, M, par)
         return -par.length * g.dphi_dM - _TWO_PI * N
 
     lo = np.full(N.shape, -TORQUE_BRACKET)
-    M = elementwise.find_root(h, (lo, -1.03 * lo), args=(F, N)).x
-    g = tail_gibbs(F, M, par)[0] if phase == 0 else _plectoneme(F, M, par)
+    M = find_root(h, (lo, -1.03 * lo), args=(F, N)).x
+    g = tail_gibbs(F, M, par)[0] if phase == 0 else plectoneme_phase(F, M, par)
     return par.length * g.phi + _TWO_PI * M * N, M, -par.length * g.dphi_dF
 
 
@@ -241,7 +246,7 @@ def _limit_points(N, F, par):
             continue
         Mb = coexistence_torque(F[side], par, sgn, strict=False)  # NaN: no coexistence
         t, th = tail_gibbs(F[side], Mb, par)
-        om_t, om_p = -t.dphi_dM, -_plectoneme(F[side], Mb, par).dphi_dM
+        om_t, om_p = -t.dphi_dM, -plectoneme_phase(F[side], Mb, par).dphi_dM
         n = N[side]
         Ls = (om_p * L - _TWO_PI * n) / (om_p - om_t)
         co = (n * sgn > L * om_t * sgn / _TWO_PI) & (Ls > 0.0)

@@ -41,9 +41,9 @@ solve. ``method="direct"`` (the reference) solves ``T(alpha(R), R) = T_target`` 
 solving (GE2) for alpha by the same routine (nested Chandrupatla). A force equal to a
 node's tension is that node (both methods).
 
-Measured (150 mM NaCl, ``dna_150mM_nacl``, one run on the 2-core machine): Newton needs
-7-8 evaluations of the interaction's partials per force against 127-146 for the direct
-solve; 1000 forces 0.05-5 pN cost 0.076 ms per force against 1.18 ms (15x); over
+Measured (150 mM NaCl, ``dna_150mM_nacl``, one run): Newton needs 7-8 evaluations of
+the interaction's partials per force against 127-146 for the direct solve; 1000 forces
+0.05-5 pN cost about 1/15 of the direct solve's CPU time; over
 5 mM-1 M, with/without confinement and charge fraction 0.4 (about 9,500 forces
 0.05-50 pN, table nodes and forces up to 1e-12 below the branch's top included) the
 two agree to 5e-15 in alpha, 1.1e-14 in R and 1.8e-14 in the torque; at 1e-8 below a
@@ -113,13 +113,19 @@ def _xy(alpha, R, B, partials):
 
 
 def tilt_residual(alpha, R, B, partials):
-    """``h = -R^2 (GE2) = (sin 2a / 2) X + R cos(2a) Y`` (N)."""
+    """``h = -R^2 (GE2) = (sin 2a / 2) X + R cos(2a) Y`` (N).
+
+    Implements docs/theory/plectoneme.md (GE2).
+    """
     X, Y, _, _ = _xy(alpha, R, B, partials)
     return np.sin(2.0 * alpha) * 0.5 * X + R * np.cos(2.0 * alpha) * Y
 
 
 def torque(alpha, R, B, partials):
-    """(GE1) torque ``M = C omega = X / tau_alpha = R X / cos(2 alpha)`` (N m)."""
+    """(GE1) torque ``M = C omega = X / tau_alpha = R X / cos(2 alpha)`` (N m).
+
+    Implements docs/theory/plectoneme.md (GE1).
+    """
     X, _, _, _ = _xy(alpha, R, B, partials)
     return R * X / np.cos(2.0 * alpha)
 
@@ -176,7 +182,8 @@ def _peak(B, partials, u, alpha0=None):
     """Refined maximum of T(log R) bracketed by the three grid points ``u``.
 
     With ``alpha0`` (the tilt at ``u[1]``) each evaluation's tilt is found by Newton
-    from it (:func:`_tilt_near`; 0.11 s -> 0.01 s at 10 mM), else by :func:`solve_tilt`.
+    from it (:func:`_tilt_near`; about ten times faster than the bracketed solve at
+    10 mM), else by :func:`solve_tilt`.
     """
     def neg_t(x):
         R = np.exp(x)
@@ -409,6 +416,8 @@ def _solve_free(flat, B, partials, branch, xatol, method):
 
 def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, method="newton"):
     """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
+
+    Implements docs/theory/plectoneme.md (GE1, GE2).
 
     Each force is solved on the free branch (if it lies in its range) and on the contact
     branch R = a (:mod:`supercoil.core.dna.contact`, if given and the force lies in its

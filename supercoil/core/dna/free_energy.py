@@ -45,7 +45,7 @@ torque); buckling becomes a jump at the crossing ``N* > N_b`` of the stretched
 branch with the coexistence raised by the loop's excess free energy.
 
 With ``thermal=False`` every formula reduces, operation for operation, to the
-athermal li-zhao construction of :mod:`supercoil.core.dna.hat`.
+athermal li-zhao construction of :mod:`supercoil.core.dna.li_zhao`.
 
 ``equilibrium`` is a callable ``T -> PlectonemeState`` (1-D SI tensions), e.g.
 ``lambda T: interaction.equilibrium(T, dna)``.
@@ -61,7 +61,7 @@ from supercoil.core.blocks import points_in_blocks
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import moroz_nelson as _mn
-from supercoil.core.dna.hat import (
+from supercoil.core.dna.interface import (
     FULLY_COILED,
     PLECTONEME,
     SHORT_TAIL_PERSISTENCE_LENGTHS,
@@ -157,9 +157,8 @@ def tail_torque(linking, force, B, C, kT):
     root. Newton started at the upper bound ``v_hi = C_eff(M=0) linking / M_Q``
     (``l_s(v_hi) >= linking``) decreases monotonically onto the root (convexity)
     and converges quadratically: 3-5 steps to rounding. Measured 12x faster
-    than scipy ``find_root`` (Chandrupatla): 9.9 ms against 115 ms for 2e5 points at
-    1.2 pN (this machine), the same root to
-    2 ulp, which is why it is hand-written.
+    than scipy ``find_root`` (Chandrupatla) for 2e5 points at 1.2 pN, the same root
+    to 2 ulp, which is why it is hand-written.
 
     Raises
     ------
@@ -285,8 +284,8 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium, l
     only brackets the largest target (1-5 calls on one tension) and one Chebyshev
     table of the branch from the smallest ``T_eff`` to that bracket solves every point
     (:func:`supercoil.core.dna.coiled_table.torque_at_linking`; within 6e-14 of
-    scipy brentq in M and T): 1.2 pN, seed set, 74 points 4.5 -> 0.95 ms CPU,
-    7,362 points 36 -> 1.5 ms. Fewer points, or a table that does not converge (a
+    scipy brentq in M and T): 1.2 pN, seed set, about a fifth of the secant's CPU time
+    at 74 points, 1/24 at 7,362 points. Fewer points, or a table that does not converge (a
     kink in l_p, e.g. at hard contact): the secant below on all of them.
 
     Secant: ``l_p(T) = M_p(T)/C + tau(T)`` increases with the tension from
@@ -296,9 +295,9 @@ def plectoneme_torque_at_linking(linking, pull, helix_linking, C, equilibrium, l
     ``(log T_eff, l_p(T_eff))``, which is known, and ``u0 + 2 log(linking / l_p)``
     (``l_p ~ sqrt(T)``): 5-11 equilibrium calls (200 points at 0.3-5 pN between
     full coiling and 3 times its turns). Measured against scipy
-    ``bracket_root`` + ``find_root`` on 74 fully coiled points at 1.2 pN: 4.6 ms
-    against 9.4 ms, same torque to 4e-14, which is why it is hand-written
-    (each call costs ~0.7 ms nearly independent of the number of points). The state
+    ``bracket_root`` + ``find_root`` on 74 fully coiled points at 1.2 pN: half the
+    time, same torque to 4e-14, which is why it is hand-written (each equilibrium
+    call costs nearly the same whatever the number of points). The state
     returned is the one evaluated last, within 1e-13 (relative) of the root in T.
     """
     shape = np.broadcast_shapes(np.shape(linking), np.shape(pull), np.shape(helix_linking))

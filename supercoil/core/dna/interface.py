@@ -1,6 +1,6 @@
 """The interface of the DNA kernels: the points every model returns, phase codes, force limits.
 
-Every DNA model's kernel (``li_zhao``'s :mod:`supercoil.core.dna.hat`,
+Every DNA model's kernel (``li_zhao``'s :mod:`supercoil.core.dna.li_zhao`,
 :mod:`supercoil.core.dna.free_energy`, :mod:`supercoil.core.dna.marko2007`, and any
 plug-in) returns :class:`HatPoints` with the phase codes below; the public layer
 (:mod:`supercoil.dna.validity`) applies the shared force limits. Defined once here, so that no
@@ -19,6 +19,7 @@ __all__ = [
     "OVERSTRETCHING_FORCE",
     "PHASE_CODES",
     "PLECTONEME",
+    "SHORT_TAIL_PERSISTENCE_LENGTHS",
     "STRETCHED",
     "HatPoints",
     "PointSummary",
@@ -33,6 +34,9 @@ DENATURATION_FORCE = 0.8e-12
 #: above this force (N) B-DNA overstretches (Smith, Cui & Bustamante, Science 271,
 #: 795 (1996); Cluzel et al., Science 271, 792 (1996)); the model is inextensible
 OVERSTRETCHING_FORCE = 65e-12
+#: default short-tail threshold of :attr:`HatPoints.short_tail`, in bending persistence
+#: lengths A = B/kT (the Moroz-Nelson expansion needs a tail long compared with A)
+SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 
 
 class HatPoints(NamedTuple):

@@ -33,15 +33,12 @@ from typing import NamedTuple
 import numpy as np
 
 from supercoil.core.blocks import points_in_blocks
-from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
+from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME
 from supercoil.exceptions import ValidityError
 
 from . import end_loop as _loop
 
 __all__ = [
-    "FULLY_COILED",
-    "PLECTONEME",
-    "STRETCHED",
     "MarkoParameters",
     "MarkoPoints",
     "free_energy",
@@ -114,8 +111,9 @@ def stretched_twist_stiffness(force, A, Ct, kT, thermal=True):
     if not thermal:
         return np.full_like(force, Ct), np.zeros_like(force)
     root = np.sqrt(kT / (A * force))
-    x = Ct / (4.0 * A) * root
-    return Ct * (1.0 - x), Ct * x / (2.0 * force)
+    with np.errstate(over="ignore"):  # C_t >> A: -inf, named by marko_parameters' c_s > P
+        x = Ct / (4.0 * A) * root
+        return Ct * (1.0 - x), Ct * x / (2.0 * force)
 
 
 def stretched_extension_factor(omega, force, A, Ct, kT, thermal=True):

@@ -33,7 +33,10 @@ __all__ = [
 
 
 def twist_rigidity_ratio(force, B, C, kT):
-    """``C / C_eff = 1 + C kT / (4 B sqrt(B T))`` (> 1)."""
+    """``C / C_eff = 1 + C kT / (4 B sqrt(B T))`` (> 1).
+
+    Implements docs/theory/li-zhao.md (LZ1).
+    """
     f = np.asarray(force, float)
     with np.errstate(divide="ignore", over="ignore", under="ignore"):
         bt = B * f
@@ -46,12 +49,18 @@ def twist_rigidity_ratio(force, B, C, kT):
 
 
 def effective_twist_rigidity(force, B, C, kT):
-    """Moroz-Nelson ``C_eff`` (N m^2): ``1/C_eff = 1/C + kT / (4 B sqrt(B T))``."""
+    """Moroz-Nelson ``C_eff`` (N m^2): ``1/C_eff = 1/C + kT / (4 B sqrt(B T))``.
+
+    Implements docs/theory/li-zhao.md (LZ1).
+    """
     return C / twist_rigidity_ratio(force, B, C, kT)
 
 
 def zeta_bracket(force, torque, B, kT):
-    """``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` (dimensionless)."""
+    """``Q = B T/kT^2 - M_3^2/(4 kT^2) - 1/32`` (dimensionless).
+
+    Implements docs/theory/li-zhao.md (LZ2).
+    """
     m = np.asarray(torque, float) / kT
     return B * np.asarray(force, float) / (kT * kT) - 0.25 * m * m - 1.0 / 32.0
 
@@ -79,6 +88,8 @@ def long_tail_factor(force, torque, B, kT, check=True):
 
 def extension_factor(force, torque, tail_length, B, kT, check=True):
     """Moroz-Nelson ``zeta(M_3, l)``: end-to-end distance over contour length of the tail.
+
+    Implements docs/theory/li-zhao.md (LZ2).
 
     Parameters
     ----------

@@ -109,6 +109,8 @@ def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed
                     wlc=None):
     """Stretched, twisted worm-like chain ``phi_s = -g(F) - M^2 / (2 kT c_s(F))``.
 
+    Implements docs/theory/ensemble.md (E1).
+
     ``resummed``: ``1/c_s = 1/C + k (1/4A) sqrt(kT/(A F))`` (Moroz & Nelson, PNAS 94,
     14418, 1997, resummed; ``k`` = ``softening``, 1 for Moroz-Nelson); else the
     first-order ``c_s = C (1 - k (C/4A) sqrt(kT/(A F)))`` of Marko (2007).
@@ -139,6 +141,8 @@ def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed
 
 def plectoneme_gibbs(force, torque, P0, exponent, M0, kT):
     """Plectoneme of torque-dependent twist stiffness ``P(M) = P0 (|M|/M0)^a``.
+
+    Implements docs/theory/ensemble.md (E2).
 
     ``phi_p = -|M|^(2-a) M0^a / ((2-a) kT P0)``, so ``Omega_p = M / (kT P(M))``; no
     extension. ``a = 0`` is Marko's (2007) constant-P plectoneme
@@ -197,6 +201,8 @@ def _hermite_rows(Mk, Tk, tk):
 def simple_melted_gibbs(force, torque, energy, extension, twist):
     """Torque-melted DNA ``phi_m = e - x_m F - M Omega_m`` (no twist compliance).
 
+    Implements docs/theory/ensemble.md (E3).
+
     ``energy`` per B-DNA length (J/m), ``extension`` x_m, ``twist`` Omega_m (rad/m,
     negative: melting unwinds) [ensemble.md#23-melted].
     """
@@ -207,6 +213,8 @@ def simple_melted_gibbs(force, torque, energy, extension, twist):
 
 def two_state_gibbs(b, m, segment, cooperativity, kT):
     """Cooperative mixture of two phases along the tail (Zimm-Bragg transfer matrix).
+
+    Implements docs/theory/ensemble.md (E4).
 
     Segments of length ``segment`` are in phase ``b`` or ``m``; each boundary costs
     ``cooperativity / 2`` (``sigma = exp(-cooperativity/kT)``). In the long-chain limit
@@ -242,6 +250,8 @@ def two_state_gibbs(b, m, segment, cooperativity, kT):
 
 def end_loop_gibbs(tail, torque, A, C, kT, writhe, chirality, extra=0.0, physical=True):
     """Gibbs free energy of one plectoneme domain's end loop (J) and its derivatives.
+
+    Implements docs/theory/ensemble.md (E5).
 
     ``physical``: a circle of radius R cut out of the tail (docs/theory/end-loop.md#2-loop)
     at common torque, minimised over R:

@@ -60,7 +60,7 @@ Newton iteration in the bracket (0, pi/4). No starting guess is needed. A few
 forces (up to 12) are solved one by one on Python floats, started from the
 table of b rounded to 10 % in log b and bracketed by the whole branch, so that
 a fit moving r0 builds one table per 10 % of b instead of one per step. The
-reduced equations themselves are in :mod:`supercoil.core.dna.plectoneme_reduced`.
+reduced equations themselves are in :mod:`supercoil.core.dna.hard_core_equations`.
 
 Limits: the force must be positive (no plectoneme is held at T <= 0), and the
 table stops at ``rho = RHO_MIN = 0.5`` (strands overlapping to half the
@@ -78,13 +78,13 @@ import numpy as np
 
 from supercoil.core import geometry as _g
 from supercoil.core.blocks import in_blocks
+from supercoil.core.dna import hard_core_equations as _r
 from supercoil.core.dna import marko_siggia as _ms
-from supercoil.core.dna import plectoneme_reduced as _r
-from supercoil.core.dna.plectoneme_reduced import (
+from supercoil.core.dna.hard_core_equations import (
     reduced_ge2,
     reduced_tension,
+    reduced_tilt,
     reduced_torque,
-    solve_tilt,
 )
 from supercoil.core.numerics import safe_newton as _safe_newton
 from supercoil.exceptions import NoEquilibriumError
@@ -93,13 +93,13 @@ __all__ = [
     "EQUILIBRIUM_RTOL",
     "RHO_MIN",
     "PlectonemeState",
-    "branch_table",
     "equilibrium",
-    "equilibrium_residuals",
+    "hard_core_residuals",
+    "reduced_branch_table",
     "reduced_ge2",
     "reduced_tension",
+    "reduced_tilt",
     "reduced_torque",
-    "solve_tilt",
 ]
 
 #: smallest reduced radius R/r0 of the tabulated branch (sets the largest force)
@@ -139,14 +139,14 @@ _RHO_TABLE_MAX = 1e4
 
 
 @lru_cache(maxsize=64)
-def branch_table(b):
+def reduced_branch_table(b):
     """Tabulated physical branch ``(rho, alpha, T')`` for ``b = B/(kT r0)``.
 
     ``rho`` runs from :data:`RHO_MIN` out to the first grid point with
     ``T' <= 0``; ``T'`` is strictly decreasing on it (checked).
     """
     rho = np.geomspace(RHO_MIN, _RHO_TABLE_MAX, 600)
-    alpha = solve_tilt(rho, b)
+    alpha = reduced_tilt(rho, b)
     T = reduced_tension(alpha, rho, b)
     nonpos = np.nonzero(T <= 0.0)[0]
     if nonpos.size == 0 or nonpos[0] == 0:
@@ -168,7 +168,7 @@ def branch_table(b):
 def _largest_tension(b):
     """``T'`` at :data:`RHO_MIN`, the largest reduced tension held (a table's first entry).
 
-    One scalar tilt solve, no table; NoEquilibriumError as :func:`branch_table`
+    One scalar tilt solve, no table; NoEquilibriumError as :func:`reduced_branch_table`
     if no positive tension is held.
     """
     beta = b ** (-1.0 / 3.0)
@@ -186,12 +186,13 @@ def _start_table(b):
     grid of step :data:`_START_TABLE_STEP` in log b (within 5 %).
 
     A fit moves r0, hence b, a little at every step and every Jacobian column; a
-    table costs ~0.5 ms (600 tilt solves) against ~20 us for a scalar solve, and a
-    new molecule's fit built 12 of them (5.6 ms of its 13 ms). One table
+    table costs 600 tilt solves, about 25 scalar solves, and a new molecule's fit
+    built 12 of them (about 40 % of its time). One table
     per 10 % of b serves them all; the start (hence the result, to the last bit)
     depends on b alone, not on which tables earlier calls built.
     """
-    return branch_table(math.exp(_START_TABLE_STEP * round(math.log(b) / _START_TABLE_STEP)))
+    step = _START_TABLE_STEP
+    return reduced_branch_table(math.exp(step * round(math.log(b) / step)))
 
 
 def _format_force(force):
@@ -244,7 +245,7 @@ def _solve_scalar(T_target, b, rtol=EQUILIBRIUM_RTOL):
 def solve_reduced(T_target, b, rtol=EQUILIBRIUM_RTOL):
     """Solve the reduced equations at reduced tensions ``T_target > 0``: ``(alpha, rho)``."""
     T_target = np.asarray(T_target, dtype=float)
-    rho_t, alpha_t, T_t = branch_table(float(b))
+    rho_t, alpha_t, T_t = reduced_branch_table(float(b))
     # T_t decreasing: index of the interval [k, k+1] with T_t[k] >= T > T_t[k+1]
     k = np.searchsorted(-T_t, -T_target, side="left") - 1
     k = np.clip(k, 0, rho_t.size - 2)
@@ -256,7 +257,7 @@ def solve_reduced(T_target, b, rtol=EQUILIBRIUM_RTOL):
 
     def fun(u):
         rho = np.exp(u)
-        a = solve_tilt(rho, b, alpha0=state["alpha"])
+        a = reduced_tilt(rho, b, alpha0=state["alpha"])
         state["alpha"] = a
         T, T_a, T_r = reduced_tension(a, rho, b, derivatives=True)
         _, h_a, h_r = reduced_ge2(a, rho, b, derivatives=True)
@@ -265,12 +266,14 @@ def solve_reduced(T_target, b, rtol=EQUILIBRIUM_RTOL):
 
     u = _safe_newton(fun, u0, u_lo, u_hi, rtol)
     rho = np.exp(u)
-    alpha = solve_tilt(rho, b, alpha0=state["alpha"])
+    alpha = reduced_tilt(rho, b, alpha0=state["alpha"])
     return alpha, rho
 
 
 def equilibrium(force, B, C, kT, r0, rtol=EQUILIBRIUM_RTOL):
     """Plectoneme equilibrium at fixed force: solves (GE1), (GE2) and the tension equation.
+
+    Implements docs/theory/plectoneme.md (GE1, GE2).
 
     Parameters
     ----------
@@ -356,7 +359,7 @@ def _equilibrium_block(force, B, C, kT, r0, b, rtol):
     )
 
 
-def equilibrium_residuals(force, alpha, radius, omega, B, C, kT, r0):
+def hard_core_residuals(force, alpha, radius, omega, B, C, kT, r0):
     """Relative residuals ``(GE1, GE2, tension)`` of a solution, from the general equations.
 
     Uses the un-reduced forms of docs/theory/plectoneme.md#equations (geometry partials of

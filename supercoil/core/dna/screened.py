@@ -1,5 +1,5 @@
 """Screened (Debye-Hueckel) interaction of the two strands of a plectoneme.
-Float-only SI kernel (docs/theory/screened-interaction.md#2 to #4).
+Float-only SI kernel (docs/theory/screened-interaction.md, sections 2 to 4).
 
 Geometry
 --------

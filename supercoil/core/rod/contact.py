@@ -204,7 +204,10 @@ def g_contact(alpha):
 
 
 def twist_density(alpha, r, B, C):
-    """(HC) ``omega = (B/C) (1 - cos 2a) tan 2a / (2 r)`` in rad/m [eq dom/ds1 self contact]."""
+    """(HC) ``omega = (B/C) (1 - cos 2a) tan 2a / (2 r)`` in rad/m [eq dom/ds1 self contact].
+
+    Implements docs/theory/contact.md (HC).
+    """
     return (B / C) * g_contact(alpha) / (2.0 * r)
 
 
@@ -216,6 +219,8 @@ def dtwist_dalpha(alpha, r, B, C):
 
 def initial_tilt(turns_abs, r, L, B, C):
     """alpha_0 of [eq ini]: ``(1 - cos 2a0) tan 2a0 = (C/B) 4 pi r |N_0| / L``.
+
+    Implements docs/theory/contact.md (eq ini).
 
     This is (HC) with the uniform twist ``omega = 2 pi N_0 / L`` of the straight
     rod at S = 0. Solved by vectorised bisection
@@ -244,6 +249,8 @@ def initial_tilt(turns_abs, r, L, B, C):
 def tension(alpha, r, B):
     """[eq tension] ``T = B/(8 r^2) (1 - c)^2 (2 + c) / c`` (N), c = cos 2 alpha.
 
+    Implements docs/theory/contact.md (eq tension).
+
     The same expression is the smooth-surface tension ``C omega tau - B kappa^2/2``
     with (HC) inserted (:func:`smooth_tension`), i.e. the tension depends only
     on the tilt at the helix end.
@@ -262,6 +269,8 @@ def smooth_tension(alpha, omega, r, B, C):
 def normal_force(alpha, r, B):
     """Contact force per strand length ``F = B/(4 r^3) (1 - c)^2 / c`` (N/m), c = cos 2a.
 
+    Implements docs/theory/contact.md (eq normal reaction).
+
     [eq normal reaction] corrected by the factor 2 derived in the module
     docstring (the paper prints ``B/(8 R^3)``, see :func:`normal_force_paper`).
     """
@@ -270,12 +279,17 @@ def normal_force(alpha, r, B):
 
 
 def normal_force_paper(alpha, r, B):
-    """[eq normal reaction] as printed, ``B/(8 R^3) (1 - c)^2 / c`` (N/m); half of F."""
+    """[eq normal reaction] as printed, ``B/(8 R^3) (1 - c)^2 / c`` (N/m); half of F.
+
+    Implements docs/theory/contact.md (eq normal reaction).
+    """
     return 0.5 * normal_force(alpha, r, B)
 
 
 def friction_torque_available(alpha, r, B, mu):
     """Available friction torque per length ``dM_fmax/ds = mu r cos(a) F`` (N).
+
+    Implements docs/theory/contact.md (eq friction con, eq dM_f).
 
     [eq friction] with the two fixes described in the module docstring:
     ``B mu cos(a) (1 - cos 2a)^2 / (4 r^2 cos 2a)``.

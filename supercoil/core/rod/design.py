@@ -52,7 +52,10 @@ def tilt_slope(pitch, dpitch_ds, r):
 
 
 def twist_rate_for(s, alpha, dalpha_ds, r, L, B, C):
-    """k(2s) (rad/m) that makes [eq da/ds] produce the slope ``dalpha_ds`` at s."""
+    """k(2s) (rad/m) that makes [eq da/ds] produce the slope ``dalpha_ds`` at s.
+
+    Implements docs/theory/design.md (eq da/ds).
+    """
     c = np.cos(2.0 * alpha)
     return (np.sin(2.0 * alpha)
             - dalpha_ds * B * (L - 2.0 * np.asarray(s, float)) * (c**3 - 1.0) / (C * c * c)) \

@@ -53,7 +53,7 @@ import numpy as np
 from supercoil.core.geometry import curvature, torsion
 from supercoil.core.numerics import cumulative_integrals, first_crossing
 from supercoil.core.rod import contact as sc
-from supercoil.core.rod.rough_ode import (
+from supercoil.core.rod.rough_solution import (
     ATOL,
     MAX_NFEV,
     RTOL,
@@ -103,7 +103,10 @@ def phi_diff(ya, yb):
 
 
 def k0_s_of_alpha(alpha, alpha0, L, B, C):
-    """Closed form [eq example k=0]: arclength s (m) at which the tilt equals alpha."""
+    """Closed form [eq example k=0]: arclength s (m) at which the tilt equals alpha.
+
+    Implements docs/theory/rough.md (eq example k=0).
+    """
     x = phi_diff(sc.y_of_alpha(alpha), sc.y_of_alpha(alpha0))
     return -0.5 * L * np.expm1(-(B / C) * x)
 
@@ -115,6 +118,8 @@ def k0_s_max(alpha0, L, B, C):
 
 def k0_y_of_s(s, alpha0, L, B, C):
     """``y = 1 - cos 2 alpha`` at arclength s for k = 0 (vectorised Newton in y).
+
+    Implements docs/theory/rough.md (eq example k=0).
 
     Solves ``q(y) = Phi_target(s) - Phi(y) = 0`` on [0, y0]. q is increasing
     and convex in y (``Phi' < 0``, ``Phi'' < 0``), so Newton's method started at

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from supercoil.core.geometry import curvature, pitch_from_tilt, torsion
-from supercoil.core.numerics import bisect_increasing, safe_newton
+from supercoil.core.numerics import bisect_from_estimate
 from supercoil.core.rod import contact as sc
 from supercoil.exceptions import NoHelixError
 
@@ -30,82 +30,8 @@ TWO_PI = 2.0 * np.pi
 
 #: Elements per block of the smooth and twist-spinning solvers: their temporaries (a few
 #: tens of arrays of the block, 64 kB each) stay in the CPU cache, and the memory beyond
-#: the output is bounded by the block, not by the input (issue 20, item 13).
+#: the output is bounded by the block, not by the input.
 BLOCK = 8192
-
-#: Half-width of the window around the Newton estimate, relative, in which
-#: :func:`bisect_from_estimate` evaluates the function (2^-44 = 5.7e-14: some 200
-#: times the rounding noise of the tilt equations' roots, and 10 halvings to collapse).
-WINDOW = 2.0**-44
-
-
-def bisect_from_estimate(fun, fun_df, args, lo, hi):
-    """:func:`~supercoil.core.numerics.bisect_increasing` of ``fun(x, *args)``, replayed.
-
-    The same result, bit for bit, as ``bisect_increasing(lambda x: fun(x, *args), lo,
-    hi)`` (the bisection halves the same brackets and takes the same midpoint), for
-    about a fifth of the evaluations of ``fun``:
-
-    1. a safeguarded Newton iteration (``fun_df(x, *args) -> (f, df)``) estimates the
-       root x0, and ``fun`` is evaluated at the window ends ``x0 (1 -+ WINDOW)``;
-    2. where ``fun(x0 (1 - WINDOW)) <= 0 < fun(x0 (1 + WINDOW))`` (the sign change lies
-       inside the window), the bisection's midpoints outside the window are decided by
-       their side of it, without evaluating ``fun`` (``fun`` increases, and its rounding
-       noise is some 200 times narrower than the window);
-    3. the bisection then runs as before from the bracket reached, evaluating ``fun``
-       (an element whose bracket has collapsed to adjacent floats keeps it: its
-       midpoint is one of its ends, whose sign is known).
-
-    Where the check of step 2 fails (the estimate missed, e.g. a root near the
-    smallest subnormal) the element gets the plain bisection. 1-D arrays ``lo``,
-    ``hi`` and ``args`` of one length.
-    """
-    with np.errstate(all="ignore"):
-        x0 = safe_newton(lambda x: fun_df(x, *args), 0.5 * (lo + hi), lo, hi, 1e-11,
-                         maxiter=40)
-        wl, wh = x0 * (1.0 - WINDOW), x0 * (1.0 + WINDOW)
-        ok = (np.isfinite(x0) & (wl > lo) & (wh < hi)
-              & ~(fun(wl, *args) > 0) & (fun(wh, *args) > 0))
-    out = np.empty(lo.shape)
-    if not np.all(ok):
-        bad = ~ok
-        sub = _take(args, bad)
-        out[bad] = bisect_increasing(lambda x: fun(x, *sub), lo[bad], hi[bad])
-        if not np.any(ok):
-            return out
-        lo, hi, wl, wh = lo[ok], hi[ok], wl[ok], wh[ok]
-        args = _take(args, ok)
-    lo, hi = lo.copy(), hi.copy()
-    # step 2: the halvings whose midpoint lies outside the window (lo <= wl < wh <= hi
-    # throughout, so a bracket cannot collapse here)
-    for _ in range(1100):
-        mid = 0.5 * (lo + hi)
-        down, up = mid <= wl, mid >= wh
-        if not np.any(down | up):
-            break
-        np.copyto(lo, mid, where=down)
-        np.copyto(hi, mid, where=up)
-    # step 3: the bisection from there, on the whole block for the ~10 halvings most
-    # elements need, then on the few whose bracket had reached the window early
-    for _ in range(12):
-        mid = 0.5 * (lo + hi)
-        up = fun(mid, *args) > 0
-        np.copyto(hi, mid, where=up)
-        np.copyto(lo, mid, where=~up)
-    mid = 0.5 * (lo + hi)
-    left = ~((mid == lo) | (mid == hi))
-    if np.any(left):
-        sub = _take(args, left)
-        mid[left] = bisect_increasing(lambda x: fun(x, *sub), lo[left], hi[left])
-    if out.size == mid.size:
-        return mid
-    out[ok] = mid
-    return out
-
-
-def _take(args, mask):
-    """The arguments at ``mask``: arrays indexed, scalars as they are."""
-    return tuple(a[mask] if np.ndim(a) else a for a in args)
 
 
 def _h(a, a_coef, S, n, r):
@@ -119,8 +45,9 @@ def _h_df(a, a_coef, S, n, r):
     """:func:`_h` and its derivative in alpha (for the Newton estimate)."""
     c, s = np.cos(2.0 * a), np.sin(2.0 * a)
     k, m = S / (2.0 * r), TWO_PI * n
-    f = a_coef * (1.0 - c) * s + c * (k * s - m)
-    df = 2.0 * (a_coef * (s * s + c - c * c) + k * (c * c - s * s) + m * s)
+    y = sc.y_of_alpha(a)  # 1 - cos 2a without cancellation at small tilts
+    f = a_coef * y * s + c * (k * s - m)
+    df = 2.0 * (a_coef * (s * s + y * c) + k * (c * c - s * s) + m * s)
     return f, df
 
 

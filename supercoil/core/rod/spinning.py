@@ -77,8 +77,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil.core.numerics import bisect_from_estimate
 from supercoil.core.rod import contact as sc
-from supercoil.core.rod.smooth import BLOCK, bisect_from_estimate
+from supercoil.core.rod.smooth import BLOCK
 from supercoil.exceptions import NoHelixError
 
 TWO_PI = 2.0 * np.pi
@@ -94,17 +95,27 @@ def spinning_tilt(turns_abs, head_tension, r, L, B, C):
 
     out = np.empty(n.shape)
     flat = out.reshape(-1)
-    for start in range(0, n.size, BLOCK):  # blocks: bounded temporaries (issue 20, item 13)
+    for start in range(0, n.size, BLOCK):  # blocks: bounded temporaries
         nb, Tb = n.flat[start:start + BLOCK], Tp.flat[start:start + BLOCK]
         flat[start:start + BLOCK] = bisect_from_estimate(
-            _G, _G_df, (nb, Tb, r, B, C), np.zeros(nb.shape), np.full(nb.shape, sc.QUARTER_PI))
+            _G, _G_df, (nb, Tb, r, B, C), np.zeros(nb.shape), np.full(nb.shape, sc.QUARTER_PI),
+            start=_small_tilt(Tb * r**2 / (4.0 * B), np.pi * C * nb * r / B))
     return out[()] if out.ndim == 0 else out
+
+
+def _small_tilt(p, q):
+    """Root of the small-tilt limit ``a^3 + p a = q`` of [f4] (p, q >= 0; Cardano), capped
+    below pi/4: a start for Newton (sin a ~ a, sin 2a ~ 2a, cos 2a ~ 1), nothing more."""
+    with np.errstate(all="ignore"):
+        d = np.sqrt(0.25 * q * q + (p / 3.0) ** 3)
+        a = np.cbrt(0.5 * q + d) + np.cbrt(0.5 * q - d)
+    return np.where(np.isfinite(a), np.clip(a, 0.0, 0.99 * sc.QUARTER_PI), 0.5 * sc.QUARTER_PI)
 
 
 def _G(a, n, Tp, r, B, C):
     """[f4] as G(alpha) of the module doc (n = |N| / L), as it is bisected."""
-    return (B * np.sin(a) ** 2 * np.sin(2 * a) / r**2 + 0.5 * Tp * np.sin(a)
-            - TWO_PI * C * n * np.cos(2 * a) / r)
+    sa = np.sin(a)  # once: the same floats as two calls
+    return B * sa**2 * np.sin(2 * a) / r**2 + 0.5 * Tp * sa - TWO_PI * C * n * np.cos(2 * a) / r
 
 
 def _G_df(a, n, Tp, r, B, C):
@@ -123,13 +134,14 @@ def _h0(a, rhs):
 
 def _h0_df(a, rhs):
     s2, c2 = np.sin(2.0 * a), np.cos(2.0 * a)
-    return (1.0 - c2) * s2 - rhs * c2, 2.0 * (s2 * s2 + (1.0 - c2) * c2 + rhs * s2)
+    y = sc.y_of_alpha(a)  # 1 - cos 2a without cancellation at small tilts
+    return y * s2 - rhs * c2, 2.0 * (s2 * s2 + y * c2 + rhs * s2)
 
 
 def slacking_tilt(turns_abs, r, L, B, C):
     """:func:`supercoil.core.rod.contact.initial_tilt` (alpha_0 of [eq ini]) in blocks.
 
-    The same tilts, bit for bit, by :func:`supercoil.core.rod.smooth.bisect_from_estimate`.
+    The tilts of the plain bisection by :func:`supercoil.core.numerics.bisect_from_estimate`.
 
     Raises
     ------
@@ -144,7 +156,8 @@ def slacking_tilt(turns_abs, r, L, B, C):
     for start in range(0, n.size, BLOCK):
         rhs = (C / B) * 4.0 * np.pi * r * n.flat[start:start + BLOCK] / L
         flat[start:start + BLOCK] = bisect_from_estimate(
-            _h0, _h0_df, (rhs,), np.zeros(rhs.shape), np.full(rhs.shape, sc.QUARTER_PI))
+            _h0, _h0_df, (rhs,), np.zeros(rhs.shape), np.full(rhs.shape, sc.QUARTER_PI),
+            start=_small_tilt(0.0, 0.25 * rhs))
     return out[()] if out.ndim == 0 else out
 
 
@@ -160,8 +173,9 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
     alpha = spinning_tilt(turns_abs, head_tension, r, L, B, C)
     Tp = np.broadcast_to(np.asarray(head_tension, float), alpha.shape)
     omega = TWO_PI * np.broadcast_to(np.asarray(turns_abs, float), alpha.shape) / L
-    kappa = np.sin(alpha) ** 2 / r
-    tau = np.sin(alpha) * np.cos(alpha) / r
+    sa = np.sin(alpha)  # once: the same floats as one call per use
+    kappa = sa**2 / r
+    tau = sa * np.cos(alpha) / r
     # T_s > 0 and sec(beta) >= 1 for every root of [f4] (module doc); only rounding
     # or underflow (|N| ~ 1e-300) can push them below, so clamp instead of failing
     Ts = np.maximum(C * omega * tau - 0.5 * B * kappa**2, 0.0)
@@ -187,8 +201,9 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
 
 def exact_energy(alpha, S_helix, turns_abs, head_tension, slack, r, L, B, C):
     """E_p(alpha, S') of the module doc without the S'/L -> 0 limit (J); for checks."""
-    kappa = np.sin(alpha) ** 2 / r
-    tau = np.sin(alpha) * np.cos(alpha) / r
+    sa = np.sin(alpha)  # once: the same floats as one call per use
+    kappa = sa**2 / r
+    tau = sa * np.cos(alpha) / r
     omega = (TWO_PI * turns_abs - tau * S_helix) / L
     h = 0.5 * S_helix * np.cos(alpha) + 0.5 * np.sqrt((L - S_helix) ** 2 - (L - slack) ** 2)
     return 0.5 * B * kappa**2 * S_helix + 0.5 * C * omega**2 * L - head_tension * h

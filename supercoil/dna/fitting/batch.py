@@ -20,21 +20,14 @@ from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 
 import numpy as np
 
-from supercoil._checks import check_material
+from supercoil import display
 from supercoil.dna.fitting.data import RotationData
-from supercoil.dna.fitting.fit import (
-    DEFAULT_VARY,
-    FitSpec,
-    emit,
-    prepare,
-    run_fit,
-)
-from supercoil.dna.fitting.prepare import strip_molecule_keys
+from supercoil.dna.fitting.fit import emit, run_fit
+from supercoil.dna.fitting.options import DEFAULTS, FitOptions, FitSpec
+from supercoil.dna.fitting.prepare import prepare, strip_molecule_keys
 from supercoil.dna.fitting.progress import Progress
 from supercoil.dna.fitting.weights import checked_sigma
-from supercoil.dna.interactions import DEFAULT_INTERACTION
-from supercoil.dna.material import DNA
-from supercoil.dna.models import DEFAULT_MODEL
+from supercoil.dna.validity import check_dna
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
 
@@ -66,15 +59,16 @@ _CONTROLLER = []
 #: the first BLAS thread appeared at 3,600-4,200 points with 3 free parameters,
 #: 2,640-2,730 with 4 and 1,800-2,100 with 5 (9,000-11,000 entries; OpenBLAS runs gemv
 #: threaded from 2304 x 4 = 9,216). Limiting is not free in a fresh worker: its first
-#: ``openblas_set_num_threads`` starts the BLAS threads, which then spin for ~0.1 s of CPU
-#: (measured: 100 ms per worker in 0.5 s idle, 3 threads instead of 1), competing with the
+#: ``openblas_set_num_threads`` starts the BLAS threads, which then spin on the CPU for a
+#: while (measured: 3 threads instead of 1, each spinning while idle), competing with the
 #: fits (the pool's speed-up on 2 workers fell from about 1.8x to 1.7x).
 BLAS_LIMIT_FROM = 8192
 
 
 def _controller():
     """This process's threadpoolctl controller, made once: the library scan of a fresh
-    ``threadpool_limits`` costs ~6 ms (half a fit), a cached controller's limit 0.1 ms."""
+    ``threadpool_limits`` costs about half a fit, a cached controller's limit 1/60 of
+    that."""
     if not _CONTROLLER:
         try:
             from threadpoolctl import ThreadpoolController
@@ -105,31 +99,35 @@ def _fit_worker(task, parent_pid=None, settings=None):
         controller = _controller() if worker and big else None
         if controller is not None:
             with controller.limit(limits=1):
-                core = run_fit(spec)
+                solution = run_fit(spec)
         else:  # serial, a thread, or too small to use BLAS threads: leave them alone
-            core = run_fit(spec)
+            solution = run_fit(spec)
     except Exception as exc:  # reported per molecule, not raised for the batch
         return _row(task, None, f"{type(exc).__name__}: {exc}"), []
-    return _row(task, core, ""), core["warnings"]
+    return _row(task, solution, ""), solution.warnings
 
 
-def _row(task, core, error):
+def _row(task, solution, error):
     """The table row of one molecule (the worker builds it; the client only stacks rows)."""
     layout = task.row
-    ok = core is not None
+    ok = solution is not None
     row = {"molecule": task.label, "success": ok, "determined": ok and not np.any(
-        core["undetermined"]), "error": error, "ndata": int(task.data.n),
-        "reduced_chi_square": float(core["reduced_chi_square"]) if ok else np.nan,
-        "nfev": int(core["nfev"]) if ok else 0}
-    by_name = {n: j for j, n in enumerate(core["names"])} if ok else {}
+        solution.undetermined), "error": error, "ndata": int(task.data.n),
+        # dimensionless, as FitResult.redchi (1 by construction with unit weights); the noise
+        # estimate itself is the residual RMS of the extensions (nm)
+        "reduced_chi_square": float(solution.redchi) if ok else np.nan,
+        "residual_rms": float(solution.channels["extension"]["rms"] * 1e9) if ok else np.nan,
+        "nfev": int(solution.nfev) if ok else 0}
+    by_name = {n: j for j, n in enumerate(solution.names)} if ok else {}
     for name, factor in layout["factors"].items():
         j = by_name.get(name)
-        row[name] = np.nan if j is None else float(core["values"][j] * factor)
-        row[f"{name}_stderr"] = np.nan if j is None else float(core["stderr"][j] * factor)
+        row[name] = np.nan if j is None else float(solution.values[j] * factor)
+        row[f"{name}_stderr"] = np.nan if j is None else float(solution.stderr[j] * factor)
     if layout["torque"]:
-        row["torque_residual_rms"] = (core["channels"]["torque"]["rms"] * 1e21 if ok
-                                      else np.nan)
-    row["warnings"] = "; ".join(m for _, m in core["warnings"]) if ok else ""
+        row["torque_residual_rms"] = (
+            display.to_display(solution.channels["torque"]["rms"], "torque") if ok
+            else np.nan)
+    row["warnings"] = "; ".join(m for _, m in solution.warnings) if ok else ""
     return row
 
 
@@ -137,7 +135,8 @@ def _layout(template):
     """Column names, display factors and units of the result table (from the template)."""
     names = list(template.params.free)
     units = {k: "" for k in ("molecule", "success", "determined", "error", "ndata",
-                             "reduced_chi_square", "nfev")}
+                             "reduced_chi_square", "residual_rms", "nfev")}
+    units["residual_rms"] = "nm"
     for name in names:
         units[name] = units[f"{name}_stderr"] = template.params[name].unit
     torque = template.data.has_torque
@@ -186,11 +185,11 @@ def _chunk_size(n_molecules):
 #: most molecules in one submit to a process pool, and the share of the molecules not yet
 #: submitted that one submit may take (1/8: the last submits carry single molecules).
 #: Measured (200 molecules of 330 points, ProcessPoolExecutor(2), medians of 3): the
-#: parent's CPU per molecule 0.53 ms with one molecule per submit, 0.40 / 0.36 / 0.32 ms
-#: with chunks of up to 2 / 4 / 8 (1/16 of the rest). With fits of ~6.6 ms (the
-#: plectoneme start tables) the parent's share shows in the wall time: speed-up
-#: over serial 1.76-1.77x with (4, 1/16) against 1.81-1.83x with (16, 1/8), parent CPU
-#: 0.31-0.35 against 0.25-0.26 ms per molecule (alternating runs, load 0.5-0.9).
+#: parent's CPU per molecule falls by 25 / 32 / 40 % from one molecule per submit with
+#: chunks of up to 2 / 4 / 8 (1/16 of the rest). With fast fits (the plectoneme start
+#: tables cached) the parent's share shows in the wall time: speed-up over serial
+#: 1.76-1.77x with (4, 1/16) against 1.81-1.83x with (16, 1/8), the parent's CPU per
+#: molecule 20-25 % lower (alternating runs).
 POOL_CHUNK, POOL_TAIL = 16, 8
 
 
@@ -261,10 +260,12 @@ def _collect(pending, executor, finished):
             finished(task.label, row, records)
 
 
-def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=None, sigma=None,
-             fit_turns_offset=True, fit_extension_offset=True, thermal=True, max_nfev=None,
-             tol=1e-10, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION, executor=None,
-             progress=None):
+def fit_many(data, dna, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed, bounds=DEFAULTS.bounds, *,
+             start=DEFAULTS.start, sigma=DEFAULTS.sigma,
+             fit_turns_offset=DEFAULTS.fit_turns_offset,
+             fit_extension_offset=DEFAULTS.fit_extension_offset, thermal=DEFAULTS.thermal,
+             max_nfev=DEFAULTS.max_nfev, tol=DEFAULTS.tol, model=DEFAULTS.model,
+             interaction=DEFAULTS.interaction, executor=None, progress=None):
     """Fit every molecule of ``data`` separately; one result row per molecule.
 
     Parameters
@@ -305,7 +306,11 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         ``determined`` (False when the data of that molecule do not determine
         some free parameter: its ``<name>_stderr`` is inf; also False for a
         failed fit), ``error`` (the exception for a failed fit, else ""),
-        ``ndata``, ``reduced_chi_square``, ``nfev``, then ``<name>`` and
+        ``ndata``, ``reduced_chi_square`` (dimensionless, as
+        :attr:`FitResult.redchi`: 1 by construction with unit weights, the
+        chi-square per degree of freedom with sigmas), ``residual_rms`` (nm,
+        the extension residual RMS: with unit weights the noise estimate by
+        which the errors are scaled), ``nfev``, then ``<name>`` and
         ``<name>_stderr`` for every varied parameter and offset (NaN where the
         fit failed), ``warnings``. Warnings of single fits are also re-issued,
         prefixed by the molecule.
@@ -316,7 +321,7 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         Only for problems common to all molecules (malformed table, unknown
         parameter names); failures of single fits are reported in the table.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     _check_executor(executor)
     fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
     whole = RotationData.from_frame(data)
@@ -324,9 +329,9 @@ def fit_many(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=Non
         whole = whole.with_sigma(checked_sigma(sigma, whole))  # converted once; split by rows
     # validate the arguments once on the whole table as one molecule (names, units, vary):
     # the settings every worker gets (SI floats, no pint objects)
-    template = prepare(None, dna, vary, fixed, bounds, start, None, fit_turns_offset,
-                       fit_extension_offset, thermal, max_nfev, tol, model, interaction,
-                       rotation=whole.take(np.arange(whole.n), "all"))
+    options = FitOptions(vary, fixed, bounds, start, None, fit_turns_offset,
+                         fit_extension_offset, thermal, max_nfev, tol, model, interaction)
+    template = prepare(None, dna, options, rotation=whole.take(np.arange(whole.n), "all"))
     layout = _layout(template)
     labels = list(whole.labels)
     bar = Progress(progress, len(labels))

@@ -29,20 +29,23 @@ criterion (with it every model's ``chi2`` would be ``N``).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 
 import numpy as np
+import pandas as pd
 
 from supercoil._checks import check_flag
-from supercoil.dna.fitting.fit import DEFAULT_VARY, emit, prepare, run_fit
+from supercoil.dna.fitting.fit import emit, run_fit
+from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions
+from supercoil.dna.fitting.prepare import prepare
 from supercoil.dna.fitting.result import FitResult
-from supercoil.dna.interactions import DEFAULT_INTERACTION
 from supercoil.dna.models import get_model
 from supercoil.exceptions import SupercoilError
 from supercoil.tables import make_table, provenance
 
-__all__ = ["compare_models", "information_criteria", "model_labels"]
+__all__ = ["Comparison", "compare_models", "information_criteria", "model_labels"]
 
 
 def information_criteria(chi2, ndata, nvarys):
@@ -51,18 +54,17 @@ def information_criteria(chi2, ndata, nvarys):
     return core + 2 * nvarys, core + math.log(ndata) * nvarys
 
 
-def _fit_one(data, dna, model, vary, own, kw):
+def _fit_one(data, dna, model, vary, own, options):
     m = get_model(model)
     added = [k for k in m.parameters if own and k not in vary]
     names = list(vary) + added
     # the default DNA fields and the model's own parameters added here are dropped when the
     # model does not use them (marko2007 has no radius; without the loop, no loop writhe)
     optional = added + (list(DEFAULT_VARY) if tuple(vary) == DEFAULT_VARY else [])
-    interaction = kw["interaction"] if m.uses_interaction else None
-    spec = prepare(data, dna, vary=names, model=m, optional=optional,
-                   **dict(kw, interaction=interaction))
-    core = run_fit(spec)
-    return FitResult(core, spec, data, dna)
+    interaction = options.interaction if m.uses_interaction else None
+    spec = prepare(data, dna, options.replace(vary=names, model=m, interaction=interaction),
+                   optional=optional)
+    return FitResult(run_fit(spec, time_curve=True), spec, data, dna)
 
 
 def _row(label, result, error):
@@ -73,10 +75,11 @@ def _row(label, result, error):
     aic, bic = result.aic, result.bic  # undetermined parameters are not counted
     row.update(nparams=k, ndata=n, chi_square=result.chi_square,
                reduced_chi_square=result.reduced_chi_square, aic=aic, bic=bic,
+               cpu_seconds=result.cpu_seconds, curve_cpu_seconds=result.curve_cpu_seconds,
                residual_rms=result.residual_rms.m_as("nm"),
                goodness_p=result.goodness.get("p_value", np.nan),
                warnings="; ".join(result.warnings))
-    units = {"residual_rms": "nm"}
+    units = {"residual_rms": "nm", "cpu_seconds": "s", "curve_cpu_seconds": "s"}
     for name in result.names:
         row[name] = result.parameters[name].magnitude
         row[f"{name}_stderr"] = result.stderr[name].magnitude
@@ -86,8 +89,8 @@ def _row(label, result, error):
 
 def _assemble(rows, units):
     stats = ["model", "success", "error", "nparams", "ndata", "chi_square",
-             "reduced_chi_square", "aic", "bic", "delta_aic", "delta_bic", "residual_rms",
-             "goodness_p"]
+             "reduced_chi_square", "aic", "bic", "delta_aic", "delta_bic", "cpu_seconds",
+             "curve_cpu_seconds", "residual_rms", "goodness_p"]
     params = list(dict.fromkeys(k for r in rows for k in r if k not in stats
                                 and k != "warnings"))
     aics = [r.get("aic", np.nan) for r in rows]
@@ -111,17 +114,21 @@ def _assemble(rows, units):
     return cols, all_units
 
 
-def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None, *,
-                   sigma=None, fit_turns_offset=True, fit_extension_offset=True, thermal=True,
-                   interaction=DEFAULT_INTERACTION, max_nfev=None, tol=1e-10,
-                   return_results=False, start=None):
-    """Fit several DNA models to the same data; a table ranked by AIC.
+def compare_models(data, dna, models, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed,
+                   bounds=DEFAULTS.bounds, *, start=DEFAULTS.start, sigma=DEFAULTS.sigma,
+                   fit_turns_offset=DEFAULTS.fit_turns_offset,
+                   fit_extension_offset=DEFAULTS.fit_extension_offset,
+                   thermal=DEFAULTS.thermal, interaction=DEFAULTS.interaction,
+                   max_nfev=DEFAULTS.max_nfev, tol=DEFAULTS.tol, return_results=None):
+    """Fit several DNA models to the same data, rank them by AIC: a :class:`Comparison`.
 
     Parameters
     ----------
-    data, dna, fixed, bounds, sigma, fit_turns_offset, fit_extension_offset, thermal,
-    max_nfev, tol
-        As for :func:`fit_hat_curves`.
+    data, dna, fixed, bounds, start, sigma, fit_turns_offset, fit_extension_offset,
+    thermal, max_nfev, tol
+        As for :func:`fit_hat_curves` (the same for every model; e.g. ``start=
+        {"turns_offset": 0.0}`` for one-sided curves, where the guess from the
+        centre of symmetry fails).
     vary : sequence of str, or dict of model name -> sequence of str
         A sequence: the DNA fields fitted for every model, each model's own
         parameters (``model.parameters``) varied as well. A dict: exactly the
@@ -135,26 +142,27 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         defaults: ``"marko2007(end_loop=True)"`` (:func:`model_labels`).
     interaction : str or Interaction
         For the models with a plectoneme helix (others take none).
-    return_results : bool
-        Also return the :class:`FitResult` of each model (dict by row label).
-    start : dict of str -> Quantity, optional
-        Start values as for :func:`fit_hat_curves` (the same for every model;
-        e.g. ``{"turns_offset": 0.0}`` for one-sided curves, where the guess
-        from the centre of symmetry fails).
+    return_results : bool, optional
+        Deprecated: ``True`` returns the old pair ``(comparison.table,
+        comparison.results)``; the :class:`Comparison` holds both.
 
     Returns
     -------
-    pandas.DataFrame (or (DataFrame, dict) with ``return_results``)
-        One row per model, sorted by AIC (best first): ``model``, ``success``,
-        ``error`` (a failed fit), ``nparams`` (free parameters the data
-        determine, offsets included: those AIC and BIC count), ``ndata``,
-        ``chi_square``, ``reduced_chi_square`` (dimensionless), ``aic``,
-        ``bic``, ``delta_aic``, ``delta_bic`` (from the best model),
-        ``residual_rms`` (nm), ``goodness_p`` (p-value of the goodness-of-fit
-        test, see :mod:`supercoil.dna.fitting.diagnostics`), every fitted
-        parameter and its ``_stderr`` (NaN for models without it),
-        ``warnings``. ``attrs["units"]`` and ``attrs["provenance"]``; the
-        definitions are those of lmfit (module docstring).
+    Comparison
+        ``table``: one row per model, sorted by AIC (best first): ``model``,
+        ``success``, ``error`` (a failed fit), ``nparams`` (free parameters
+        the data determine, offsets included: those AIC and BIC count),
+        ``ndata``, ``chi_square``, ``reduced_chi_square`` (dimensionless),
+        ``aic``, ``bic``, ``delta_aic``, ``delta_bic`` (from the best model),
+        ``cpu_seconds`` (CPU time of the fit, ``time.process_time``, s),
+        ``curve_cpu_seconds`` (CPU time of one evaluation of the model's hat
+        curve at the data points, s), ``residual_rms`` (nm), ``goodness_p``
+        (p-value of the goodness-of-fit test, see
+        :mod:`supercoil.dna.fitting.diagnostics`), every fitted parameter
+        and its ``_stderr`` (NaN for models without it), ``warnings``;
+        ``attrs["units"]`` and ``attrs["provenance"]``; the definitions are
+        those of lmfit (module docstring). ``results``: the
+        :class:`FitResult` of each model that was fitted, by row label.
 
     Raises
     ------
@@ -166,13 +174,17 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     -----
     The warnings of each fit, prefixed by the row label.
     """
-    return_results = check_flag(return_results, "return_results")
+    if return_results is not None:
+        return_results = check_flag(return_results, "return_results")
+        warnings.warn("compare_models(return_results=...) is deprecated: the Comparison it "
+                      "returns holds the table (.table) and the fits (.results)",
+                      DeprecationWarning, stacklevel=2)
     models = _model_list(models)
     if not models:
         raise ValueError("compare_models needs at least one model")
-    kw = dict(fixed=fixed, bounds=bounds, sigma=sigma, fit_turns_offset=fit_turns_offset,
-              fit_extension_offset=fit_extension_offset, thermal=thermal,
-              interaction=interaction, max_nfev=max_nfev, tol=tol, start=start)
+    options = FitOptions(DEFAULTS.vary, fixed, bounds, start, sigma, fit_turns_offset,
+                         fit_extension_offset, thermal, max_nfev, tol, DEFAULTS.model,
+                         interaction)
     rows, units, results = [], {}, {}
     for spec, label in zip(models, model_labels(models), strict=True):
         name = get_model(spec).name
@@ -182,7 +194,7 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
         result, error = None, ""
         try:
             with warnings.catch_warnings(record=True):  # re-issued below with the model name
-                result = _fit_one(data, dna, spec, names, not isinstance(vary, dict), kw)
+                result = _fit_one(data, dna, spec, names, not isinstance(vary, dict), options)
         except SupercoilError as exc:
             error = f"{type(exc).__name__}: {exc}"
         if result is not None:
@@ -197,10 +209,102 @@ def compare_models(data, dna, models, vary=DEFAULT_VARY, fixed=None, bounds=None
     prov = provenance(dna, models=[r["model"] for r in rows],
                       vary={k: list(v) for k, v in vary.items()} if isinstance(vary, dict)
                       else list(vary),
-                      thermal=thermal, interaction=str(getattr(interaction, "name", interaction)),
-                      criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k")
-    table = make_table(cols, all_units, prov)
-    return (table, results) if return_results else table
+                      thermal=thermal, interaction=_interaction_name(interaction),
+                      criteria="lmfit: aic = N ln(chi2/N) + 2 k, bic = N ln(chi2/N) + ln(N) k",
+                      cost="time.process_time of each fit and of one hat-curve evaluation")
+    comparison = Comparison(make_table(cols, all_units, prov),
+                            {r["model"]: results[r["model"]] for r in rows
+                             if r["model"] in results})
+    if return_results is None:
+        return comparison
+    return (comparison.table, comparison.results) if return_results else comparison.table
+
+
+def _deprecated_frame_use(what):
+    warnings.warn(f"using the result of compare_models as a DataFrame ({what}) is deprecated: "
+                  "use its .table", DeprecationWarning, stacklevel=3)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Comparison:
+    """The result of :func:`compare_models`: the ranked table and every model's fit.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per model, best AIC first (columns in :func:`compare_models`),
+        ``attrs["units"]`` and ``attrs["provenance"]``.
+    results : dict of str -> FitResult
+        The fit of each model that converged, by row label, in the table's order.
+
+    For old call sites the DataFrame's attributes and items (``comparison["aic"]``,
+    ``comparison.iloc[0]``) still work, with a DeprecationWarning.
+    """
+
+    table: pd.DataFrame
+    results: dict
+
+    @property
+    def best(self) -> str | None:
+        """The label of the model with the lowest AIC (None when every fit failed)."""
+        ok = self.table[self.table["success"]]
+        return None if ok.empty else str(ok["model"].iloc[0])
+
+    def report(self) -> str:
+        """The ranked table as text (AIC, BIC, CPU cost), then each model's fit report."""
+        lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) "
+                 "+ 2k, bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit "
+                 "and per hat-curve evaluation)",
+                 f"    {'model':<16}{'k':>4}{'chi-square':>14}{'AIC':>12}{'dAIC':>10}"
+                 f"{'BIC':>12}{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
+        for _, row in self.table.iterrows():
+            if not row["success"]:
+                lines.append(f"    {row['model']:<16}  FAILED: {row['error']}")
+                continue
+            lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
+                         f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
+                         f"{row['delta_bic']:>10.2f}{row['cpu_seconds']:>11.3g}"
+                         f"{row['curve_cpu_seconds']:>13.3g}")
+        for name, result in self.results.items():
+            lines += ["", f"==== model {name} ====", result.report()]
+        return "\n".join(lines)
+
+    def plot(self, fig=None, n_curve=300):
+        """Data, every model's fit and residuals (:func:`plot_comparison`); the Figure."""
+        from supercoil.dna.fitting.plot import plot_comparison
+
+        return plot_comparison(self.results, fig=fig, n_curve=n_curve)
+
+    def __repr__(self):
+        rows = ", ".join(f"{m} (dAIC {d:.3g})" for m, d, ok in zip(
+            self.table["model"], self.table["delta_aic"], self.table["success"], strict=True)
+            if ok)
+        return f"<Comparison of {len(self.table)} models: {rows or 'every fit failed'}>"
+
+    def _repr_html_(self):
+        return self.table._repr_html_()
+
+    # ---- the DataFrame the function returned before (old call sites) ----
+    def __getattr__(self, name):
+        if name.startswith("__") or name in ("table", "results"):
+            raise AttributeError(name)
+        value = getattr(self.table, name)
+        _deprecated_frame_use(f".{name}")
+        return value
+
+    def __getitem__(self, key):
+        _deprecated_frame_use("[...]")
+        return self.table[key]
+
+    def __len__(self):
+        return len(self.table)
+
+
+def _interaction_name(interaction):
+    """The provenance entry of ``interaction``: its registry name (a name or an instance)."""
+    from supercoil.dna.interactions.base import Interaction
+
+    return str(interaction.name if isinstance(interaction, Interaction) else interaction)
 
 
 def _model_list(models):
@@ -246,7 +350,8 @@ def model_labels(models):
 
 def _details(m, fmt):
     """``"(option=..., parameter=...)"`` for what differs from the defaults, else ``""``."""
-    parts = [f"{k}={v}" for k, v in m.options().items() if v != m.OPTIONS[k]]
+    defaults = m.option_defaults()
+    parts = [f"{k}={v}" for k, v in m.options().items() if v != defaults[k]]
     for k, q in m.quantities().items():
         if m.values[k] != m.parameters[k].default:
             parts.append(f"{k}={format(q, fmt + '~P')}")
@@ -254,7 +359,7 @@ def _details(m, fmt):
 
 
 def _category(message, result):
-    for cat, msg in result._core["warnings"]:
+    for cat, msg in result.warning_records:
         if msg == message:
             return cat
     return "FitWarning"

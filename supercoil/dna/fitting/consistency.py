@@ -25,6 +25,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from supercoil import display
 from supercoil.dna.fitting.data import RotationData
 from supercoil.exceptions import DataError
 from supercoil.tables import make_table, provenance
@@ -194,8 +195,9 @@ def _summary(rows):
 
 def _curves(rot, idx, margin, floor, label):
     rows = []
-    n, f_all = rot.turns[idx], rot.force[idx] * 1e12
-    z, tau = rot.extension[idx] * 1e9, rot.torque[idx] * 1e21
+    n, f_all = rot.turns[idx], display.to_display(rot.force[idx], "force")
+    z = display.to_display(rot.extension[idx], "extension")
+    tau = display.to_display(rot.torque[idx], "torque")
     for f in np.unique(f_all):
         sel = f_all == f
         order = np.argsort(n[sel], kind="stable")
@@ -287,7 +289,7 @@ def maxwell_check(data, *, margin=0.1, floor=0.2) -> MaxwellCheck:
 
 def report_lines(result) -> list[str]:
     """The Maxwell-check lines of a fit report (none without torque data)."""
-    if not result._spec.data.has_torque:
+    if not result.spec.data.has_torque:
         return []
     try:
         return maxwell_check(result.data).lines()

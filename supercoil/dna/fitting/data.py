@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
-from supercoil.dna.fitting.parameters import parse_unit
+from supercoil.dna.fitting.fit_parameters import parse_unit
 from supercoil.dna.tweezers import check_tweezers_frame
 from supercoil.exceptions import FitError
 from supercoil.units import U, as_turns, magnitude, ureg

@@ -31,11 +31,125 @@ import math
 import numpy as np
 from scipy import stats
 
-__all__ = ["P_THRESHOLD", "bound_records", "chi_square_test", "plausibility_messages",
-           "runs_test"]
+__all__ = ["LENGTH_OFFSET_CORRELATION", "P_THRESHOLD", "bound_records", "chi_square_test",
+           "length_offset_messages", "plausibility_messages", "runaway_hint", "runs_test"]
 
 #: p-value below which a goodness-of-fit test warns (a correct fit warns in 1 of 1000)
 P_THRESHOLD = 1e-3
+
+
+#: |correlation| of the length with an extension offset from which the two are one
+#: direction of the cost (the extension then fixes only ``L g(F) + z0``)
+LENGTH_OFFSET_CORRELATION = 0.99
+#: ... and reported as running away when the length is also this poorly determined
+#: (relative standard error) or this far (ratio) from the length the extensions imply
+LENGTH_RUNAWAY = {"relative_error": 0.02, "ratio": 1.25}
+
+
+def _data_length(data, n0, dna):
+    """The length (m) the extensions imply with no offset: the median over the molecules of
+    the worm-like-chain inversion of the start values (None without an estimate)."""
+    from supercoil.dna.fitting.start import length_start
+
+    est = [length_start(data.turns[g], data.extension[g], data.force[g], n0[i], dna)
+           for i, g in enumerate(data.groups())]
+    est = [e for e in est if e is not None and np.isfinite(e) and e > 0]
+    return float(np.median(est)) if est else None
+
+
+def _length_offset_correlation(params, names, cov, undetermined):
+    """``(offset name, correlation)`` of the length with its most correlated extension offset
+    (NaN when either is undetermined); None when they are not both free."""
+    if "length" not in names:
+        return None
+    i = names.index("length")
+    best = None
+    for j, n in enumerate(names):
+        if params[n].kind != "extension_offset":
+            continue
+        if undetermined[i] or undetermined[j]:
+            return n, math.nan
+        denom = math.sqrt(cov[i, i] * cov[j, j])
+        c = cov[i, j] / denom if denom > 0 else 0.0
+        if best is None or abs(c) > abs(best[1]):
+            best = (n, c)
+    return best
+
+
+def length_offset_messages(params, names, cov, undetermined, data, n0, dna):
+    """A message when the contour length runs away along an extension offset.
+
+    With the tails' relative extension ``g(F)`` of nearly the same shape at
+    every force, ``z = L g(F) + z0`` leaves the fit a flat valley in
+    ``(L, z0)``: on real data, where the model misses the curves' shape, the
+    length runs off along it (to 1e7 nm) with the offset following. Reported
+    when both are free, either is undetermined or their correlation reaches
+    :data:`LENGTH_OFFSET_CORRELATION` in magnitude, and the length is poorly
+    determined or far from the length the extensions imply
+    (:data:`LENGTH_RUNAWAY`; a well-determined length on good data is highly
+    correlated with the offset too, and is not reported). ``cov`` is the
+    covariance of the free parameters ``names`` (SI, after the fit), ``n0`` the
+    fitted turns offsets per molecule, ``dna`` the fitted molecule (SI).
+    Returns a list of 0 or 1 messages.
+    """
+    names = list(names)
+    found = _length_offset_correlation(params, names, cov, np.asarray(undetermined, bool))
+    if found is None:
+        return []
+    offset, r = found
+    if np.isfinite(r) and abs(r) < LENGTH_OFFSET_CORRELATION:
+        return []
+    p = params["length"]
+    implied = _data_length(data, n0, dna)
+    if np.isfinite(r):
+        rel = p.stderr / abs(p.value) if p.value else math.inf
+        ratio = p.value / implied if implied else 1.0
+        if rel <= LENGTH_RUNAWAY["relative_error"] and (
+                1 / LENGTH_RUNAWAY["ratio"] <= ratio <= LENGTH_RUNAWAY["ratio"]):
+            return []
+    how = "undetermined" if not np.isfinite(r) else f"correlation {r:+.4f}"
+    seen = "" if implied is None else (f", the extensions imply about {implied * 1e9:.5g} nm "
+                                       "with no offset")
+    return [f"length and {offset} are degenerate ({how}; fitted length "
+            f"{p.value * p.factor:.6g} ± {p.stderr * p.factor:.2g} {p.unit}{seen}): with both "
+            "free the extensions fix only L g(F) + extension_offset, a flat valley along which "
+            "the length runs away. Fix one of them: hold the extension offset at 0 "
+            "(fit_extension_offset=False) when the instrument measures absolute extensions, "
+            "or hold the length at your molecule's (dna.replace(length=...), length not in "
+            "vary); "
+            "docs/theory/fitting.md#start-values"]
+
+
+#: a length that ends this factor from its start (either way) in a fit that did not
+#: converge ran along the valley of the length and an extension offset
+LENGTH_RUNAWAY_FACTOR = 3.0
+
+
+def runaway_hint(params, u):
+    """The fix to append to a did-not-converge FitError when the length ran away.
+
+    ``u`` is the optimiser's last vector (scaled, in the order of the free
+    parameters); the parameters still hold their start values. Returns "" unless
+    the length and an extension offset are both free and the length ended more
+    than :data:`LENGTH_RUNAWAY_FACTOR` from its start.
+    """
+    free = params.free_params()
+    names = [p.name for p in free]
+    if "length" not in names or not any(p.kind == "extension_offset" for p in free):
+        return ""
+    j = names.index("length")
+    p = free[j]
+    last = float(u[j]) * p.scale
+    if not (p.value > 0 and last > 0) or (
+            1 / LENGTH_RUNAWAY_FACTOR <= last / p.value <= LENGTH_RUNAWAY_FACTOR):
+        return ""
+    f = p.factor
+    return (f"; the length ran from its start {p.value * f:.6g} {p.unit} to {last * f:.6g} "
+            f"{p.unit}: with the length and the extension offset both free the extensions fix "
+            "only L g(F) + extension_offset, a flat valley. Fix one of them: hold the extension "
+            "offset at 0 (fit_extension_offset=False) when the instrument measures absolute "
+            "extensions, or hold the length at your molecule's (dna.replace(length=...), "
+            "length not in vary)")
 
 
 def plausibility_messages(params):

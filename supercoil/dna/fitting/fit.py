@@ -2,171 +2,59 @@
 
 docs/theory/fitting.md. The model (:mod:`supercoil.dna.fitting.model`) is any
 registered DNA model through the model interface; the parameters
-(:mod:`supercoil.dna.fitting.parameters`) are DNA fields, model and interaction
+(:mod:`supercoil.dna.fitting.fit_parameters`) are DNA fields, model and interaction
 parameters and per-molecule offsets. :func:`scipy.optimize.least_squares`
 (trust-region reflective, bounds) on scaled variables; covariance from the thin
 SVD of the Jacobian (:mod:`supercoil.dna.fitting.covariance`); plausibility
 and goodness-of-fit checks (:mod:`supercoil.dna.fitting.diagnostics`).
 
 The engine (:func:`run_fit`) works on a :class:`FitSpec` of plain SI data and
-returns plain data, so :func:`~supercoil.fit_many` runs it in worker processes.
+returns a :class:`~supercoil.dna.fitting.solution.FitSolution` (typed plain data), so
+:func:`~supercoil.fit_many` runs it in worker processes. The keywords the fitting
+functions share have their defaults once, in :data:`~supercoil.dna.fitting.options.DEFAULTS`.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import time
 import warnings
 
 import numpy as np
 from scipy.optimize import least_squares
 
-from supercoil._checks import check_flag, check_material
-from supercoil.core.dna.hat import DENATURATION_FORCE, FULLY_COILED, OVERSTRETCHING_FORCE
+from supercoil import display
+from supercoil._checks import check_flag
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.fitting import diagnostics as _diag
 from supercoil.dna.fitting import offsets as _offsets
 from supercoil.dna.fitting import start as _start
-from supercoil.dna.fitting.channels import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.covariance import covariance
 from supercoil.dna.fitting.data import RotationData
+from supercoil.dna.fitting.fit_parameters import CALIBRATION, FitParameters
+from supercoil.dna.fitting.joint_noise import channels_info, joint_noise, tested_chi2
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.fitting.parameters import CALIBRATION, FitParameters
-from supercoil.dna.fitting.prepare import build_parameters
+from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions, FitSpec
+from supercoil.dna.fitting.prepare import (
+    build_parameters,
+    extension_offset_mode,
+    prepare,
+    resolve_model,
+)
 from supercoil.dna.fitting.result import FitResult
-from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
-from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
-from supercoil.dna.material import DNA
-from supercoil.dna.models import DEFAULT_MODEL, get_model
-from supercoil.dna.validity import check_interaction
+from supercoil.dna.fitting.solution import FitSolution
+from supercoil.dna.validity import check_dna
 from supercoil.exceptions import (
     BoundWarning,
     FitError,
     FitWarning,
-    ModelError,
     NoEquilibriumError,
     SupercoilWarning,
     ValidityError,
     ValidityWarning,
 )
 
-__all__ = ["DEFAULT_VARY", "FitSpec", "fit_hat_curves", "prepare", "run_fit"]
-
-#: the DNA fields fitted by default
-DEFAULT_VARY = ("twist_persistence", "radius")
-
-
-@dataclasses.dataclass
-class FitSpec:
-    """Everything one fit needs, as plain picklable data (SI floats, numpy arrays)."""
-
-    data: RotationData
-    params: FitParameters
-    dna: object  # DNASI
-    xi_is_bending: bool
-    model: object
-    interaction: object
-    thermal: bool
-    max_nfev: int | None
-    tol: float
-    vary: list
-    #: what the preparation decided for the user (a dropped parameter, ...): the report's notes
-    notes: list = dataclasses.field(default_factory=list)
-
-
-def resolve_model(model, interaction):
-    """``(model, interaction)`` instances; ModelError for an interaction the model cannot take."""
-    m = get_model(model)
-    if interaction is None or interaction == DEFAULT_INTERACTION:
-        return m, get_interaction(DEFAULT_INTERACTION)
-    if not m.uses_interaction:
-        raise ModelError(f"model {m.name!r} has no plectoneme helix state, so it takes no "
-                         f"interaction (got interaction={interaction!r})")
-    return m, get_interaction(interaction)
-
-
-def prepare(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, start=None, sigma=None,
-            fit_turns_offset=True, fit_extension_offset=True, thermal=True, max_nfev=None,
-            tol=1e-10, model=DEFAULT_MODEL, interaction=DEFAULT_INTERACTION, params=None,
-            rotation=None, optional=None):
-    """Validate every argument and convert to SI: the :class:`FitSpec` of one fit.
-
-    ``optional``: varied names that are dropped (held at their value, with a
-    note) when the model does not use them; default: the names of
-    :data:`DEFAULT_VARY` when ``vary`` is the default.
-    """
-    thermal = check_flag(thermal, "thermal")
-    fit_turns_offset = check_flag(fit_turns_offset, "fit_turns_offset")
-    fit_extension_offset, z0_per_force = _extension_offset_mode(fit_extension_offset)
-    check_material(dna, DNA, "dna")
-    m, inter = resolve_model(model, interaction)
-    if m.uses_interaction:
-        check_interaction(inter, dna.si)  # with the hard-core scale A/r0
-    else:
-        inter.check(dna.si)
-    own_params = params is not None
-    if rotation is None:
-        rotation = RotationData.from_frame(data)
-    rot = rotation if sigma is None else rotation.with_sigma(checked_sigma(sigma, rotation))
-    check_sigma_scale(rot, dna.si.length)
-    if params is None:
-        params, si, m, inter = build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
-                                                fit_turns_offset, fit_extension_offset,
-                                                z0_per_force)
-    else:
-        if not isinstance(params, FitParameters):
-            raise TypeError(f"params must be a FitParameters, got {type(params).__name__}")
-        if fixed or bounds or start or vary is not DEFAULT_VARY:
-            raise FitError("give either params= or vary/fixed/bounds/start, not both")
-        params, si = params.copy(), dna.si
-        _check_params(params, rot, m, inter)
-    _start.check_length(params, si, rot)
-    if optional is None:  # a params= set is the user's full control: nothing dropped
-        default = (not own_params and not isinstance(vary, str)
-                   and tuple(vary or ()) == DEFAULT_VARY)
-        optional = DEFAULT_VARY if default else ()
-    notes = _start.drop_unused(params, optional, rot, si, m, inter, thermal,
-                         dna.wlc_persistence is None)
-    vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
-    return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal, max_nfev,
-                   float(tol), vary, notes)
-
-
-def _extension_offset_mode(value):
-    """``(fitted, per force)`` from ``fit_extension_offset`` (bool, "per-molecule", "per-force")."""
-    if isinstance(value, str):
-        if value not in ("per-molecule", "per-force"):
-            raise TypeError(f"fit_extension_offset must be True or False, got {value!r} (or "
-                            "'per-molecule', the default, or 'per-force')")
-        return True, value == "per-force"
-    return check_flag(value, "fit_extension_offset"), False
-
-
-def _check_params(params, rot, model, inter):
-    allowed = {"dna": ("length", "bending_persistence", "twist_persistence", "radius"),
-               "model": tuple(model.parameters), "interaction": tuple(inter.parameters),
-               "offset": ("turns_offset", "extension_offset"),
-               "calibration": tuple(CALIBRATION)}
-    forces = np.unique(rot.force)
-    for p in params.values():
-        want = (("per-molecule", "per-force") if p.kind == "extension_offset" else
-                ("per-molecule",)) if p.owner == "offset" else ("global", "per-force")
-        if p.shared not in want:
-            raise FitError(f"parameter {p.name!r}: shared={p.shared!r} is not supported for "
-                           f"{p.owner} parameters (only {' or '.join(map(repr, want))})")
-        if p.shared == "per-force" and not (p.force is not None and np.isclose(
-                forces, p.force, rtol=1e-9, atol=0).any()):
-            raise FitError(f"per-force parameter {p.name!r}: its force is not one of the "
-                           "data's forces")
-        if p.kind not in allowed.get(p.owner, ()):
-            raise FitError(f"parameter {p.name!r}: {p.owner} parameter {p.kind!r} is not one "
-                           f"of {list(allowed.get(p.owner, ()))}")
-        in_data = p.molecule is not None and 0 <= p.molecule < rot.n_molecules
-        if p.owner == "offset" and not in_data:
-            raise FitError(f"parameter {p.name!r}: molecule index {p.molecule} not in the data")
-    if not params.free:
-        raise FitError("nothing to fit: no parameter has vary=True")
-    if rot.n - len(params.free) <= 0:
-        raise FitError(f"{rot.n} data points cannot determine {len(params.free)} free parameters")
+__all__ = ["DEFAULTS", "DEFAULT_VARY", "FitOptions", "FitSpec", "fit_hat_curves", "prepare",
+           "resolve_model", "run_fit"]
 
 
 def _start_offsets(spec, prob):
@@ -180,7 +68,8 @@ def _start_offsets(spec, prob):
     try:
         z_start = np.asarray(prob.points(u)[0].extension, dtype=float)
     except (NoEquilibriumError, ValidityError) as exc:
-        forces = ", ".join(f"{f * 1e12:.4g}" for f in np.unique(data.force))
+        forces = ", ".join(f"{f:.4g}" for f in display.to_display(np.unique(data.force),
+                                                                   "force"))
         raise FitError(
             f"cannot start the fit: the model {spec.model.name!r} fails with the start "
             f"parameters ({prob.describe()}, temperature = {spec.dna.temperature:.6g} K) at "
@@ -225,7 +114,7 @@ def _solve(spec, prob, u0):
     if res.status <= 0 or not np.all(np.isfinite(res.fun)):
         raise FitError(
             f"the fit did not converge ({res.message}) after {res.nfev} evaluations; last "
-            f"parameters: {prob.describe(res.x)}"
+            f"parameters: {prob.describe(res.x)}" + _diag.runaway_hint(spec.params, res.x)
             + (f"; last kernel failure: {prob.last_failure}" if prob.last_failure else ""))
     return res
 
@@ -234,9 +123,14 @@ def _solve(spec, prob, u0):
 solve = _solve
 
 
-def run_fit(spec: FitSpec) -> dict:
-    """Run one fit on a prepared spec; a dict of plain data (picklable), warnings as records."""
-    t0 = time.perf_counter()
+def run_fit(spec: FitSpec, time_curve=False) -> FitSolution:
+    """Run one fit on a prepared spec: a :class:`FitSolution` (plain picklable data).
+
+    Warnings are records in :attr:`FitSolution.warnings` (the caller issues
+    them). ``time_curve``: also measure the CPU time of one evaluation of the
+    model at the data points (:attr:`FitSolution.curve_cpu_seconds`).
+    """
+    t0, c0 = time.perf_counter(), time.process_time()
     cls = (_offsets.PerForceOffsetModel if _offsets.has_per_force_offsets(spec.params)
            else HatCurveModel)
     prob = cls(spec.data, spec.params, spec.dna, spec.model, spec.interaction, spec.thermal,
@@ -273,38 +167,56 @@ def run_fit(spec: FitSpec) -> dict:
     spec.params.set_vector(u, stderr)
     records += _diag.bound_records(spec.params, u)
     pts, z0_pts = prob.points(u)
-    dna, model, inter, n0, z0 = prob.unpack(u)
+    dna, model, inter = prob.fitted(u)
+    n0, z0 = prob.unpack(u)[3:]
     best = np.asarray(pts.extension, dtype=float) + z0_pts
     records += _validity_records(spec, pts, n0, model, dna)
-    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)]
+    records += [("FitWarning", m) for m in _diag.plausibility_messages(spec.params)
+                + _diag.length_offset_messages(spec.params, prob.names, cov, undetermined,
+                                               spec.data, n0, dna)]
     gof, gof_info = _diag.goodness_messages(spec.data.weighting, *tested_chi2(channels, nfree),
                                             spec.data.extension - best, spec.data)
     records += [("FitWarning", m) for m in gof]
-    return {
-        "names": list(prob.names), "params": spec.params, "values": u * scales,
-        "stderr": stderr, "covariance": cov, "start": start, "undetermined": undetermined,
-        "chi_square": chi2, "reduced_chi_square": chi2 / nfree, "ndata": n, "nfree": nfree,
-        "chisqr": chi2 / s2, "redchi": chi2 / s2 / nfree, "jac": J / np.sqrt(s2),
-        "residual_scale": float(np.sqrt(s2)),
-        "nfev": int(res.nfev), "njev": int(prob.njev), "kernel_calls": prob.n_kernel_calls,
-        "status": int(res.status), "message": str(res.message),
-        "kernel_failures": prob.n_kernel_failures, "dna": dna, "model_obj": model,
-        "interaction_obj": getattr(inter, "_inter", inter), "n0": n0, "z0": z0, "model": best,
-        "z0_points": np.asarray(z0_pts, dtype=float),
-        "states": prob.states(u) if prob._per_force else None,
-        "phase": np.asarray(pts.phase), "short_tail": np.asarray(pts.short_tail, dtype=bool),
-        "torque": prob.torque_prediction(u),  # the predicted measured torque
-        "calibration": {k: prob.scale(k, u) for k in CALIBRATION},
-        "plectoneme_length": np.asarray(pts.plectoneme_length, dtype=float),
-        "residual_weighted": r, "goodness": gof_info, "warnings": records,
-        "channels": channels, "notes": list(spec.notes) + start_notes,
-        "seconds": time.perf_counter() - t0,
-    }
+    cpu = time.process_time() - c0
+    return FitSolution(
+        names=list(prob.names), params=spec.params, values=u * scales, stderr=stderr,
+        start=start, covariance=cov, undetermined=np.asarray(undetermined, dtype=bool),
+        chi_square=chi2, reduced_chi_square=chi2 / nfree, chisqr=chi2 / s2,
+        redchi=chi2 / s2 / nfree, ndata=n, nfree=nfree, jac=J / np.sqrt(s2),
+        residual_weighted=r, residual_scale=float(np.sqrt(s2)),
+        nfev=int(res.nfev), njev=int(prob.njev), kernel_calls=int(prob.n_kernel_calls),
+        kernel_failures=int(prob.n_kernel_failures), status=int(res.status),
+        message=str(res.message), dna=dna, model=model,
+        interaction=inter,
+        turns_offset=n0, extension_offset=z0,
+        extension_offset_points=np.asarray(z0_pts, dtype=float),
+        states=prob.states(u) if prob.per_force else None, best_fit=best,
+        torque=prob.torque_prediction(u),  # the predicted measured torque
+        phase=np.asarray(pts.phase), short_tail=np.asarray(pts.short_tail, dtype=bool),
+        plectoneme_length=np.asarray(pts.plectoneme_length, dtype=float),
+        calibration={k: prob.scale(k, u) for k in CALIBRATION}, goodness=gof_info,
+        warnings=records, channels=channels, notes=list(spec.notes) + start_notes,
+        seconds=time.perf_counter() - t0, cpu_seconds=cpu,
+        curve_cpu_seconds=_curve_cost(prob, u) if time_curve else None)
+
+
+def _curve_cost(prob, u):
+    """CPU seconds of one model evaluation at the data points (``time.process_time``; the
+    mean of repeats until 20 ms of CPU, at most 50)."""
+    dna, model, inter = prob.fitted(u)
+    turns = prob.data.turns - prob.unpack(u)[3][prob.data.mol_index]
+    force = prob.data.force * prob.scale("force_scale", u)
+    n, c0 = 0, time.process_time()
+    while n < 50 and (n == 0 or time.process_time() - c0 < 0.02):
+        model.points(turns, force, dna, prob.thermal, inter, None)
+        n += 1
+    return (time.process_time() - c0) / n
 
 
 def _validity_records(spec, pts, n0, model, dna):
+    """The fit's validity warnings: points outside the model's range, then the model's
+    messages at the data (the shared limits and its own, :meth:`DNAModel.validity`)."""
     data = spec.data
-    n = data.n
     n_eff = data.turns - n0[data.mol_index]
     phase = np.asarray(pts.phase)
     short = np.asarray(pts.short_tail, dtype=bool)
@@ -312,24 +224,12 @@ def _validity_records(spec, pts, n0, model, dna):
     bad = short | (phase == FULLY_COILED)
     if bad.any():
         out.append(("ValidityWarning",
-                    f"{int(bad.sum())} of {n} data points lie where the hat-curve model is not "
-                    f"valid ({int((phase == FULLY_COILED).sum())} fully coiled, "
+                    f"{int(bad.sum())} of {data.n} data points lie where the hat-curve model "
+                    f"is not valid ({int((phase == FULLY_COILED).sum())} fully coiled, "
                     f"{int(short.sum())} with a tail shorter than a few persistence lengths); "
                     "exclude the large-|turns| ends of the curves"))
-    out += [("ValidityWarning", m)
-            for m in model.validity(n_eff, data.force, pts, dna, spec.thermal)]
-    over = data.force > OVERSTRETCHING_FORCE
-    if over.any():
-        out.append(("ValidityWarning",
-                    f"{int(over.sum())} data points are above {OVERSTRETCHING_FORCE * 1e12:g} "
-                    "pN, where B-DNA overstretches; the model (inextensible DNA) ignores it"))
-    denat = (data.force > DENATURATION_FORCE) & (n_eff < 0)
-    if denat.any() and not model.describes_denaturation:
-        out.append(("ValidityWarning",
-                    f"{int(denat.sum())} data points have negative turns at forces above "
-                    f"{DENATURATION_FORCE * 1e12:g} pN, where real DNA denatures; the model "
-                    "(symmetric in N) does not describe them"))
-    return out
+    return out + [("ValidityWarning", m)
+                  for m in model.validity(n_eff, data.force, pts, dna, spec.thermal)]
 
 
 _WARNING_CLASSES = {"BoundWarning": BoundWarning, "FitWarning": FitWarning,
@@ -343,10 +243,12 @@ def emit(records, prefix="", stacklevel=3):
                       stacklevel=stacklevel)
 
 
-def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=None,
-                   sigma=None, fit_turns_offset=True, fit_extension_offset=True, thermal=True,
-                   max_nfev=None, tol=1e-10, model=DEFAULT_MODEL,
-                   interaction=DEFAULT_INTERACTION, params=None):
+def fit_hat_curves(data, dna, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed, bounds=DEFAULTS.bounds,
+                   *, start=DEFAULTS.start, sigma=DEFAULTS.sigma,
+                   fit_turns_offset=DEFAULTS.fit_turns_offset,
+                   fit_extension_offset=DEFAULTS.fit_extension_offset,
+                   thermal=DEFAULTS.thermal, max_nfev=DEFAULTS.max_nfev, tol=DEFAULTS.tol,
+                   model=DEFAULTS.model, interaction=DEFAULTS.interaction, params=None):
     """Fit a hat-curve model to rotation curves at several forces at once.
 
     Parameters
@@ -444,16 +346,18 @@ def fit_hat_curves(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
         Data points in the short-tail or fully coiled region; negative turns
         above 0.8 pN (denaturation); the model's own validity messages.
     """
-    spec = prepare(data, dna, vary, fixed, bounds, start, sigma, fit_turns_offset,
-                   fit_extension_offset, thermal, max_nfev, tol, model, interaction, params)
-    core = run_fit(spec)
-    emit(core["warnings"])
-    return FitResult(core, spec, data, dna)
+    options = FitOptions(vary, fixed, bounds, start, sigma, fit_turns_offset,
+                         fit_extension_offset, thermal, max_nfev, tol, model, interaction)
+    spec = prepare(data, dna, options, params=params)
+    solution = run_fit(spec)
+    emit(solution.warnings)
+    return FitResult(solution, spec, data, dna)
 
 
-def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, start=None,
-                   fit_turns_offset=True, fit_extension_offset=True, model=DEFAULT_MODEL,
-                   interaction=DEFAULT_INTERACTION) -> FitParameters:
+def fit_parameters(data, dna, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed, bounds=DEFAULTS.bounds,
+                   *, start=DEFAULTS.start, fit_turns_offset=DEFAULTS.fit_turns_offset,
+                   fit_extension_offset=DEFAULTS.fit_extension_offset, model=DEFAULTS.model,
+                   interaction=DEFAULTS.interaction) -> FitParameters:
     """The :class:`FitParameters` that :func:`fit_hat_curves` would build (to edit, then pass
     as ``params=``): start values, bounds, ``vary`` flags, plausible limits.
 
@@ -461,10 +365,10 @@ def fit_parameters(data, dna, vary=DEFAULT_VARY, fixed=None, bounds=None, *, sta
     Model and interaction parameters held fixed must be set on the model or
     interaction instance passed to the fit.
     """
-    check_material(dna, DNA, "dna")
+    check_dna(dna)
     m, inter = resolve_model(model, interaction)
     rot = RotationData.from_frame(data)
-    z0_fit, z0_per_force = _extension_offset_mode(fit_extension_offset)
+    z0_fit, z0_per_force = extension_offset_mode(fit_extension_offset)
     return build_parameters(rot, dna, m, inter, vary, fixed, bounds, start,
                             check_flag(fit_turns_offset, "fit_turns_offset"), z0_fit,
                             z0_per_force)[0]
@@ -482,7 +386,7 @@ def __getattr__(name):
 
         return getattr(importlib.import_module(f"supercoil.dna.fitting.{_MOVED[name]}"), name)
     if name == "PHYSICAL_PARAMETERS":
-        from supercoil.dna.fitting.parameters import DNA_FIELDS
+        from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 
         return DNA_FIELDS
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

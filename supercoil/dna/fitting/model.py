@@ -6,7 +6,7 @@ For point i of molecule m at force T_i and turns N_i (docs/theory/fitting.md#the
 
 ``hat`` is any registered :class:`~supercoil.dna.models.base.DNAModel`
 (``model.points``), evaluated for the whole data set in one call. The
-parameters (:class:`~supercoil.dna.fitting.parameters.FitParameters`) go to the
+parameters (:class:`~supercoil.dna.fitting.fit_parameters.FitParameters`) go to the
 molecule (DNA fields, at the float level: a :class:`~supercoil.dna.material.DNASI`
 with the derived rigidities recomputed), to ``model.replace(...)``, to
 ``interaction.replace(...)`` or to the per-molecule offsets.
@@ -17,7 +17,7 @@ residual vector is ``[(z_model - z) / sigma_z, (tau_model - tau) / sigma_tau]``
 channels, the extension offsets on the extensions only.
 
 Calibration nuisance parameters (docs/theory/fitting.md#calibration-nuisance-parameters,
-:data:`~supercoil.dna.fitting.parameters.CALIBRATION`; both 1 unless given):
+:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`; both 1 unless given):
 the kernel is evaluated at ``force_scale x`` the data's (nominal) force, and the
 measured torque is predicted as ``tau_model / torque_scale`` (model torque =
 torque_scale x measured torque); the data and their sigmas are never rescaled.
@@ -78,11 +78,21 @@ class _CachedInteraction:
     """An interaction whose ``equilibrium`` is memoised within one fit."""
 
     def __init__(self, interaction, store):
+        self.interaction = interaction  # the bare interaction (the fit result keeps it)
         self._inter = interaction
         self._store = store
 
     def __getattr__(self, name):
         return getattr(self._inter, name)
+
+    def unrecorded(self):
+        """Itself: the cache records nothing the shared checks read (trial states stay cached)."""
+        return self
+
+    @property
+    def wrapped(self):
+        """The interaction itself (without the memo)."""
+        return self._inter
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)
@@ -140,6 +150,11 @@ class HatCurveModel:
         self._calibration.update({p.kind: (None, p.value) for p in params.values()
                                   if p.owner == "calibration" and not p.vary})
         self._per_force = any(p.shared == "per-force" for p in params.values())
+
+    @property
+    def per_force(self) -> bool:
+        """Some model or DNA parameter is fitted per force (each force its own state)."""
+        return self._per_force
 
     def set_torque_sigma(self, sigma):
         """Weights of the torque channel: ``1 / sigma`` (N m, scalar or per point)."""
@@ -246,9 +261,15 @@ class HatCurveModel:
                     arr[sel] = a
         return HatPoints(*out)
 
+    def fitted(self, u, force=None):
+        """``(dna SI, model, interaction)`` at ``u`` (at ``force`` with per-force parameters),
+        the interaction without the fit's memo (plain picklable instances)."""
+        dna, model, inter = self.unpack(u, force)[:3]
+        return dna, model, inter.wrapped
+
     def states(self, u):
         """``{force: (dna, model, interaction)}`` at ``u`` for every force of the data."""
-        return {float(f): self.unpack(u, f)[:3] for f in np.unique(self.data.force)}
+        return {float(f): self.fitted(u, f) for f in np.unique(self.data.force)}
 
     # ---- model, residual ----
     def points(self, u):

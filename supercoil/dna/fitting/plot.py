@@ -4,48 +4,57 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil import display
 from supercoil.dna.fitting.result import fmt_pm
 from supercoil.exceptions import SupercoilError
 
-__all__ = ["plot_comparison", "plot_fit"]
+__all__ = ["plot_comparison", "plot_fit", "save_figure"]
 
 _MARKERS = "osd^v<>p*hX"
 
 
-def _z0(core, mol):
+def _nm(si):
+    return display.to_display(si, "extension")
+
+
+def _pn_nm(si):
+    return display.to_display(si, "torque")
+
+
+def _z0(solution, mol):
     """Extension offset per point: per molecule, or per curve (``"per-force"`` offsets)."""
-    z = core.get("z0_points")
-    return core["z0"][mol] if z is None else z
+    z = solution.extension_offset_points
+    return solution.extension_offset[mol] if z is None else z
 
 
 def _curve(result, force, grid, field="extension"):
     """The fitted hat curve (offset-free, nm; or the torque, pN nm) on ``grid`` turns at
     ``force`` (N)."""
-    c = result._core
-    dna, model, inter = c["dna"], c["model_obj"], c["interaction_obj"]
-    if c.get("states"):  # per-force parameters: the molecule and model at this force
-        dna, model, inter = c["states"][float(force)]
-    scale = c.get("calibration", {})  # docs/theory/fitting.md#calibration-nuisance-parameters
+    c = result.solution
+    dna, model, inter = c.dna, c.model, c.interaction
+    if c.states:  # per-force parameters: the molecule and model at this force
+        dna, model, inter = c.states[float(force)]
+    scale = c.calibration  # docs/theory/fitting.md#calibration-nuisance-parameters
     pts = model.points(grid, np.full_like(grid, force * scale.get("force_scale", 1.0)), dna,
                        result.thermal, inter, None)
     if field == "extension":
-        return np.asarray(pts.extension) * 1e9
-    return np.asarray(getattr(pts, field)) * 1e21 / scale.get("torque_scale", 1.0)
+        return _nm(pts.extension)
+    return _pn_nm(getattr(pts, field)) / scale.get("torque_scale", 1.0)
 
 
 def _torque_panels(result, axes, k, f, grid):
     """Rows 3 and 4 of a joint fit: measured torque with the fitted torque, residuals."""
-    d, c = result._spec.data, result._core
+    d, c = result.spec.data, result.solution
     ax, axr = axes[2, k], axes[3, k]
     mol = d.mol_index
-    n_eff = d.turns - c["n0"][mol]
+    n_eff = d.turns - c.turns_offset[mol]
     for i in range(len(d.labels)):
         m = (d.force == f) & (mol == i)
         if not m.any():
             continue
         kw = {"marker": _MARKERS[i % len(_MARKERS)], "ms": 3, "ls": "none", "alpha": 0.6}
-        ax.plot(n_eff[m], d.torque[m] * 1e21, **kw)
-        axr.plot(n_eff[m], (d.torque[m] - c["torque"][m]) * 1e21, **kw)
+        ax.plot(n_eff[m], _pn_nm(d.torque[m]), **kw)
+        axr.plot(n_eff[m], _pn_nm(d.torque[m] - c.torque[m]), **kw)
     try:
         ax.plot(grid, _curve(result, f, grid, "torque"), "k-", lw=1.5)
     except SupercoilError:
@@ -57,12 +66,12 @@ def _torque_panels(result, axes, k, f, grid):
 
 
 def _data_panels(result, axes, k, f):
-    d, c = result._spec.data, result._core
+    d, c = result.spec.data, result.solution
     ax, axr = axes[0, k], axes[1, k]
     mol = d.mol_index
-    n_eff = d.turns - c["n0"][mol]
-    z_corr = (d.extension - _z0(c, mol)) * 1e9
-    resid = (d.extension - c["model"]) * 1e9
+    n_eff = d.turns - c.turns_offset[mol]
+    z_corr = _nm(d.extension - _z0(c, mol))
+    resid = _nm(d.extension - c.best_fit)
     sel = d.force == f
     for i, lab in enumerate(d.labels):
         m = sel & (mol == i)
@@ -75,17 +84,48 @@ def _data_panels(result, axes, k, f):
     return n_eff[sel]
 
 
-def plot_fit(result, fig=None, n_curve=300):
+def save_figure(fig, path, dpi):
+    """Save ``fig`` to ``path`` (its folder created) when ``path`` is given; returns ``fig``."""
+    if path is not None:
+        from pathlib import Path
+
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(path, dpi=dpi)
+    return fig
+
+
+def plot_fit(result, fig=None, n_curve=300, path=None, dpi=120):
     """Data, fit and residuals per force (offset-corrected); returns the Figure.
 
     Top row: extension minus the molecule's extension offset against turns
     minus its turns offset, with the fitted hat curve. Second row: residuals
     ``data - model``. With torque data (a joint fit) two more rows: the
     measured torque with the fitted torque, and the torque residuals.
+
+    Parameters
+    ----------
+    result : FitResult
+    fig : matplotlib.figure.Figure, optional
+        Draw into this (empty) figure; default a new one from ``pyplot``.
+    n_curve : int
+        Points of each fitted curve.
+    path : str or Path, optional
+        Also save the figure there (format from the suffix; folder created).
+    dpi : float
+        Resolution of the saved file (dots per inch).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Shown by nothing here: a notebook displays it, a script calls
+        ``matplotlib.pyplot.show()`` (an interactive backend; on Agg, the
+        default without a display, nothing appears) or saves it (``path=``
+        or ``fig.savefig``).
     """
     import matplotlib.pyplot as plt
 
-    d, c = result._spec.data, result._core
+    d, c = result.spec.data, result.solution
     forces = np.unique(d.force)
     nf = len(forces)
     torque = d.has_torque
@@ -103,9 +143,9 @@ def plot_fit(result, fig=None, n_curve=300):
         except SupercoilError:
             sel = d.force == f
             order = np.argsort(n_sel)
-            z = (c["model"][sel] - _z0(c, d.mol_index)[sel])[order] * 1e9
+            z = _nm((c.best_fit[sel] - _z0(c, d.mol_index)[sel])[order])
             ax.plot(n_sel[order], z, "k-", lw=1.5, label="fit" if k == 0 else None)
-        ax.set_title(f"F = {f * 1e12:.3g} pN")
+        ax.set_title(f"F = {display.to_display(f, 'force'):.3g} pN")
         axr.axhline(0, color="k", lw=0.8)
         if torque:
             _torque_panels(result, axes, k, f, grid)
@@ -117,12 +157,12 @@ def plot_fit(result, fig=None, n_curve=300):
     text = ", ".join(
         f"{k} = {fmt_pm(result.parameters[k].magnitude, result.stderr[k].magnitude)} "
         f"{result.units[k]}" for k in result.names if result.params[k].owner != "offset")
-    if result.weighting == "unit":  # the reduced chi-square is a variance in nm^2 here
+    if result.weighting == "unit":  # the reduced chi-square is 1 by construction here
         stat = f"noise estimate (residual RMS) {result.residual_rms.magnitude:.3g} nm"
     else:
         stat = f"reduced chi-square {result.reduced_chi_square:.3g}"
     fig.suptitle(f"hat-curve fit ({result.model.name}): {text}; {stat}", fontsize="medium")
-    return fig
+    return save_figure(fig, path, dpi)
 
 
 def plot_comparison(results, fig=None, n_curve=300):
@@ -135,7 +175,7 @@ def plot_comparison(results, fig=None, n_curve=300):
     import matplotlib.pyplot as plt
 
     first = next(iter(results.values()))
-    d = first._spec.data
+    d = first.spec.data
     forces = np.unique(d.force)
     nf = len(forces)
     if fig is None:
@@ -144,24 +184,25 @@ def plot_comparison(results, fig=None, n_curve=300):
                         gridspec_kw={"height_ratios": [3, 1.4]})
     for k, f in enumerate(forces):
         ax, axr = axes[0, k], axes[1, k]
-        c = first._core
+        c = first.solution
         sel = d.force == f
-        n_eff = (d.turns - c["n0"][d.mol_index])[sel]
-        ax.plot(n_eff, (d.extension - _z0(c, d.mol_index))[sel] * 1e9, "o", ms=3,
+        n_eff = (d.turns - c.turns_offset[d.mol_index])[sel]
+        ax.plot(n_eff, _nm(d.extension - _z0(c, d.mol_index))[sel], "o", ms=3,
                 color="0.6", label="data" if k == 0 else None)
         grid = np.linspace(n_eff.min(), n_eff.max(), n_curve)
         for j, (label, r) in enumerate(results.items()):
             color = f"C{j}"
-            rc = r._core
-            shift = (rc["n0"][0] - c["n0"][0])
+            rc = r.solution
+            shift = (rc.turns_offset[0] - c.turns_offset[0])
             try:
-                ax.plot(grid, _curve(r, f, grid - shift) + (rc["z0"][0] - c["z0"][0]) * 1e9,
+                ax.plot(grid, _curve(r, f, grid - shift)
+                        + _nm(rc.extension_offset[0] - c.extension_offset[0]),
                         "-", color=color, lw=1.4, label=label if k == 0 else None)
             except SupercoilError:
                 pass
-            resid = (r._spec.data.extension - rc["model"])[sel] * 1e9
+            resid = _nm(r.spec.data.extension - rc.best_fit)[sel]
             axr.plot(n_eff, resid, ".", ms=3, color=color)
-        ax.set_title(f"F = {f * 1e12:.3g} pN")
+        ax.set_title(f"F = {display.to_display(f, 'force'):.3g} pN")
         axr.axhline(0, color="k", lw=0.8)
         axr.set_xlabel("turns - turns offset")
         if k == 0:

@@ -1,11 +1,14 @@
-"""From the keyword arguments of a fit (vary, fixed, bounds, start) to :class:`FitParameters`.
+"""From the keyword arguments of a fit to its :class:`FitSpec` (:func:`prepare`).
+
+The names of ``vary``, ``fixed``, ``bounds`` and ``start`` become
+:class:`FitParameters` (:func:`build_parameters`).
 
 Names a fit accepts: the DNA fields (:data:`DNA_FIELDS`; ``temperature`` only
 in ``fixed``), the parameters the DNA model and the interaction declare
 (``model.parameters``, ``interaction.parameters``), and the offsets
 ``turns_offset`` / ``extension_offset`` (all molecules) or
 ``turns_offset[<molecule>]`` (one molecule), and the calibration scales
-(:data:`~supercoil.dna.fitting.parameters.CALIBRATION`: ``torque_scale``,
+(:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`: ``torque_scale``,
 ``force_scale``; held at 1 unless varied or fixed).
 """
 
@@ -16,8 +19,11 @@ import re
 
 import numpy as np
 
-from supercoil.dna.fitting.model import dna_si
-from supercoil.dna.fitting.parameters import (
+from supercoil import display
+from supercoil._checks import check_flag
+from supercoil.dna.fitting import start as _start
+from supercoil.dna.fitting.data import RotationData
+from supercoil.dna.fitting.fit_parameters import (
     CALIBRATION,
     DNA_FIELDS,
     PLAUSIBLE,
@@ -25,10 +31,17 @@ from supercoil.dna.fitting.parameters import (
     FitParameters,
     calibration_parameter,
 )
-from supercoil.exceptions import FitError
+from supercoil.dna.fitting.model import dna_si
+from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions, FitSpec
+from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
+from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
+from supercoil.dna.models import get_model
+from supercoil.dna.validity import check_dna, check_interaction
+from supercoil.exceptions import FitError, ModelError
 from supercoil.units import U, as_turns, magnitude
 
-__all__ = ["Z0_SCALE", "build_parameters", "plain"]
+__all__ = ["Z0_SCALE", "build_parameters", "extension_offset_mode", "plain", "prepare",
+           "resolve_model"]
 
 Z0_SCALE = 1e-8  # scaled extension-offset variable: units of 10 nm
 _NAME = re.compile(r"^(?P<base>turns_offset|extension_offset)(?:\[(?P<mol>.*)\])?$")
@@ -208,7 +221,8 @@ def _add_per_force_offsets(params, data, i, label, entry, source):
     """One extension offset per force of molecule ``i`` (``extension_offset[0.3 pN]``)."""
     v, given, free = entry
     for f in np.unique(data.force[data.mol_index == i]):
-        inner = f"{f * 1e12:.6g} pN" if not data.has_molecule else f"{label}, {f * 1e12:.6g} pN"
+        force = display.text(f, "force")
+        inner = force if not data.has_molecule else f"{label}, {force}"
         params.add(FitParameter(f"extension_offset[{inner}]", v, "nm", vary=free,
                                 shared="per-force", molecule=i, force=float(f),
                                 kind="extension_offset", owner="offset",
@@ -285,3 +299,110 @@ def strip_molecule_keys(d):
             raise FitError(f"fit_many fits each molecule alone: give {m.group('base')!r}, "
                            f"not {k!r}")
     return dict(d)
+
+
+def resolve_model(model, interaction):
+    """``(model, interaction)`` instances; ModelError for an interaction the model cannot take."""
+    m = get_model(model)
+    if interaction is None or interaction == DEFAULT_INTERACTION:
+        return m, get_interaction(DEFAULT_INTERACTION)
+    if not m.uses_interaction:
+        raise ModelError(f"model {m.name!r} has no plectoneme helix state, so it takes no "
+                         f"interaction (got interaction={interaction!r})")
+    return m, get_interaction(interaction)
+
+
+def prepare(data, dna, options=None, *, params=None, rotation=None, optional=None,
+            **keywords):
+    """Validate every argument and convert to SI: the :class:`FitSpec` of one fit.
+
+    ``options`` (a :class:`FitOptions`, default :data:`DEFAULTS`) holds the
+    keywords of :func:`~supercoil.fit_hat_curves`; ``keywords`` (the same
+    names) override its fields. ``params``: a full :class:`FitParameters`
+    set (excludes ``vary``, ``fixed``, ``bounds`` and ``start``).
+    ``rotation``: the data already converted (:class:`RotationData`; then
+    ``data`` is not read). ``optional``: varied names that are dropped (held
+    at their value, with a note) when the model does not use them; default:
+    the names of :data:`DEFAULT_VARY` when ``vary`` is the default.
+    """
+    if options is None:
+        options = DEFAULTS
+    elif not isinstance(options, FitOptions):
+        raise TypeError(f"options must be a FitOptions, got {type(options).__name__} (give "
+                        "the fit's keywords by name)")
+    o = options.replace(**keywords) if keywords else options
+    thermal = check_flag(o.thermal, "thermal")
+    fit_turns_offset = check_flag(o.fit_turns_offset, "fit_turns_offset")
+    fit_extension_offset, z0_per_force = extension_offset_mode(o.fit_extension_offset)
+    check_dna(dna)
+    m, inter = resolve_model(o.model, o.interaction)
+    if m.uses_interaction:
+        check_interaction(inter, dna.si)  # with the hard-core scale A/r0
+    else:
+        inter.check(dna.si)
+    own_params = params is not None
+    if rotation is None:
+        rotation = RotationData.from_frame(data)
+    rot = (rotation if o.sigma is None
+           else rotation.with_sigma(checked_sigma(o.sigma, rotation)))
+    check_sigma_scale(rot, dna.si.length)
+    vary = o.vary
+    if params is None:
+        params, si, m, inter = build_parameters(rot, dna, m, inter, vary, o.fixed, o.bounds,
+                                                o.start, fit_turns_offset,
+                                                fit_extension_offset, z0_per_force)
+    else:
+        if not isinstance(params, FitParameters):
+            raise TypeError(f"params must be a FitParameters, got {type(params).__name__}")
+        if o.fixed or o.bounds or o.start or vary is not DEFAULT_VARY:
+            raise FitError("give either params= or vary/fixed/bounds/start, not both")
+        params, si = params.copy(), dna.si
+        _check_params(params, rot, m, inter)
+    _start.check_length(params, si, rot)
+    if optional is None:  # a params= set is the user's full control: nothing dropped
+        default = (not own_params and not isinstance(vary, str)
+                   and tuple(vary or ()) == DEFAULT_VARY)
+        optional = DEFAULT_VARY if default else ()
+    notes = _start.drop_unused(params, optional, rot, si, m, inter, thermal,
+                               dna.wlc_persistence is None)
+    vary = list(dict.fromkeys(p.kind for p in params.free_params() if p.owner != "offset"))
+    return FitSpec(rot, params, si, dna.wlc_persistence is None, m, inter, thermal,
+                   o.max_nfev, float(o.tol), vary, notes)
+
+
+def extension_offset_mode(value):
+    """``(fitted, per force)`` from ``fit_extension_offset`` (bool, "per-molecule", "per-force")."""
+    if isinstance(value, str):
+        if value not in ("per-molecule", "per-force"):
+            raise TypeError(f"fit_extension_offset must be True or False, got {value!r} (or "
+                            "'per-molecule', the default, or 'per-force')")
+        return True, value == "per-force"
+    return check_flag(value, "fit_extension_offset"), False
+
+
+def _check_params(params, rot, model, inter):
+    allowed = {"dna": ("length", "bending_persistence", "twist_persistence", "radius"),
+               "model": tuple(model.parameters), "interaction": tuple(inter.parameters),
+               "offset": ("turns_offset", "extension_offset"),
+               "calibration": tuple(CALIBRATION)}
+    forces = np.unique(rot.force)
+    for p in params.values():
+        want = (("per-molecule", "per-force") if p.kind == "extension_offset" else
+                ("per-molecule",)) if p.owner == "offset" else ("global", "per-force")
+        if p.shared not in want:
+            raise FitError(f"parameter {p.name!r}: shared={p.shared!r} is not supported for "
+                           f"{p.owner} parameters (only {' or '.join(map(repr, want))})")
+        if p.shared == "per-force" and not (p.force is not None and np.isclose(
+                forces, p.force, rtol=1e-9, atol=0).any()):
+            raise FitError(f"per-force parameter {p.name!r}: its force is not one of the "
+                           "data's forces")
+        if p.kind not in allowed.get(p.owner, ()):
+            raise FitError(f"parameter {p.name!r}: {p.owner} parameter {p.kind!r} is not one "
+                           f"of {list(allowed.get(p.owner, ()))}")
+        in_data = p.molecule is not None and 0 <= p.molecule < rot.n_molecules
+        if p.owner == "offset" and not in_data:
+            raise FitError(f"parameter {p.name!r}: molecule index {p.molecule} not in the data")
+    if not params.free:
+        raise FitError("nothing to fit: no parameter has vary=True")
+    if rot.n - len(params.free) <= 0:
+        raise FitError(f"{rot.n} data points cannot determine {len(params.free)} free parameters")

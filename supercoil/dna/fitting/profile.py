@@ -73,15 +73,24 @@ class ProfileLikelihood:
         return (_crossing(self.values, self.delta_chi2, self.best, t, -1),
                 _crossing(self.values, self.delta_chi2, self.best, t, +1))
 
-    def plot(self, ax=None):
-        """The profile, the quantile and the Jacobian parabola; returns the Figure."""
+    def plot(self, ax=None, path=None, dpi=120):
+        """The profile, the quantile and the Jacobian parabola; returns the Figure.
+
+        ``ax``: draw into these axes (default a new figure); ``path``: also save
+        the figure there. Nothing is shown here: in a script call
+        ``matplotlib.pyplot.show()`` or save (``path=``), as for
+        :meth:`FitResult.plot`.
+        """
         import matplotlib.pyplot as plt
 
         if ax is None:
             fig, ax = plt.subplots(figsize=(4.8, 3.6), layout="constrained")
         else:
             fig = ax.figure
-        ax.plot(self.values, self.delta_chi2, "o-", ms=3, label="profile")
+        # the profile through its minimum (the best fit, at zero), not a chord across it
+        x, y = np.append(self.values, self.best), np.append(self.delta_chi2, 0.0)
+        order = np.argsort(x, kind="stable")
+        ax.plot(x[order], y[order], "o-", ms=3, label="profile")
         if np.isfinite(self.stderr) and self.stderr > 0:
             grid = np.linspace(self.values.min(), self.values.max(), 200)
             ax.plot(grid, ((grid - self.best) / self.stderr) ** 2, "k--", lw=0.8,
@@ -96,7 +105,9 @@ class ProfileLikelihood:
         ax.set_ylabel("Δχ²")
         ax.set_ylim(0, max(1.5 * t, float(np.nanmax(self.delta_chi2))))
         ax.legend(fontsize=8)
-        return fig
+        from supercoil.dna.fitting.plot import save_figure
+
+        return save_figure(fig, path, dpi)
 
 
 def _crossing(values, delta, best, t, side):
@@ -118,12 +129,12 @@ def _problem(result, params):
     from supercoil.dna.fitting import offsets
     from supercoil.dna.fitting.model import HatCurveModel
 
-    spec = dataclasses.replace(result._spec, params=params)
+    spec = dataclasses.replace(result.spec, params=params)
     cls = offsets.PerForceOffsetModel if offsets.has_per_force_offsets(params) \
         else HatCurveModel
     prob = cls(spec.data, params, spec.dna, spec.model, spec.interaction, spec.thermal,
                spec.xi_is_bending)
-    ch = result._core["channels"]
+    ch = result.solution.channels
     if ch["extension"]["noise"] is not None:
         prob.set_extension_sigma(ch["extension"]["noise"])
     if "torque" in ch and ch["torque"]["noise"] is not None:
@@ -169,15 +180,16 @@ def profile_likelihood(result, name, confidence_level=0.6827, max_steps=12, step
                        f"(have {result.names})")
     if not 0 < confidence_level < 1:
         raise FitError(f"confidence_level must lie in (0, 1), got {confidence_level!r}")
-    base = result._spec.params.copy()
+    base = result.spec.params.copy()
     p = base[name]
     p.vary = False
     if not base.free:
         raise FitError(f"cannot profile {name!r}: it is the only free parameter")
     best, err = p.value, p.stderr if p.stderr is not None else math.inf
     h = step * (err if np.isfinite(err) and err > 0 else 0.1 * max(abs(best), 1e-12))
-    s2 = result._core["chi_square"] / result._core["chisqr"] if result._core["chisqr"] else 1.0
-    chi2_min = float(result._core["chi_square"])
+    sol = result.solution
+    s2 = sol.chi_square / sol.chisqr if sol.chisqr else 1.0
+    chi2_min = float(sol.chi_square)
     t = float(stats.chi2.ppf(confidence_level, 1))
     vals, deltas = [], []
     for side in (-1, +1):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil import display
 from supercoil.dna.fitting.consistency import report_lines
 from supercoil.units import ureg
 
@@ -12,7 +13,7 @@ __all__ = ["fit_report"]
 
 def _in_data_unit(result, nm):
     """``nm`` in the data's extension unit, with nm in brackets when that is another unit."""
-    unit = result._spec.data.units.get("extension", "nm") or "nm"
+    unit = result.spec.data.units.get("extension", "nm") or "nm"
     try:
         v = ureg.Quantity(nm, "nm").m_as(unit)
     except Exception:  # an unusual unit string: stay in nm
@@ -75,8 +76,7 @@ def _channel_lines(result):
 def _parameter_lines(result, width):
     lines = [f"    {'name':<{width}}{'value':>12}{'stderr':>16}  {'unit':<6}{'rel.err':>9}"
              f"{'start':>12}  bounds"]
-    start = result._core["start"]
-    for j, name in enumerate(result.names):
+    for name in result.names:
         p = result.params[name]
         v = result.parameters[name].magnitude
         e = result.stderr[name].magnitude
@@ -87,7 +87,8 @@ def _parameter_lines(result, width):
             rel = f"{100 * e / abs(v):.2f}%" if v != 0 else "-"
         f = p.factor
         lines.append(f"    {name:<{width}}{v:>12.6g}{etext:>16}  {p.unit:<6}{rel:>9}"
-                     f"{start[j] * f:>12.6g}  ({p.min * f:.4g}, {p.max * f:.4g})")
+                     f"{result.start[name].magnitude:>12.6g}  ({p.min * f:.4g}, "
+                     f"{p.max * f:.4g})")
     return lines
 
 
@@ -113,9 +114,9 @@ def _correlation_lines(result, min_correlation, max_correlations=6):
 
 def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
     """Statistics, parameter table with units, fixed values, correlations, warnings."""
-    d = result._spec.data
+    d = result.spec.data
     forces = np.unique(d.force)
-    force_text = ", ".join(f"{f * 1e12:.4g}" for f in forces)
+    force_text = ", ".join(f"{f:.4g}" for f in display.to_display(forces, "force"))
     stats, wtext = _statistics(result)
     torque = ", torque = tau(N - turns_offset)" if "torque" in result.channels else ""
     inter = (f", interaction {result.interaction.name!r}" if result.model.uses_interaction
@@ -127,7 +128,7 @@ def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
         + ("thermal" if result.thermal else "athermal"),
         "[[Fit statistics]]",
         f"    fitting method     = least_squares (trf), {result.nfev} model evaluations "
-        f"({result._core['kernel_calls']} kernel calls with the Jacobians), "
+        f"({result.kernel_calls} kernel calls with the Jacobians), "
         f"{result.seconds:.3g} s",
         f"    data points        = {result.ndata} ({len(forces)} forces: {force_text} pN; "
         f"{len(d.labels)} molecule{'s' if len(d.labels) > 1 else ''})",

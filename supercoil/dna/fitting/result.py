@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pandas as pd
 
-from supercoil.dna.fitting.parameters import DNA_FIELDS
+from supercoil import display
+from supercoil.dna.fitting.fit_parameters import DNA_FIELDS
 from supercoil.tables import make_table, provenance
-from supercoil.units import U, quantity
 
 __all__ = ["FitResult", "fmt_pm", "log_likelihood_term"]
 
@@ -37,8 +37,6 @@ def _correlation(cov, undetermined):
     return corr
 
 
-_CHANNEL_UNITS = {"extension": U.nm, "torque": U.pN * U.nm}
-
 
 def log_likelihood_term(channels, sum_squares, ndata):
     """``N ln(chi2 / N)``, or its sum over the channels of a joint fit.
@@ -60,8 +58,7 @@ def log_likelihood_term(channels, sum_squares, ndata):
         if c["noise"] is None:  # stated sigmas
             chi2 = c["chi_square"]
         else:  # sum of squares on the channel's fixed unit scale
-            unit = 1e-9 if name == "extension" else 1e-21
-            chi2 = (c["rms"] / unit) ** 2 * c["dof"]
+            chi2 = display.to_display(c["rms"], name) ** 2 * c["dof"]
         total += n * math.log(chi2 / n)
     return total
 
@@ -70,13 +67,11 @@ def _channel_stats(channels):
     """Per-channel statistics with quantities (each channel in its own unit)."""
     out = {}
     for name, c in channels.items():
-        unit = _CHANNEL_UNITS[name]
-        si = U.m if name == "extension" else U.N * U.m
         out[name] = {
             "ndata": int(c["n"]), "chi_square": float(c["chi_square"]),
             "dof": float(c["dof"]), "weighting": c["weighting"],
-            "residual_rms": quantity(c["rms"], si).to(unit),
-            "noise": None if c["noise"] is None else quantity(c["noise"], si).to(unit),
+            "residual_rms": display.quantity(c["rms"], name),
+            "noise": None if c["noise"] is None else display.quantity(c["noise"], name),
         }
     return out
 
@@ -91,12 +86,18 @@ class FitResult:
         model or interaction parameters (their declared unit) and the offsets
         ``turns_offset`` (turn) and ``extension_offset`` (nm); with a
         ``molecule`` column the offsets are named ``turns_offset[<molecule>]``.
+        The canonical estimates (``parameters[name]`` is
+        ``params[name].quantity()``, the same number).
     stderr : dict of str -> pint.Quantity
         One-sigma standard errors, same keys and units; ``inf`` for a
         parameter the data do not determine (see ``undetermined``).
     params : FitParameters
         All parameters (free and fixed) with values, errors, bounds and
-        plausible limits (SI).
+        plausible limits (SI): lmfit's name, the set ``params=`` takes. Kept
+        beside :attr:`parameters`, which holds the same estimates as
+        quantities; read estimates from :attr:`parameters`.
+    start : dict of str -> pint.Quantity
+        The start values of the free parameters (given, or read from the data).
     undetermined : list of str
         Free parameters with a component in the numerical null space of the
         Jacobian: standard error ``inf``, NaN covariance and correlation rows
@@ -174,73 +175,102 @@ class FitResult:
     torque_best_fit, torque_residuals : pint.Quantity or None
         With a torque column: the model torque at the data points and
         ``data - model`` (pN nm); else None.
+    njev, kernel_calls, kernel_failures : int
+        Jacobian evaluations, calls of the model's kernel (residuals and
+        Jacobians) and those that failed (a named model error at a trial point).
+    seconds, cpu_seconds : float
+        Wall-clock and CPU time of the fit (``time.process_time``).
+    curve_cpu_seconds : float
+        CPU time of one evaluation of the model at the data points with the
+        best-fit parameters (measured by :func:`compare_models`; else NaN).
+    vary : list of str
+        The DNA, model and interaction parameters fitted (offsets not listed).
+    solution : FitSolution
+        What the fit engine returned (SI floats and arrays: best fit, offsets
+        per molecule, phases, per-channel statistics, ...).
+    spec : FitSpec
+        The validated settings of the fit (``spec.data``: the data in SI).
     warnings : list of str
-        Every warning of the fit (also in :meth:`report`).
+        Every warning of the fit (also in :meth:`report`); with their
+        categories in :attr:`warning_records`.
     notes : list of str
         What the fit decided for the user (also in :meth:`report`): a default
         parameter the model does not use and so not varied, the channel that
         gave the turns-offset start, the length start read from the data.
     """
 
-    def __init__(self, core, spec, data, dna):
-        self._core = core
-        self._spec = spec
+    def __init__(self, solution, spec, data, dna):
+        self.solution = solution
+        self.spec = spec
         self.data = data
-        self.params = core["params"]
-        self.names = list(core["names"])
+        self.params = solution.params
+        self.names = list(solution.names)
         free = [self.params[n] for n in self.names]
-        self.parameters = {p.name: p.quantity(v) for p, v in zip(free, core["values"],
+        self.parameters = {p.name: p.quantity(v) for p, v in zip(free, solution.values,
                                                                    strict=True)}
-        self.stderr = {p.name: p.quantity(e) for p, e in zip(free, core["stderr"], strict=True)}
+        self.stderr = {p.name: p.quantity(e) for p, e in zip(free, solution.stderr,
+                                                             strict=True)}
+        self.start = {p.name: p.quantity(v) for p, v in zip(free, solution.start, strict=True)}
         self.units = {p.name: p.unit for p in free}
+        self.vary = list(spec.vary)
         factors = np.array([p.factor for p in free])
-        self._cov = core["covariance"] * np.outer(factors, factors)  # display units
-        undetermined = np.asarray(core["undetermined"], dtype=bool)
+        self._cov = solution.covariance * np.outer(factors, factors)  # display units
+        undetermined = np.asarray(solution.undetermined, dtype=bool)
         self._undetermined_mask = undetermined
         self.undetermined = [n for n, u in zip(self.names, undetermined, strict=True) if u]
-        self.chisqr = self.chi_square = float(core["chisqr"])
-        self.redchi = self.reduced_chi_square = float(core["redchi"])
-        resid = spec.data.extension - core["model"]
-        self.sum_squares = quantity(float(resid @ resid) * 1e18, U.nm**2)
-        self.nfree = int(core["nfree"])
+        self.chisqr = self.chi_square = float(solution.chisqr)
+        self.redchi = self.reduced_chi_square = float(solution.redchi)
+        resid = spec.data.extension - solution.best_fit
+        self.sum_squares = display.quantity(float(resid @ resid), "sum_squares")
+        self.nfree = int(solution.nfree)
         self.nvarys = len(self.names)
         self.n_determined = self.nvarys - len(self.undetermined)
         self.x = np.array([self.parameters[n].magnitude for n in self.names], dtype=float)
-        rs = float(core["residual_scale"])
         to_display = np.array([p.scale * p.factor for p in free], dtype=float)
-        self.jac = np.asarray(core["jac"], dtype=float) / to_display
-        self.residual = np.asarray(core["residual_weighted"], dtype=float) / rs
-        self.channels = _channel_stats(core["channels"])
+        self.jac = np.asarray(solution.jac, dtype=float) / to_display
+        self.residual = np.asarray(solution.residual_weighted, dtype=float) / float(
+            solution.residual_scale)
+        self.channels = _channel_stats(solution.channels)
         # the extension channel's own degrees of freedom (all of nfree without torque)
         self.residual_rms = self.channels["extension"]["residual_rms"]
-        self.goodness = dict(core["goodness"])
-        self.ndata = int(core["ndata"])
-        term = log_likelihood_term(core["channels"], float(core["chi_square"]), self.ndata)
+        self.goodness = dict(solution.goodness)
+        self.ndata = int(solution.ndata)
+        term = log_likelihood_term(solution.channels, float(solution.chi_square), self.ndata)
         self.aic = term + 2 * self.n_determined
         self.bic = term + math.log(self.ndata) * self.n_determined
-        self.nfev = int(core["nfev"])
-        self.message = core["message"]
-        self.success = core["status"] > 0
+        self.nfev, self.njev = int(solution.nfev), int(solution.njev)
+        self.kernel_calls = int(solution.kernel_calls)
+        self.kernel_failures = int(solution.kernel_failures)
+        self.message = solution.message
+        self.success = solution.success
         self.weighting = spec.data.weighting
         self.thermal = spec.thermal
-        self.seconds = float(core["seconds"])
-        self.best_fit = quantity(core["model"] * 1e9, U.nm)
-        self.residuals = quantity(resid * 1e9, U.nm)
-        self.warnings = [m for _, m in core["warnings"]]
-        self.notes = list(core.get("notes", ()))
+        self.seconds = float(solution.seconds)
+        self.cpu_seconds = float(solution.cpu_seconds)
+        self.curve_cpu_seconds = (math.nan if solution.curve_cpu_seconds is None
+                                  else float(solution.curve_cpu_seconds))
+        self.best_fit = display.quantity(solution.best_fit, "extension")
+        self.residuals = display.quantity(resid, "extension")
+        self.warnings = [m for _, m in solution.warnings]
+        self.notes = list(solution.notes)
         self.torque_best_fit = self.torque_residuals = None
         if spec.data.has_torque:
-            self.torque_best_fit = quantity(core["torque"] * 1e21, U.pN * U.nm)
-            self.torque_residuals = quantity((spec.data.torque - core["torque"]) * 1e21,
-                                             U.pN * U.nm)
-        self.model = core["model_obj"]
-        self.interaction = core["interaction_obj"]
-        self.fixed = self._fixed(core, spec)
-        si = core["dna"]
-        self.dna = dna.replace(**{p: quantity(getattr(si, p) * 1e9, U.nm) for p in spec.vary
-                                  if p in DNA_FIELDS})
+            self.torque_best_fit = display.quantity(solution.torque, "torque")
+            self.torque_residuals = display.quantity(spec.data.torque - solution.torque,
+                                                     "torque")
+        self.model = solution.model
+        self.interaction = solution.interaction
+        self.fixed = self._fixed(solution, spec)
+        si = solution.dna
+        self.dna = dna.replace(**{p: display.quantity(getattr(si, p), "length")
+                                  for p in spec.vary if p in DNA_FIELDS})
 
-    # the two tables are built on first use: a DataFrame costs ~0.1 ms, a fit ~5 ms
+    @property
+    def warning_records(self) -> list[tuple[str, str]]:
+        """Every warning of the fit as ``(category name, message)``."""
+        return list(self.solution.warnings)
+
+    # the two tables are built on first use: a DataFrame costs a few percent of a fit
     @functools.cached_property
     def covariance(self) -> pd.DataFrame:
         """Covariance of the free parameters (display units, ``attrs["units"]``)."""
@@ -257,12 +287,12 @@ class FitResult:
         return corr
 
     @staticmethod
-    def _fixed(core, spec):
-        si = core["dna"]
-        fixed = {p: quantity(getattr(si, p) * 1e9, U.nm) for p in DNA_FIELDS
+    def _fixed(solution, spec):
+        si = solution.dna
+        fixed = {p: display.quantity(getattr(si, p), "length") for p in DNA_FIELDS
                  if p not in spec.vary}
-        fixed["temperature"] = quantity(si.temperature, U.K)
-        for obj in (core["model_obj"], core["interaction_obj"]):
+        fixed["temperature"] = display.quantity(si.temperature, "temperature")
+        for obj in (solution.model, solution.interaction):
             for k, q in obj.quantities().items():
                 if k not in spec.vary:
                     fixed[k] = q
@@ -315,11 +345,21 @@ class FitResult:
 
         return conf_interval(self, names, sigmas, max_steps, step)
 
-    def plot(self, fig=None, n_curve=300):
-        """Data, fit and residuals per force (offset-corrected); returns the Figure."""
+    def plot(self, fig=None, n_curve=300, path=None, dpi=120):
+        """Data, fit and residuals per force (offset-corrected); returns the Figure.
+
+        Like every matplotlib function that makes a figure, this draws and
+        shows nothing by itself: in a notebook the returned Figure is
+        displayed; in a script call ``matplotlib.pyplot.show()`` (an
+        interactive backend) or save it, ``fit.plot(path="fit.png")`` or
+        ``fit.plot().savefig("fit.png")``. On a non-interactive backend (Agg,
+        the default without a display) ``show()`` shows nothing: save it.
+        See :func:`~supercoil.dna.fitting.plot.plot_fit` for ``fig``, ``n_curve``,
+        ``path`` and ``dpi``.
+        """
         from supercoil.dna.fitting.plot import plot_fit
 
-        return plot_fit(self, fig=fig, n_curve=n_curve)
+        return plot_fit(self, fig=fig, n_curve=n_curve, path=path, dpi=dpi)
 
     # ---- tables -------------------------------------------------------------------------
     def to_frame(self) -> pd.DataFrame:
@@ -354,35 +394,35 @@ class FitResult:
             cols["torque_weighting"] = [t["weighting"]]
             units.update(torque_residual_rms="pN*nm", torque_chi_square="",
                          torque_weighting="")
-        prov = provenance(self.dna, vary=list(self._spec.vary), fixed=dict(self.fixed),
+        prov = provenance(self.dna, vary=list(self.vary), fixed=dict(self.fixed),
                           thermal=self.thermal, model=self.model.name,
                           interaction=self.interaction.name)
         return make_table(cols, units, prov)
 
     def points_frame(self) -> pd.DataFrame:
         """Per-point table: data, offset-corrected turns, best fit, residual, phase flags."""
-        d, c = self._spec.data, self._core
+        d, c = self.spec.data, self.solution
         cols, units = {}, {}
         if d.has_molecule:
             cols["molecule"] = [d.labels[i] for i in d.mol_index]
             units["molecule"] = ""
-        n_eff = d.turns - c["n0"][d.mol_index]
-        for k, v, u in (
-            ("force", d.force * 1e12, "pN"),
-            ("turns", d.turns, "turn"),
-            ("turns_corrected", n_eff, "turn"),
-            ("extension", d.extension * 1e9, "nm"),
-            ("best_fit", c["model"] * 1e9, "nm"),
-            ("residual", (d.extension - c["model"]) * 1e9, "nm"),
-            ("torque", c["torque"] * 1e21, "pN*nm"),
+        n_eff = d.turns - c.turns_offset[d.mol_index]
+        for k, v, kind in (
+            ("force", d.force, "force"),
+            ("turns", d.turns, "turns"),
+            ("turns_corrected", n_eff, "turns"),
+            ("extension", d.extension, "extension"),
+            ("best_fit", c.best_fit, "extension"),
+            ("residual", d.extension - c.best_fit, "extension"),
+            ("torque", c.torque, "torque"),
             *(() if d.torque is None else (
-                ("torque_measured", d.torque * 1e21, "pN*nm"),
-                ("torque_residual", (d.torque - c["torque"]) * 1e21, "pN*nm"))),
-            ("plectoneme_length", c["plectoneme_length"] * 1e9, "nm"),
-            ("phase", c["phase"].astype(int), ""),
-            ("short_tail", c["short_tail"], ""),
+                ("torque_measured", d.torque, "torque"),
+                ("torque_residual", d.torque - c.torque, "torque"))),
+            ("plectoneme_length", c.plectoneme_length, "plectoneme_length"),
         ):
-            cols[k] = v
-            units[k] = u
-        return make_table(cols, units, provenance(self.dna, vary=list(self._spec.vary),
+            cols[k] = display.to_display(v, kind)
+            units[k] = display.unit(kind)
+        cols["phase"], units["phase"] = c.phase.astype(int), ""
+        cols["short_tail"], units["short_tail"] = c.short_tail, ""
+        return make_table(cols, units, provenance(self.dna, vary=list(self.vary),
                                                   model=self.model.name))

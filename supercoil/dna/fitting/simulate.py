@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from supercoil._checks import check_flag, check_material, scalar
+from supercoil import display
+from supercoil._checks import check_flag, scalar
 from supercoil.dna import validity as _v
 from supercoil.dna.fitting.fit import resolve_model
 from supercoil.dna.interactions import DEFAULT_INTERACTION
-from supercoil.dna.material import DNA
 from supercoil.dna.models import DEFAULT_MODEL
-from supercoil.dna.models.li_zhao import LiZhao
 from supercoil.exceptions import FitError
 from supercoil.tables import make_table, provenance
 from supercoil.units import U, as_turns, magnitude, quantity
@@ -26,9 +25,10 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     extension factor is not valid (docs/theory/li-zhao.md). ``min_tail``
     defaults to 4 bending persistence lengths (one more than the kernel's
     short-tail flag, so that a turns offset of a turn or two keeps the data
-    valid). For ``"li-zhao"`` exact: ``N_b + (L - l_min) D / (2 pi)`` with the
-    linking rate D; for other models from their buckling constants: ``N_b +
-    z_b (1 - l_min / L) / |dz/dN|`` (the plectoneme phase taken as linear).
+    valid). From :meth:`~supercoil.dna.models.base.DNAModel.turns_at_tail_length`: for
+    ``"li-zhao"`` exact, ``N_b + (L - l_min) D / (2 pi)`` with the linking rate D; by
+    default from the buckling constants, ``N_b + z_b (1 - l_min / L) / |dz/dN|`` (the
+    plectoneme phase taken as linear).
 
     Returns a float array (turns), one per force (empty for no force).
 
@@ -39,10 +39,8 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
     ValueError, NoEquilibriumError
         Forces not finite, not 1-D, or not positive (as every DNA function).
     """
-    from supercoil.core.dna.hat import hat_parameters
-
     thermal = check_flag(thermal, "thermal")
-    si = check_material(dna, DNA, "dna")
+    si = _v.check_dna(dna)
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
         _v.check_interaction(inter, si)
@@ -51,18 +49,12 @@ def valid_turns_range(dna, force, min_tail=None, thermal=True, model=DEFAULT_MOD
         return np.empty(0)
     lmin = 4 * si.bending_persistence if min_tail is None else float(
         magnitude(min_tail, U.m, "min_tail"))
-    if type(m) is LiZhao and inter.name == DEFAULT_INTERACTION:
-        par = hat_parameters(F, si.length, si.bending_rigidity, si.torsional_rigidity, si.kT,
-                             si.radius, thermal=thermal)
-        return par.buckling_turns + (si.length - lmin) * par.linking_rate / (2 * np.pi)
-    b = m.buckling(F, si, thermal, inter)
-    ok = np.isfinite(b.turns) & np.isfinite(b.slope) & (b.slope < 0)
-    if not ok.all():
-        i = int(np.flatnonzero(~ok)[0])
+    n = m.turns_at_tail_length(F, lmin, si, thermal, inter)
+    if not np.all(np.isfinite(n)):
+        i = int(np.flatnonzero(~np.isfinite(n))[0])
         raise FitError(f"model {m.name!r} does not buckle at force {F[i] * 1e12:.6g} pN: no "
                        "finite valid turns range; give the turns explicitly")
-    zb = np.asarray(m.points(b.turns, F, si, thermal, inter, None).extension, dtype=float)
-    return b.turns + zb * (1 - lmin / si.length) / np.abs(b.slope)
+    return n
 
 
 def _labels(molecules):
@@ -142,7 +134,7 @@ def _points_per_force(n):
 
 
 #: units of the simulated extension column and their factor from metres
-_EXTENSION_FACTORS = {"um": 1e6, "nm": 1e9}
+_EXTENSION_UNITS = ("um", "nm")
 
 
 def _torque_sd(torque_noise):
@@ -151,7 +143,8 @@ def _torque_sd(torque_noise):
         return None
     sd_t = scalar(magnitude(torque_noise, U.N * U.m, "torque_noise"), "torque_noise")
     if not (np.isfinite(sd_t) and sd_t >= 0):
-        raise FitError(f"torque_noise must be finite and >= 0, got {sd_t * 1e21:g} pN nm")
+        raise FitError("torque_noise must be finite and >= 0, got "
+                       f"{display.text(sd_t, 'torque', 'g')}")
     return sd_t
 
 
@@ -160,7 +153,8 @@ def _add_torque(table, units, torques, sd_t, sigma_column):
     table["torque"] = np.concatenate(torques)
     units["torque"] = "pN nm"
     if sigma_column:
-        table["torque_sigma"] = np.full(len(table["force"]), sd_t * 1e21)
+        table["torque_sigma"] = np.full(len(table["force"]),
+                                        display.to_display(sd_t, "torque"))
         units["torque_sigma"] = "pN nm"
 
 
@@ -226,9 +220,9 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     """
     thermal = check_flag(thermal, "thermal")
     sigma_column = check_flag(sigma_column, "sigma_column")
-    check_material(dna, DNA, "dna")
-    if extension_unit not in _EXTENSION_FACTORS:
-        raise FitError(f"extension_unit must be one of {list(_EXTENSION_FACTORS)}, got "
+    _v.check_dna(dna)
+    if extension_unit not in _EXTENSION_UNITS:
+        raise FitError(f"extension_unit must be one of {list(_EXTENSION_UNITS)}, got "
                        f"{extension_unit!r}")
     m, inter = resolve_model(model, interaction)
     if m.uses_interaction:
@@ -237,7 +231,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
     F = _forces(force)
     sd = 5e-9 if noise is None else scalar(magnitude(noise, U.m, "noise"), "noise")
     if not (np.isfinite(sd) and sd >= 0):
-        raise FitError(f"noise must be finite and >= 0, got {sd * 1e9:g} nm")
+        raise FitError(f"noise must be finite and >= 0, got {display.text(sd, 'extension', 'g')}")
     sd_t = _torque_sd(torque_noise)
     labels, has_mol = _labels(molecules)
     n0, z0 = _offsets(turns_offset, extension_offset, len(labels))
@@ -250,7 +244,7 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         if n.size == 0:
             raise ValueError("turns is empty: give at least one number of turns")
         grids = [n] * len(F)
-    factor = _EXTENSION_FACTORS[extension_unit]
+    factor = display.spec(extension_unit)[1]  # m -> the unit asked for (pint)
     N = np.concatenate(grids)
     FF = np.concatenate([np.full(len(g), f) for g, f in zip(grids, F, strict=True)])
     mol, Fs, Ns, Zs, Ts = [], [], [], [], []
@@ -260,9 +254,9 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
         z = z + z0[i] + rng.normal(0.0, sd, z.shape)
         if sd_t is not None:
             tq = np.asarray(pts.torque, dtype=float)
-            Ts.append((tq + rng.normal(0.0, sd_t, tq.shape)) * 1e21)
+            Ts.append(display.to_display(tq + rng.normal(0.0, sd_t, tq.shape), "torque"))
         mol.extend([lab] * len(N))
-        Fs.append(FF * 1e12)
+        Fs.append(display.to_display(FF, "force"))
         Ns.append(N)
         Zs.append(z * factor)
     table = {"molecule": mol} if has_mol else {}
@@ -270,14 +264,16 @@ def simulate_rotation_curves(dna, force, turns=None, *, points_per_force=110, no
                  extension=np.concatenate(Zs))
     units = {"molecule": "", "force": "pN", "turns": "", "extension": extension_unit}
     if sigma_column:
-        table["sigma"] = np.full(len(table["force"]), sd * 1e9)
+        table["sigma"] = np.full(len(table["force"]), display.to_display(sd, "extension"))
         units["sigma"] = "nm"
     if sd_t is not None:
         _add_torque(table, units, Ts, sd_t, sigma_column)
     prov = provenance(
-        dna, simulated=True, noise=f"{sd * 1e9:.6g} nm", seed=seed if isinstance(seed, int)
+        dna, simulated=True, noise=display.text(sd, "extension"),
+        seed=seed if isinstance(seed, int)
         else None, turns_offset=[float(v) for v in n0],
-        extension_offset=[f"{v * 1e9:.6g} nm" for v in z0], thermal=thermal, model=m.name,
+        extension_offset=[display.text(v, "extension") for v in z0], thermal=thermal,
+        model=m.name,
         interaction=inter.name,
-        torque_noise=None if sd_t is None else f"{sd_t * 1e21:.6g} pN nm")
+        torque_noise=None if sd_t is None else display.text(sd_t, "torque"))
     return make_table(table, {k: units[k] for k in table}, prov)

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from supercoil import display
 from supercoil.dna.fitting.model import dna_si, guess_turns_center
 from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 
@@ -78,7 +79,7 @@ def unused_parameters(names, force, dna, model, inter, thermal, xi_is_bending=Tr
         if name in model.parameters:
             spec = model.parameters[name]
             m = model.replace(**{name: _perturbed(model.values[name], spec.lower, spec.upper)})
-        elif name in getattr(inter, "parameters", {}):
+        elif inter is not None and name in inter.parameters:
             spec = inter.parameters[name]
             i = inter.replace(**{name: _perturbed(inter.values[name], spec.lower, spec.upper)})
         else:
@@ -265,8 +266,9 @@ def length_excess(z, length, offset_fitted=False):
     zmax, z95 = float(np.max(z)), float(np.percentile(z, 95))
     if not z95 > length * (1 + LENGTH_TOLERANCE[bool(offset_fitted)]):
         return None
-    return (f"the extensions of the data reach {zmax * 1e9:.5g} nm (95th percentile "
-            f"{z95 * 1e9:.5g} nm), beyond the contour length L = {length * 1e9:.5g} nm of "
+    return (f"the extensions of the data reach {display.text(zmax, 'extension', '.5g')} "
+            f"(95th percentile {display.text(z95, 'extension', '.5g')}), beyond the contour "
+            f"length L = {display.text(length, 'length', '.5g')} of "
             "the DNA given: no worm-like chain reaches "
             "beyond its contour length. Set your molecule's length: dna.replace(length=...) "
             "(the number of base pairs x 0.34 nm), or on the command line --start "
@@ -346,7 +348,8 @@ def start_from_data(data, params, dna):
     est = [e for e in est if e is not None and np.isfinite(e) and e > 0]
     if est:
         length.value = float(np.median(est))
-        notes.append(f"length starts at {length.value * 1e9:.5g} nm, read from the data "
+        notes.append(f"length starts at {display.text(length.value, 'length', '.5g')}, read "
+                     "from the data "
                      "(Marko-Siggia worm-like chain inverted at the turns nearest zero, "
                      "median over the forces); give start={'length': ...} to override")
     return notes

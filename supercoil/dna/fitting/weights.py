@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from supercoil import display
 from supercoil.exceptions import FitError
 
 __all__ = ["SIGMA_MIN_PER_LENGTH", "check_sigma_scale", "checked_sigma"]
@@ -45,9 +46,10 @@ def check_sigma_scale(rot, length):
         return
     lo, hi = float(np.min(rot.sigma)), float(np.max(rot.sigma))
     if not (lo >= SIGMA_MIN_PER_LENGTH * length and hi <= length):
-        bad, limit = (lo, f"below 1e-150 L = {SIGMA_MIN_PER_LENGTH * length * 1e9:.3g} nm"
-                      ) if lo < SIGMA_MIN_PER_LENGTH * length else (
-                          hi, f"above the contour length L = {length * 1e9:.6g} nm")
-        raise FitError(f"sigma ({rot.weighting}) of {bad * 1e9:.6g} nm is {limit}: the "
+        floor = display.text(SIGMA_MIN_PER_LENGTH * length, "length", ".3g")
+        bad, limit = (lo, f"below 1e-150 L = {floor}") if lo < SIGMA_MIN_PER_LENGTH * length \
+            else (hi, f"above the contour length L = {display.text(length, 'length')}")
+        raise FitError(f"sigma ({rot.weighting}) of {display.text(bad, 'extension')} is {limit}: "
+                       "the "
                        "standard error of an extension lies in [1e-150 L, L] (its weights "
                        "1/sigma leave the float range below; the data determine nothing above)")

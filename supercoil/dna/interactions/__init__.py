@@ -2,22 +2,23 @@
 
 ``get_interaction("hard-core")`` (the paper's Marko-Siggia ``w``, the default),
 ``get_interaction("screened")`` (Debye-Hueckel electrostatics with salt,
-docs/theory/screened-interaction.md);
-further interactions register themselves with :func:`register_interaction`.
+docs/theory/screened-interaction.md). Every module of this package except ``base`` holds
+one interaction and is registered by being here (as the models,
+:mod:`supercoil.dna.models`); user code registers its own with
+:func:`register_interaction`. The contract is the docstring of :class:`Interaction`.
 """
 
 from supercoil.dna.interactions.base import Interaction
-from supercoil.dna.interactions.hard_core import HardCore
-from supercoil.dna.interactions.screened import Screened
 from supercoil.dna.registry import Registry
-
-__all__ = ["DEFAULT_INTERACTION", "HardCore", "Interaction", "Screened",
-           "available_interactions", "get_interaction", "register_interaction",
-           "unregister_interaction"]
 
 #: the interaction used when none is given (the paper's)
 DEFAULT_INTERACTION = "hard-core"
-_REGISTRY = Registry("interaction", Interaction)
+_REGISTRY = Registry("interaction", Interaction, __name__)
+globals().update(_REGISTRY.package_classes())
+
+__all__ = ["DEFAULT_INTERACTION", "Interaction", "available_interactions",
+           "get_interaction", "register_interaction", "unregister_interaction",
+           *sorted(_REGISTRY.package_classes())]
 
 
 def register_interaction(cls, replace=False):
@@ -38,7 +39,3 @@ def get_interaction(spec=DEFAULT_INTERACTION, **values):
 def available_interactions():
     """Registered interaction names."""
     return _REGISTRY.names()
-
-
-register_interaction(HardCore)
-register_interaction(Screened)

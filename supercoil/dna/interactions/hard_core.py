@@ -25,11 +25,11 @@ class HardCore(Interaction):
     summary = "Marko-Siggia (R/r0)^-12 hard core + entropic confinement (the paper's w)"
     parameters: ClassVar[dict] = {}
 
-    def partials(self, alpha, radius, dna):
+    def _partials(self, alpha, radius, dna):
         B, kT, r0 = dna.bending_rigidity, dna.kT, dna.radius
         w = _ms.interaction(alpha, radius, B, kT, r0)
         return (w, *_ms.interaction_partials(alpha, radius, B, kT, r0))
 
-    def equilibrium(self, tension, dna):
+    def _equilibrium(self, tension, dna):
         return _pl.equilibrium(tension, dna.bending_rigidity, dna.torsional_rigidity, dna.kT,
                                dna.radius)

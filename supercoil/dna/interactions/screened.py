@@ -7,7 +7,7 @@ literature comparison: docs/theory/screened-interaction.md. Float kernels:
 :mod:`supercoil.core.dna.electrostatics`, :mod:`supercoil.core.dna.screened`,
 :mod:`supercoil.core.dna.equilibrium`.
 
-Per unit DNA length (docs/theory/screened-interaction.md#3, #4)::
+Per unit DNA length (docs/theory/screened-interaction.md, sections 3 and 4)::
 
     w = w_el + c_conf w_conf,
     w_el   = (nu^2 kT l_B / (2 cos alpha)) int exp(-d/lambda_D)/d dz,
@@ -33,7 +33,7 @@ from supercoil.core.dna import equilibrium as _eq
 from supercoil.core.dna import screened as _sc
 from supercoil.core.dna.plectoneme import PlectonemeState
 from supercoil.dna.interactions.base import Interaction
-from supercoil.dna.parameters import ModelParameter
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.exceptions import ParameterError, ValidityWarning
 from supercoil.units import U, quantity
 
@@ -65,7 +65,9 @@ def _screening(salt, temperature, kT, radius, fraction):
     return lam, lB, nu, nu * nu * kT * lB
 
 
-def _partials_function(B, kT, lam, prefactor, conf):
+def partials_function(B, kT, lam, prefactor, conf):
+    """``partials(alpha, R) -> (w, w_alpha, w_R)`` of the screened interaction with the
+    confinement term (SI: bending rigidity ``B``, ``kT``, Debye length ``lam``)."""
     def partials(alpha, R):
         w, w_a, w_R = _sc.electrostatic_partials(alpha, R, lam, prefactor)
         if conf:
@@ -78,13 +80,13 @@ def _partials_function(B, kT, lam, prefactor, conf):
 
 @lru_cache(maxsize=64)
 def _branch(B, kT, lam, prefactor, conf, radius):
-    partials = _partials_function(B, kT, lam, prefactor, conf)
+    partials = partials_function(B, kT, lam, prefactor, conf)
     return _eq.branch_table(B, partials, radius, _R_MAX_FACTOR * radius)
 
 
 @lru_cache(maxsize=64)
 def _contact(B, kT, lam, prefactor, conf, radius):
-    partials = _partials_function(B, kT, lam, prefactor, conf)
+    partials = partials_function(B, kT, lam, prefactor, conf)
     return _ct.contact_table(B, partials, radius)
 
 
@@ -173,7 +175,7 @@ class Screened(Interaction):
                                  f"got {self.values['charge_fraction']:g}")
 
     # ---- float level (SI) -------------------------------------------------
-    def check(self, dna):
+    def _check(self, dna):
         """ParameterError naming ``salt`` if the DNA has none; ValidityError if it is absurd.
 
         The Debye length must lie between ``a / 300`` and ``1000 a`` (``a`` the
@@ -182,7 +184,7 @@ class Screened(Interaction):
         (at a / lambda_D ~ 709; the branch solver already fails near 3e4 M); above,
         the repulsion is unscreened over the whole tabulated branch (R up to
         1000 a) and no confined branch exists in it (measured at 5e-8 M). A
-        salt of 1e300 M gave a ZeroDivisionError (issue 20, item 5).
+        salt of 1e300 M would otherwise end in a ZeroDivisionError.
         """
         si = _si(dna)
         a = self.values["hard_core_radius"]
@@ -200,25 +202,22 @@ class Screened(Interaction):
         return _screening(si.salt, si.temperature, si.kT, self.values["hard_core_radius"],
                           self.values["charge_fraction"])
 
-    def _functions(self, dna):
+    def screening_functions(self, dna):
+        """``(dna SI, Debye length (m), interaction prefactor (J/m))`` of ``dna``."""
         si = _si(dna)
         lam, _, _, pref = self.screening(si)
         return si, lam, pref
 
-    def energy(self, alpha, radius, dna):
-        """``w(alpha, R)`` per unit DNA (= strand) length (J/m)."""
-        return self.partials(alpha, radius, dna)[0]
-
-    def partials(self, alpha, radius, dna):
+    def _partials(self, alpha, radius, dna):
         """``(w, w_alpha, w_R)`` in (J/m, J/m, J/m^2); analytic under the quadrature."""
-        si, lam, pref = self._functions(dna)
-        f = _partials_function(si.bending_rigidity, si.kT, lam, pref,
+        si, lam, pref = self.screening_functions(dna)
+        f = partials_function(si.bending_rigidity, si.kT, lam, pref,
                                self.values["confinement"])
         return f(np.asarray(alpha, float), np.asarray(radius, float))
 
     def branch(self, dna):
         """The tabulated stable branch (:class:`supercoil.core.dna.equilibrium.Branch`)."""
-        si, lam, pref = self._functions(dna)
+        si, lam, pref = self.screening_functions(dna)
         return _branch(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                        self.values["hard_core_radius"])
 
@@ -226,11 +225,11 @@ class Screened(Interaction):
         """The tabulated contact branch at R = a (:mod:`supercoil.core.dna.contact`) or None."""
         if not self.values["hard_contact"]:
             return None
-        si, lam, pref = self._functions(dna)
+        si, lam, pref = self.screening_functions(dna)
         return _contact(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                         self.values["hard_core_radius"])
 
-    def equilibrium(self, tension, dna):
+    def _equilibrium(self, tension, dna):
         """Uniform plectoneme at each tension T (N): (GE1), (GE2) and the tension
         equation with this ``w`` (:mod:`supercoil.core.dna.equilibrium`).
 
@@ -246,9 +245,9 @@ class Screened(Interaction):
         ParameterError
             If the DNA has no salt.
         """
-        si, lam, pref = self._functions(dna)
+        si, lam, pref = self.screening_functions(dna)
         B = si.bending_rigidity
-        partials = _partials_function(B, si.kT, lam, pref, self.values["confinement"])
+        partials = partials_function(B, si.kT, lam, pref, self.values["confinement"])
         branch, contact = self.branch(si), self.contact_branch(si)
         force = np.asarray(tension, dtype=float)
         # blocks of 1024 forces: the solver's temporaries (~8 kB per force) stay bounded

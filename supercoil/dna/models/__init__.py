@@ -1,24 +1,24 @@
 """DNA models on one interface (docs/theory/models.md).
 
-``get_model("li-zhao")`` (the paper's construction, the default); further
-models register themselves with :func:`register_model`. The contract is in
-:mod:`supercoil.dna.models.base`.
+``get_model("li-zhao")`` (the paper's construction, the default). Every module of this
+package except ``base`` holds one model and is registered by being here: the registry
+imports each module and registers the :class:`DNAModel` subclasses defined there
+(:class:`supercoil.dna.registry.Registry`); their classes are attributes of this package
+(``from supercoil.dna.models import Marko2007``). User code registers its own models with
+:func:`register_model`. The contract is the docstring of :class:`DNAModel`.
 """
 
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints, unique_forces
-from supercoil.dna.models.ensemble import Ensemble
-from supercoil.dna.models.free_energy import FreeEnergy
-from supercoil.dna.models.li_zhao import LiZhao
-from supercoil.dna.models.marko2007 import Marko2007
 from supercoil.dna.registry import Registry
-
-__all__ = ["DEFAULT_MODEL", "Buckling", "DNAModel", "Ensemble", "FreeEnergy", "HatPoints",
-           "LiZhao", "Marko2007", "available_models", "get_model", "register_model",
-           "unique_forces", "unregister_model"]
 
 #: the model used when none is given (the paper's)
 DEFAULT_MODEL = "li-zhao"
-_REGISTRY = Registry("model", DNAModel)
+_REGISTRY = Registry("model", DNAModel, __name__)
+globals().update(_REGISTRY.package_classes())
+
+__all__ = ["DEFAULT_MODEL", "Buckling", "DNAModel", "HatPoints", "available_models",
+           "get_model", "register_model", "unique_forces", "unregister_model",
+           *sorted(_REGISTRY.package_classes())]
 
 
 def register_model(cls, replace=False):
@@ -40,9 +40,3 @@ def get_model(spec=DEFAULT_MODEL, **values):
 def available_models():
     """Registered model names."""
     return _REGISTRY.names()
-
-
-register_model(LiZhao)
-register_model(FreeEnergy)
-register_model(Marko2007)
-register_model(Ensemble)

@@ -18,8 +18,8 @@ import numpy as np
 
 from supercoil.core.dna import ensemble as _en
 from supercoil.core.dna import equilibrium as _eq
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
-from supercoil.dna.parameters import ModelParameter
 from supercoil.exceptions import ModelError, ValidityError
 
 __all__ = ["Ensemble"]
@@ -234,7 +234,7 @@ class Ensemble(DNAModel):
                                               v["plectoneme_confinement"])
             if self.screened_plectoneme else None)
 
-    def buckling(self, force, dna, thermal, interaction=None):
+    def _buckling(self, force, dna, thermal, interaction):
         """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
         check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
@@ -242,7 +242,7 @@ class Ensemble(DNAModel):
         Mb = _en.coexistence_torque(f, par)
         t, _ = _en.tail_gibbs(f, Mb, par)
         om_t = -t.dphi_dM
-        om_p = -_en._plectoneme(f, Mb, par).dphi_dM
+        om_p = -_en.plectoneme_phase(f, Mb, par).dphi_dM
         slope = -2.0 * np.pi * (-t.dphi_dF) / (om_p - om_t)
         return Buckling(dna.length * om_t / (2.0 * np.pi), Mb, slope)
 
@@ -258,7 +258,7 @@ class Ensemble(DNAModel):
         return superhelix_radius(Mb, dna, v["plectoneme_charge_fraction"],
                                  v["plectoneme_confinement"])
 
-    def points(self, turns, force, dna, thermal, interaction=None, short_tail_length=None):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Ensemble averages: extension, torque, plectoneme length, phase, G."""
         check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)
@@ -274,7 +274,7 @@ class Ensemble(DNAModel):
         return HatPoints(pt.extension, pt.torque, pt.plectoneme_length, phase,
                          tail < short_tail_length, zeta, pt.free_energy)
 
-    def free_energy(self, turns, force, dna, thermal, interaction=None):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         """G(N, F) = -kT ln Z in J (ensemble.md#32-fixed-turns)."""
         check_forces(force, dna)
         par = self.kernel_parameters(dna, thermal)

@@ -18,9 +18,11 @@ from typing import ClassVar
 import numpy as np
 
 from supercoil.core.dna import free_energy as _fe
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
 from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
+from supercoil.exceptions import SupercoilError, ValidityError
 
 __all__ = ["CONVERGED_BRACKET", "FreeEnergy"]
 
@@ -79,7 +81,23 @@ class FreeEnergy(DNAModel):
         """True for both ``thermal=True`` and ``thermal=False``."""
         return True
 
-    def buckling(self, force, dna, thermal, interaction):
+    def _plectoneme_tension(self, force, dna, thermal, interaction):
+        """The tail's effective pull ``T_eff = F - (kT^2/B) sqrt(Q*)`` at the coexistence
+        (docs/theory/free-energy.md#coexistence).
+
+        Raises
+        ------
+        ValidityError
+            Naming the force where the model has no tail-plectoneme coexistence.
+        """
+        try:
+            co = _fe.coexistence(force, *_args(dna), _equilibrium(interaction, dna), thermal)
+        except SupercoilError as exc:
+            raise ValidityError(f"free-energy model: no tail-plectoneme coexistence at "
+                                f"{force[0] * 1e12:g} pN ({type(exc).__name__}: {exc})") from exc
+        return co.pull
+
+    def _buckling(self, force, dna, thermal, interaction):
         """Buckling turns ``N_b = L l_s(F, M*)/(2 pi)``, torque M*, slope ``-2 pi zeta_inf / D``.
 
         With the end loop the turns are those of the jump, ``N* > N_b``.
@@ -98,31 +116,32 @@ class FreeEnergy(DNAModel):
                             co.torque, co.slope)
         return Buckling(co.buckling_turns, co.torque, co.slope)
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Hat-curve points with the ``free_energy`` column (J).
 
-        The secant's trial tensions of fully coiled points go to the bare
-        interaction when ``interaction`` is the public layer's state recorder
-        (attribute ``interaction``); only the final states are recorded.
+        The secant's trial tensions of fully coiled points go to
+        ``interaction.unrecorded()`` (the public layer records only the final states for
+        its shared checks).
         """
-        bare = getattr(interaction, "interaction", interaction)
+        bare = interaction.unrecorded()
         trial = None if bare is interaction else _equilibrium(bare, dna)
         p = _fe.hat_points(turns, force, *_args(dna), _equilibrium(interaction, dna), thermal,
                            short_tail_length, trial_equilibrium=trial, end_loop=self.end_loop)
         return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
                          p.zeta, p.free_energy)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         """``G(N, F)`` (J), docs/theory/free-energy.md#coexistence (up to a constant)."""
-        return self.points(turns, force, dna, thermal, interaction, None).free_energy
+        return self._points(turns, force, dna, thermal, interaction, None).free_energy
 
-    def slope_validity(self, force, torque, dna):
+    def _slope_validity(self, force, torque, dna, thermal):
         """Messages where the tail's expansion fails at the coexistence torque."""
-        force = np.asarray(force, float)
+        if not thermal:
+            return []
         return _messages(force, _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT),
                          np.ones(force.shape, bool), lambda i: f"force {force[i] * 1e12:.6g} pN")
 
-    def validity(self, turns, force, points, dna, thermal):
+    def _validity(self, turns, force, points, dna, thermal):
         """Messages where the tail's expansion fails (zeta_inf <= 0, or bracket Q < 1)."""
         if not thermal:
             return []
@@ -131,7 +150,7 @@ class FreeEnergy(DNAModel):
         torque, phase = np.asarray(points.torque, float), np.asarray(points.phase)
         if _converged_everywhere(force, torque, phase, dna):
             return []
-        where = phase != _fe.FULLY_COILED
+        where = phase != FULLY_COILED
         Q = _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT)
 
         def at(i):
@@ -148,7 +167,7 @@ def _converged_everywhere(force, torque, phase, dna, block=1 << 15):
     """
     for start in range(0, force.size, block):
         sl = slice(start, start + block)
-        where = phase[sl] != _fe.FULLY_COILED
+        where = phase[sl] != FULLY_COILED
         if not where.any():
             continue
         Q = _fe.tail_bracket(force[sl][where], torque[sl][where], dna.bending_rigidity, dna.kT)

@@ -5,7 +5,7 @@ at the full force F (any interaction), the Moroz-Nelson effective twist
 rigidity ``C_eff`` of the fluctuating tail and its extension factor ``zeta``
 with the paper's finite-length term; buckling where the tail torque
 ``C_eff 2 pi N / L`` reaches the plectoneme torque. Kernel:
-:mod:`supercoil.core.dna.hat`. ``thermal=False`` is the athermal construction
+:mod:`supercoil.core.dna.li_zhao`. ``thermal=False`` is the athermal construction
 (``C_eff = C``, ``zeta = 1``). The thermal construction is not derived from
 one free energy (its extension and torque violate the Maxwell relation,
 docs/theory/free-energy.md#maxwell), so :meth:`free_energy` raises
@@ -19,12 +19,14 @@ from typing import ClassVar
 
 import numpy as np
 
-from supercoil.core.dna import hat as _hc
+from supercoil.core.dna import li_zhao as _hc
 from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna import validity as _v
 from supercoil.dna.models.base import Buckling, DNAModel
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
 from supercoil.dna.moroz_nelson import long_tail_messages as _tail_messages
+from supercoil.exceptions import ModelError
 
 __all__ = ["CONVERGED_BRACKET", "LiZhao"]
 
@@ -40,27 +42,24 @@ class LiZhao(DNAModel):
     def _args(self, dna):
         return (dna.length, dna.bending_rigidity, dna.torsional_rigidity, dna.kT, dna.radius)
 
-    def buckling(self, force, dna, thermal, interaction):
-        force = np.asarray(force, dtype=float)
+    def _buckling(self, force, dna, thermal, interaction):
         eq = interaction.equilibrium(force, dna)
         par = _hc.hat_parameters(force, *self._args(dna), thermal=thermal, check_zeta=False,
                                  equilibrium_state=eq)
         return Buckling(par.buckling_turns, par.torque, par.slope)
 
-    def points(self, turns, force, dna, thermal, interaction, short_tail_length=None):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Hat-curve points; ``zeta`` and ``bracket`` are not kept (None).
 
-        :meth:`validity` reads the kernel's summary, and only in a failure region
+        :meth:`_validity` reads the kernel's summary, and only in a failure region
         recomputes them (zeta as extension / tail, the bracket from the torque).
         """
         return _hc.hat_curve_points(
             turns, force, *self._args(dna), thermal=thermal, short_tail_length=short_tail_length,
             equilibrium_solver=lambda f: interaction.equilibrium(f, dna), diagnostics=False)
 
-    def free_energy(self, turns, force, dna, thermal, interaction):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         """Not available: raises :class:`~supercoil.exceptions.ModelError` (see the class docs)."""
-        from supercoil.exceptions import ModelError
-
         if thermal:
             raise ModelError("model 'li-zhao' with thermal=True is not derived from one free "
                              "energy (its extension and torque violate the Maxwell relation, "
@@ -71,12 +70,21 @@ class LiZhao(DNAModel):
                          "and once fully coiled it holds the plateau torque, which no free "
                          "energy does")
 
-    def slope_validity(self, force, torque, dna):
+    def _turns_at_tail_length(self, force, tail_length, dna, thermal, interaction):
+        """Exact: ``N_b + (L - l) D / (2 pi)`` with the linking rate D of the plectoneme
+        phase (docs/theory/li-zhao.md#hat-curve)."""
+        par = _hc.hat_parameters(force, *self._args(dna), thermal=thermal,
+                                 equilibrium_state=interaction.equilibrium(force, dna))
+        return par.buckling_turns + (dna.length - tail_length) * par.linking_rate / (2 * np.pi)
+
+    def _slope_validity(self, force, torque, dna, thermal):
         """Messages where the long-tail factor of zeta at the plectoneme torque fails."""
+        if not thermal:
+            return []
         Q = _mn.zeta_bracket(force, torque, dna.bending_rigidity, dna.kT)
         return long_tail_messages(force, Q, np.ones(np.shape(force), bool))
 
-    def validity(self, turns, force, points, dna, thermal):
+    def _validity(self, turns, force, points, dna, thermal):
         if not thermal:
             return []
         summary = _v.summary_of(points)
@@ -96,7 +104,7 @@ class LiZhao(DNAModel):
         else:
             zeta = _zeta(points, dna)
             zeta_bad = ~points.short_tail & ~((zeta > 0) & (zeta <= 1))
-            zeta_bad &= points.phase != _hc.FULLY_COILED
+            zeta_bad &= points.phase != FULLY_COILED
         if np.any(zeta_bad):
             i = np.flatnonzero(zeta_bad)[0]
             return [f"Moroz-Nelson zeta = {zeta[i]:.4g} lies outside (0, 1] at force "
@@ -104,7 +112,7 @@ class LiZhao(DNAModel):
                     "valid there"]
         if q_min >= CONVERGED_BRACKET:
             return []  # no long-tail message can fire
-        return long_tail_messages(force, Q, points.phase != _hc.FULLY_COILED, turns)
+        return long_tail_messages(force, Q, points.phase != FULLY_COILED, turns)
 
 
 def _zeta(points, dna):

@@ -19,8 +19,9 @@ import numpy as np
 
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import marko2007 as _mk
+from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
+from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
-from supercoil.dna.parameters import ModelParameter
 
 __all__ = ["LOW_FORCE_FACTOR", "Marko2007"]
 
@@ -29,8 +30,6 @@ __all__ = ["LOW_FORCE_FACTOR", "Marko2007"]
 #: interpolation and c_s is 5 % below the Moroz-Nelson resummation for the seed
 #: set; docs/theory/marko2007.md#6-validity)
 LOW_FORCE_FACTOR = 4.0
-#: default short-tail threshold in bending persistence lengths (as li-zhao)
-SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 
 
 class Marko2007(DNAModel):
@@ -89,12 +88,12 @@ class Marko2007(DNAModel):
         L, A, Ct, P, kT, th, loop, w = self._args(dna, thermal)
         return _mk.marko_parameters(np.asarray(force, float), L, A, Ct, P, kT, th, loop, w)
 
-    def buckling(self, force, dna, thermal, interaction=None):
+    def _buckling(self, force, dna, thermal, interaction):
         """Turns at the (possibly jumping) buckling, plectoneme torque, slope."""
         par = self.parameters_at(force, dna, thermal)
         return Buckling(par.jump_turns, par.torque, par.slope)
 
-    def points(self, turns, force, dna, thermal, interaction=None, short_tail_length=None):
+    def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Extension, torque, plectoneme length (with the loop), phase, free energy."""
         L, A, Ct, P, kT, th, loop, w = self._args(dna, thermal)
         pt = _mk.points(turns, force, L, A, Ct, P, kT, th, loop, w)
@@ -103,12 +102,12 @@ class Marko2007(DNAModel):
         return HatPoints(pt.extension, pt.torque, L - pt.tail_length, pt.phase,
                          pt.tail_length < short_tail_length, pt.zeta, pt.free_energy)
 
-    def free_energy(self, turns, force, dna, thermal, interaction=None):
+    def _free_energy(self, turns, force, dna, thermal, interaction):
         """G(N, F) in J (relative to the straight, untwisted, unstretched chain)."""
         L, A, Ct, P, kT, th, loop, w = self._args(dna, thermal)
         return _mk.free_energy(turns, force, L, A, Ct, P, kT, th, loop, w)
 
-    def validity(self, turns, force, points, dna, thermal):
+    def _validity(self, turns, force, points, dna, thermal):
         """Messages for forces where the high-force expansions are inaccurate."""
         if not thermal:
             return []

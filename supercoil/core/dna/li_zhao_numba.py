@@ -1,10 +1,10 @@
-"""Optional compiled hat-curve kernel: one fused loop over the points (numba).
+"""The li-zhao hat-curve points compiled (optional, numba): one fused loop over the points.
 
-The same per-point formulas as :func:`supercoil.core.dna.hat_block.fill_block`
+The same per-point formulas as :func:`supercoil.core.dna.li_zhao_numpy.fill_block`
 (docs/theory/li-zhao.md#hat-curve), in the same order of operations, so both
 agree to rounding; each point is read once and its seven outputs written once
 instead of about 25 array passes. Used by
-:func:`~supercoil.core.dna.hat.hat_curve_points` only when asked
+:func:`~supercoil.core.dna.li_zhao.hat_curve_points` only when asked
 (``fast=True`` or the environment variable ``SUPERCOIL_FAST=1``) and numba is
 installed (``pip install supercoil[fast]``); the numpy path stays the default.
 The kernel is compiled on first use (about a second) and cached on disk.
@@ -60,7 +60,7 @@ def compiled():
 
 
 def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl, zeta, bracket):
-    """Points of one block into ``out[sl]``, ``zeta`` and ``bracket``, as ``hat_block.fill_block``.
+    """Points of one block into ``out[sl]``, ``zeta`` and ``bracket``, as the numpy ``fill_block``.
 
     Returns
     -------
@@ -70,7 +70,7 @@ def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl, zeta,
     zeta_over_long_tail : bool
         zeta > 1 at a point not flagged ``short_tail`` (the other reductions
         of the block's summary are numpy's, on the cache-resident block: a
-        min/max in the loop would stop its vectorisation, 2.6 -> 5.6 ms at 1e6).
+        min/max in the loop would stop its vectorisation and double its time).
     """
     Nb, Mp, k, c, s = (np.atleast_1d(np.asarray(a, dtype=float)) for a in const)
     Q = bracket if thermal else np.empty(0)
@@ -83,12 +83,12 @@ def fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl, zeta,
 
 def _loop(turns, Nb_, Mp_, k_, c_, s_, length, half_over_kT, BkT, thermal, short, ext,
           torque, S_, phase, short_tail, zeta_, Q_):
-    """The fused loop: the operations of ``hat_block.fill_block``, point by point.
+    """The fused loop: the operations of ``li_zhao_numpy.fill_block``, point by point.
 
     No early exit and no branch on a point's phase (selects instead), so that
-    LLVM vectorises it: 1.5 ms per 1e6 points into preallocated outputs, against
-    3.9 ms for the same loop with early returns (this machine, AMD EPYC, one
-    numpy ``sqrt`` pass over the turns 0.85 ms). Returns the flags
+    LLVM vectorises it: into preallocated outputs it costs about two numpy ``sqrt``
+    passes over the turns, against about five for the same loop with early returns.
+    Returns the flags
     ``(bad_turns, bad_bracket, over)``: a non-finite turns value, a bracket <= 0
     at a point that is not fully coiled, zeta > 1 at a long tail.
     """

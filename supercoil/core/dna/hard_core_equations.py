@@ -1,4 +1,4 @@
-"""Reduced equations of the hard-core plectoneme (docs/theory/plectoneme.md#reduced-form).
+"""Hard-core plectoneme equations in reduced units (docs/theory/plectoneme.md#reduced-form).
 
 The (GE2) function ``h(alpha, rho)`` and the reduced tension ``T'(alpha, rho)``
 of :mod:`supercoil.core.dna.plectoneme` in the variables ``rho = R/r0``,
@@ -17,8 +17,16 @@ import numpy as np
 from supercoil.core.dna import marko_siggia as _ms
 from supercoil.core.numerics import safe_newton as _safe_newton
 
-__all__ = ["ALPHA_HI", "ALPHA_LO", "reduced_ge2", "reduced_tension", "reduced_torque",
-           "scalar_ge2_tension", "scalar_tilt", "solve_tilt"]
+__all__ = [
+    "ALPHA_HI",
+    "ALPHA_LO",
+    "reduced_ge2",
+    "reduced_tension",
+    "reduced_tilt",
+    "reduced_torque",
+    "scalar_ge2_tension",
+    "scalar_tilt",
+]
 
 #: bracket of the tilt in (GE2): (0, pi/4)
 ALPHA_LO = 1e-12
@@ -36,7 +44,10 @@ def _trig(alpha):
 
 
 def reduced_ge2(alpha, rho, b, derivatives=False):
-    """``h = -rho^4 (GE2)`` in reduced units; with ``derivatives`` also ``(h_alpha, h_rho)``."""
+    """``h = -rho^4 (GE2)`` in reduced units; with ``derivatives`` also ``(h_alpha, h_rho)``.
+
+    Implements docs/theory/plectoneme.md (GE2).
+    """
     beta = b ** (-1.0 / 3.0)
     s, c, t, t_a = _trig(alpha)
     s2 = s * s
@@ -94,7 +105,10 @@ def reduced_tension(alpha, rho, b, derivatives=False):
 
 
 def reduced_torque(alpha, rho, b):
-    """Reduced torque ``M_3 / kT = (B kappa kappa_alpha + w_alpha) / (kT tau_alpha)`` (GE1)."""
+    """Reduced torque ``M_3 / kT = (B kappa kappa_alpha + w_alpha) / (kT tau_alpha)`` (GE1).
+
+    Implements docs/theory/plectoneme.md (GE1).
+    """
     beta = b ** (-1.0 / 3.0)
     s, c, _, _ = _trig(alpha)
     c2 = c * c - s * s
@@ -107,7 +121,7 @@ def reduced_torque(alpha, rho, b):
 # ---------------------------------------------------------------------------
 
 
-def solve_tilt(rho, b, alpha0=None, xtol=1e-15):
+def reduced_tilt(rho, b, alpha0=None, xtol=1e-15):
     """The unique root alpha in (0, pi/4) of (GE2) at reduced radius ``rho``."""
     rho = np.asarray(rho, dtype=float)
     if alpha0 is None:

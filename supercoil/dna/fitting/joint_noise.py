@@ -1,4 +1,4 @@
-"""The channels of a fit: extension, and torque in a joint fit.
+"""The noise of each channel of a joint extension-torque fit, its weights and statistics.
 
 docs/theory/fitting.md#joint-torque-fit.
 

@@ -1,7 +1,7 @@
-"""The numpy path of the hat-curve points, one block at a time (docs/theory/li-zhao.md#hat-curve).
+"""The li-zhao hat-curve points in numpy, one block at a time (docs/theory/li-zhao.md#hat-curve).
 
 :func:`fill_block` writes the points of one block of
-:func:`supercoil.core.dna.hat.hat_curve_points` into slices of its result: the
+:func:`supercoil.core.dna.li_zhao.hat_curve_points` into slices of its result: the
 general per-point formulas, or, for a one-force block whose points are all in
 one phase (decided on its extreme turns by the same floating-point
 operations), the same operations with the phase's constants hoisted
@@ -17,8 +17,8 @@ import numpy as np
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
-__all__ = ["FULLY_COILED", "PLECTONEME", "STRETCHED", "UNIFORM", "block_summary", "fill_block",
-           "fill_coiled", "fill_plectoneme", "fill_stretched", "one_phase"]
+__all__ = ["UNIFORM", "block_summary", "fill_block", "fill_coiled", "fill_plectoneme",
+           "fill_stretched", "one_phase"]
 
 
 
@@ -52,10 +52,10 @@ def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, o
     ``const``: per-force constants (scalars, or arrays of the block) ``N_b``,
     ``M_p``, ``2 pi / D``, ``C_eff 2 pi / L`` and ``B T / kT^2 - 1/32``. Each
     quantity is computed once, in place where possible (about 25 passes over the
-    block, all cache-resident). Measured per point on a block of 32768 (AMD EPYC,
-    numpy 2.4): ``np.maximum``/``np.minimum`` against a scalar take 0.46 ns,
-    against an array 0.12 ns, hence the constant arrays; ``np.copysign`` 0.47 ns,
-    skipped where the block has no negative turns.
+    block, all cache-resident). Measured on a block of 32768 (numpy 2.4):
+    ``np.maximum``/``np.minimum`` against a scalar cost about four times as much as
+    against an array, hence the constant arrays; ``np.copysign`` costs as much as the
+    scalar ``np.maximum``, and is skipped where the block has no negative turns.
     """
     Nb, Mp, k, c, s = const
     size = turns.shape[0]
@@ -161,8 +161,8 @@ def fill_plectoneme(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_
     The torque is M_p at every point, so the bracket Q and the long-tail factor
     ``1 - Q^(-1/2)/2`` are one number each and only the tail length varies: 11
     passes instead of about 30, no square root per point (at 1e6 points of a hat
-    curve to 25 turns at 1.2 pN, 68 % of them plectoneme, the kernel 7.1 -> 4.3 ms with
-    the stretched and fully coiled fillers). The
+    curve to 25 turns at 1.2 pN, 68 % of them plectoneme, the kernel's time falls by
+    40 % with the stretched and fully coiled fillers). The
     operations are those of the general path, so the points are bit-identical
     (tested). None if the bracket is not positive (the general path names it).
     """

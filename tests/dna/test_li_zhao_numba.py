@@ -1,6 +1,6 @@
-"""The optional compiled hat-curve kernel (supercoil.core.dna.hat_fast, numba) against numpy.
+"""The optional compiled hat-curve kernel (supercoil.core.dna.li_zhao_numba, numba) against numpy.
 
-The numpy path (:func:`supercoil.core.dna.hat_block.fill_block`) is the reference:
+The numpy path (:func:`supercoil.core.dna.li_zhao_numpy.fill_block`) is the reference:
 the fused loop performs the same floating-point operations in the same order,
 so every output must agree to rounding (in practice bit for bit), on every
 phase, at block seams, with one force per block and with mixed forces, and it
@@ -14,8 +14,9 @@ import sys
 import numpy as np
 import pytest
 
-from supercoil.core.dna import hat as hc
-from supercoil.core.dna import hat_fast
+from supercoil.core.dna import interface as iface
+from supercoil.core.dna import li_zhao as hc
+from supercoil.core.dna import li_zhao_numba
 from supercoil.exceptions import ValidityError
 from supercoil.units import BOLTZMANN
 
@@ -58,7 +59,7 @@ def numba():
 def test_compiled_equals_numpy_on_every_phase(numba, thermal):
     a = hc.hat_curve_points(N3, F3, *ARGS, thermal=thermal, fast=False)
     b = hc.hat_curve_points(N3, F3, *ARGS, thermal=thermal, fast=True)
-    assert set(np.unique(a.phase)) == {hc.STRETCHED, hc.PLECTONEME, hc.FULLY_COILED}
+    assert set(np.unique(a.phase)) == {iface.STRETCHED, iface.PLECTONEME, iface.FULLY_COILED}
     assert a.short_tail.any() and not a.short_tail.all()
     _agree(a, b)
 
@@ -76,11 +77,11 @@ def test_compiled_equals_numpy_with_mixed_forces_and_seams(numba, monkeypatch):
 
 def test_environment_variable_selects_the_compiled_kernel(numba, monkeypatch):
     calls = []
-    real = hat_fast.fill
-    monkeypatch.setattr(hat_fast, "fill", lambda *a: calls.append(1) or real(*a))
+    real = li_zhao_numba.fill
+    monkeypatch.setattr(li_zhao_numba, "fill", lambda *a: calls.append(1) or real(*a))
     hc.hat_curve_points(N3[:50], F3[:50], *ARGS)
     assert calls == []  # the numpy path is the default
-    monkeypatch.setenv(hat_fast.ENV, "1")
+    monkeypatch.setenv(li_zhao_numba.ENV, "1")
     fast = hc.hat_curve_points(N3[:50], F3[:50], *ARGS)
     assert calls == [1]
     _agree(hc.hat_curve_points(N3[:50], F3[:50], *ARGS, fast=False), fast)
@@ -105,21 +106,21 @@ def test_compiled_kernel_fails_like_numpy(numba):
 
 def test_asking_for_the_compiled_kernel_without_numba_names_the_extra(monkeypatch):
     monkeypatch.setitem(sys.modules, "numba", None)  # import numba raises ImportError
-    monkeypatch.setattr(hat_fast, "_KERNEL", None)
-    assert not hat_fast.available()
+    monkeypatch.setattr(li_zhao_numba, "_KERNEL", None)
+    assert not li_zhao_numba.available()
     with pytest.raises(ImportError, match=r"supercoil\[fast\]"):
         hc.hat_curve_points([1.0], [1e-12], *ARGS, fast=True)
-    monkeypatch.setenv(hat_fast.ENV, "1")
+    monkeypatch.setenv(li_zhao_numba.ENV, "1")
     with pytest.raises(ImportError, match="SUPERCOIL_FAST"):
         hc.hat_curve_points([1.0], [1e-12], *ARGS)
     assert hc.hat_curve_points([1.0], [1e-12], *ARGS, fast=False).extension[0] > 0
 
 
 def test_wanted_reads_the_argument_then_the_environment(monkeypatch):
-    monkeypatch.delenv(hat_fast.ENV, raising=False)
-    assert not hat_fast.wanted(None)
-    assert hat_fast.wanted(True) and not hat_fast.wanted(False)
+    monkeypatch.delenv(li_zhao_numba.ENV, raising=False)
+    assert not li_zhao_numba.wanted(None)
+    assert li_zhao_numba.wanted(True) and not li_zhao_numba.wanted(False)
     for value, expected in (("1", True), ("0", False), ("", False), ("yes", False)):
-        monkeypatch.setenv(hat_fast.ENV, value)
-        assert hat_fast.wanted(None) is expected
-    assert not hat_fast.wanted(False)
+        monkeypatch.setenv(li_zhao_numba.ENV, value)
+        assert li_zhao_numba.wanted(None) is expected
+    assert not li_zhao_numba.wanted(False)

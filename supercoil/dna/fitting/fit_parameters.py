@@ -9,7 +9,7 @@ A parameter is one of
 * a :class:`~supercoil.DNA` field (``length``, ``bending_persistence``,
   ``twist_persistence``, ``radius``; ``owner="dna"``), shared by all points;
 * a parameter the DNA model or the interaction declares
-  (:class:`~supercoil.dna.parameters.ModelParameter`; ``owner="model"`` or
+  (:class:`~supercoil.dna.model_parameters.ModelParameter`; ``owner="model"`` or
   ``"interaction"``), shared by all points;
 * a nuisance offset of one molecule (``turns_offset[<molecule>]``,
   ``extension_offset[<molecule>]``; ``owner="offset"``, ``shared="per-molecule"``);
@@ -36,6 +36,7 @@ from collections.abc import Iterator, MutableMapping
 import numpy as np
 import pandas as pd
 
+from supercoil import display
 from supercoil.units import ureg
 
 __all__ = ["CALIBRATION", "DNA_FIELDS", "PLAUSIBLE", "SHARING", "FitParameter",
@@ -261,8 +262,9 @@ class FitParameters(MutableMapping):
         if p.owner == "offset" or p.shared != "global":
             raise ValueError(f"only a global parameter can be split per force, not {name!r}")
         f_si = np.atleast_1d(np.asarray(magnitude(forces, U.N, "forces"), dtype=float))
-        new = [dataclasses.replace(p, name=f"{p.kind}[{f * 1e12:.6g} pN]", shared="per-force",
-                                   force=float(f)) for f in np.unique(f_si)]
+        new = [dataclasses.replace(p, name=f"{p.kind}[{display.text(f, 'force')}]",
+                                   shared="per-force", force=float(f))
+               for f in np.unique(f_si)]
         items = []
         for key, q in self._p.items():
             items.extend(new if key == name else [q])

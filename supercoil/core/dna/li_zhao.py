@@ -1,4 +1,4 @@
-"""Hat curves of DNA in a magnetic tweezers (docs/theory/li-zhao.md). Float-only kernel.
+"""The li-zhao hat curve of DNA in a magnetic tweezers (docs/theory/li-zhao.md). Float-only kernel.
 
 Extension z versus turns N at fixed force T, symmetric in N (denaturation
 ignored). With ``M_p = C omega`` the plectoneme torque at T (GE1), ``tau`` its
@@ -41,15 +41,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from supercoil.core.dna import hat_block as _blk
-from supercoil.core.dna import hat_fast as _fast
+from supercoil.core.dna import li_zhao_numba as _fast
+from supercoil.core.dna import li_zhao_numpy as _blk
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import (
-    DENATURATION_FORCE,
-    FULLY_COILED,
-    OVERSTRETCHING_FORCE,
-    PLECTONEME,
-    STRETCHED,
+    SHORT_TAIL_PERSISTENCE_LENGTHS,
     HatPoints,
     PointSummary,
 )
@@ -58,23 +54,13 @@ from supercoil.exceptions import ValidityError
 
 __all__ = [
     "BLOCK",
-    "DENATURATION_FORCE",
-    "FULLY_COILED",
-    "OVERSTRETCHING_FORCE",
-    "PLECTONEME",
-    "SHORT_TAIL_PERSISTENCE_LENGTHS",
-    "STRETCHED",
     "HatParameters",
-    "HatPoints",
-    "PointSummary",
     "buckling_turns",
     "hat_curve_points",
     "hat_parameters",
     "post_buckling_slope",
 ]
 
-#: default short-tail threshold in bending persistence lengths A = B/kT
-SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 _TWO_PI = 2.0 * np.pi
 
 
@@ -152,7 +138,10 @@ def buckling_turns(force, length, B, C, kT, r0, thermal=True):
 
 
 def post_buckling_slope(force, length, B, C, kT, r0, thermal=True):
-    """``dz/dN`` (m per turn) just past buckling, N > 0: ``-2 pi zeta_inf / D``."""
+    """``dz/dN`` (m per turn) just past buckling, N > 0: ``-2 pi zeta_inf / D``.
+
+    Implements docs/theory/li-zhao.md (LZ4).
+    """
     return hat_parameters(force, length, B, C, kT, r0, thermal).slope
 
 
@@ -160,6 +149,8 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
                      short_tail_length=None, equilibrium_solver=None, fast=None,
                      diagnostics=True):
     """Hat-curve points: one (turns, force) pair per point, equilibrium once per force.
+
+    Implements docs/theory/li-zhao.md (LZ3).
 
     Parameters
     ----------
@@ -187,7 +178,7 @@ def hat_curve_points(turns, force, length, B, C, kT, r0, thermal=True, rtol=EQUI
         ``tension -> PlectonemeState`` for another interaction (default: the
         hard-core solver at ``r0``).
     fast : bool, optional
-        Use the compiled kernel :mod:`supercoil.core.dna.hat_fast` (numba, the
+        Use the compiled kernel :mod:`supercoil.core.dna.li_zhao_numba` (numba, the
         ``supercoil[fast]`` extra); it agrees with the numpy path to rounding.
         Default ``None``: only if the environment variable ``SUPERCOIL_FAST``
         is ``1``. The numpy path is the default.
@@ -300,7 +291,7 @@ def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, o
                bracket):
     """The compiled fused loop on one block; the numpy path names any failure.
 
-    Returns the block's summary (:func:`~supercoil.core.dna.hat_block.block_summary`).
+    Returns the block's summary (:func:`~supercoil.core.dna.li_zhao_numpy.block_summary`).
     """
     code, over = _fast.fill(turns, const, length, B, kT, thermal, short_tail_length, out, sl,
                             zeta, bracket)

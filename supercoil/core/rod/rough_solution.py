@@ -1,4 +1,4 @@
-"""The rough-helix ODE [eq da/ds]: integration in two phases and its piecewise solution.
+"""The solution of the rough-helix ODE [eq da/ds]: integration in two phases, piecewise result.
 
 Float-only kernel (SI: m, N m^2, rad). :func:`integrate` solves [eq da/ds] in
 the regular variable ``y = 1 - cos 2 alpha`` (see :mod:`supercoil.core.rod.rough`
@@ -35,12 +35,15 @@ TAIL_FRACTION_MIN = 1e-6
 Y_SWITCH = 1e-3
 #: Default budget of right-side evaluations of one :func:`integrate` run. Typical
 #: runs take 50-3000 (k = 0: 50-1300 with DOP853; k = 5 rad/m: ~700 with LSODA);
-#: LSODA spends 100 000 in about 2 s (``twist_rate = 1e300 rad/m``, measured).
+#: 100 000 is about 30 times the longest typical run (reached with LSODA at
+#: ``twist_rate = 1e300 rad/m``).
 MAX_NFEV = 100_000
 
 
 def dy_ds(s, y, k, r, L, B, C):
     """Right side of [eq da/ds] in ``y = 1 - cos 2a`` (1/m); ``k = k(2s)`` in rad/m.
+
+    Implements docs/theory/rough.md (eq da/ds).
 
     ``dy/ds = -2C / (B (L - 2s)) c^2 / (c^2 + c + 1) [(2 - y) - 2 r k sqrt((2 - y)/y)]``
     with ``c = 1 - y``. The k = 0 part is smooth in y through y = 0 and is

@@ -111,6 +111,11 @@ class Parametrised:
         """The boolean options of this instance (for provenance), e.g. ``{"end_loop": False}``."""
         return {k: getattr(self, k) for k in self.OPTIONS}
 
+    @classmethod
+    def option_defaults(cls) -> dict:
+        """The boolean options of the class with their defaults (a copy of ``OPTIONS``)."""
+        return dict(cls.OPTIONS)
+
     def replace(self, **values):
         """A copy with some parameters (quantities or SI floats) or options changed."""
         merged = {**dict(self.values), **self.options()}
