@@ -73,11 +73,6 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
     si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, model,
                                  interaction or "hard-core")
     kT = si.kT
-    if quantity == "plectoneme_radius" and hasattr(m, "plectoneme_radius"):
-        r = m.plectoneme_radius(f, si)
-        if r is None:
-            return np.nan, "the model's plectoneme has no geometry (power-law P(M))"
-        return float(r[0]) * 1e9, "superhelix at the coexistence torque"
     if quantity == "plectoneme_radius":
         if not m.uses_interaction:
             return np.nan, "the model has no plectoneme geometry"
@@ -136,11 +131,9 @@ def _radius(m, f, si, inter):
 def _conditions(row, set_name, model, interaction):
     """Notes on the row's conditions the evaluation cannot take from the source."""
     import supercoil as sc
-    from supercoil.dna.models import get_model
 
     dna = sc.load_parameters(set_name)
-    derived = getattr(get_model(model), "screened_plectoneme", False)  # ensemble's plectoneme
-    uses_salt = (interaction == "screened" or derived) and dna.salt is not None
+    uses_salt = interaction == "screened" and dna.salt is not None
     notes = []
     if np.isfinite(row["salt"]) and not uses_salt:
         notes.append(f"the row's {row['salt']:g} mM is no condition of {model}"
