@@ -27,8 +27,6 @@ __all__ = ["Ensemble"]
 _FIT = ("fit to Qian et al. 2024 Fig. S5 source data, this package: bioRxiv "
         "10.1101/2024.10.15.618270, averaged rotation curves at 0.3-2 pN, both sides, with "
         "the parameter set dna_qian2024_fit, docs/theory/ensemble.md#5-fit")
-_MELT_FIT = ("joint fit (both sides, all six forces) with ss_melted and plectoneme_melting on, "
-             "docs/theory/melting.md#measured-on-the-qian-et-al-curves")
 _BP = 0.34e-9  # rise per base pair of B-DNA, m
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: the forces where the ensemble is evaluated: from kT/(4A) (0.02 pN for A = 50 nm; at
@@ -130,11 +128,13 @@ class Ensemble(DNAModel):
     measured curves better, docs/theory/ensemble.md#5-fit), ``exact_wlc``
     (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
     False: first order), ``melting`` (the melted phase in the tail),
-    ``multi_domain`` (up to two domains; default False: one), ``ss_melted`` (default True:
-    the melted phase's extension x_m(F) of two single strands; False: the constant
-    ``melted_extension``) and ``plectoneme_melting`` (default True: bubbles inside the
-    plectonemes too), both docs/theory/melting.md#the-ensembles-melted-phase (each paid
-    in AIC on the measured curves there), and ``screened_plectoneme`` (the plectoneme
+    ``multi_domain`` (up to two domains; default False: one), ``ss_melted`` (the melted
+    phase's extension x_m(F) of two single strands; default False: the constant
+    ``melted_extension``) and ``plectoneme_melting`` (bubbles inside the plectonemes
+    too; default False), both docs/theory/melting.md#the-ensembles-melted-phase (each
+    paid in AIC there with the previous positive side; off here until refitted jointly
+    with the present defaults, docs/theory/ensemble.md#51-the-packages-public-fit), and
+    ``screened_plectoneme`` (the plectoneme
     phase derived from the screened superhelix at the DNA's salt; default False: the
     power law ``P(M)``).
     """
@@ -145,7 +145,7 @@ class Ensemble(DNAModel):
     uses_interaction: ClassVar[bool] = False
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
                                "resummed": True, "melting": True, "multi_domain": False,
-                               "ss_melted": True, "plectoneme_melting": True,
+                               "ss_melted": False, "plectoneme_melting": False,
                                "screened_plectoneme": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
@@ -171,13 +171,13 @@ class Ensemble(DNAModel):
             "turns of linking absorbed as writhe by each domain's end loop",
             "one closed loop, docs/theory/end-loop.md#2-loop"),
         "melting_free_energy": _p(
-            "melting_free_energy", "pN*nm", 4.29e-21, 0.5e-21, 25e-21,
-            "free energy of melting one base pair at zero force and torque", _MELT_FIT),
+            "melting_free_energy", "pN*nm", 4.43e-21, 0.5e-21, 25e-21,
+            "free energy of melting one base pair at zero force and torque", _FIT),
         "melting_cooperativity": _p(
-            "melting_cooperativity", "pN*nm", 45.0e-21, 0.0, 250e-21,
-            "boundary free energy of one melted bubble (both ends)", _MELT_FIT),
+            "melting_cooperativity", "pN*nm", 63.3e-21, 0.0, 250e-21,
+            "boundary free energy of one melted bubble (both ends)", _FIT),
         "melted_extension": _p(
-            "melted_extension", "", 0.07, -0.5, 1.5,
+            "melted_extension", "", 0.165, -0.5, 1.5,
             "extension per B-DNA contour length of the melted phase (used only with "
             "ss_melted=False)", _FIT),
         "plectoneme_charge_fraction": _p(
