@@ -87,12 +87,12 @@ def test_bubbles_in_the_plectoneme():
     F = np.array([0.5, 1.0, 2.0]) * PN
     M = np.array([-9.0, -11.0, 6.0]) * PNNM
     off, on = _par(), _par(plectoneme_melting=True)
-    a = en._plectoneme(F, M, off)
+    a = en.plectoneme_phase(F, M, off)
     b = ph.plectoneme_gibbs(F, M, off.P0, off.exponent, off.M0, KT)
     assert all(np.array_equal(u, v) for u, v in zip(a, b, strict=True))
 
     def gibbs(f, m):
-        return en._plectoneme(f, m, on)
+        return en.plectoneme_phase(f, m, on)
 
     g = gibbs(F, M)
     assert np.all(g.dphi_dF == 0.0)  # no extension in the plectoneme, melted or not
