@@ -160,6 +160,8 @@ def plectoneme_gibbs(force, torque, P0, exponent, M0, kT):
 def tabulated_plectoneme_gibbs(force, torque, table, C, kT):
     """Plectoneme of a superhelix tabulated at fixed torque: ``phi_p = -T(|M|) - M^2/(2 kT C)``.
 
+    Implements docs/theory/ensemble.md (E2').
+
     ``table = (M_k, T_k, tau_k)``: torques (N m, increasing, positive), the superhelix's
     tension ``T_k`` (N) and writhe density ``tau_k`` (rad/m) along its equilibrium at
     those torques, where ``dT/dM = tau`` holds exactly [ensemble.md#221-derived-plectoneme].
