@@ -7,10 +7,10 @@
   (a default step) or ``a,b,c``, with an error message that names the flag.
 * :func:`plain_warnings`: run a computation, collect its warnings and return them
   once each, as plain text (no Python warning text on the terminal).
-* :data:`ARGUMENT_FLAGS`, :func:`flag_text`, :func:`error_text`: the one table from a
-  library argument name to the command-line flag that sets it, and the messages built
-  from it (an exception's ``argument`` attribute names the argument, so that no library
-  message is rewritten into command-line wording).
+* :data:`ARGUMENT_FLAGS`, :func:`flag_text`, :func:`error_text`, :func:`warning_text`: the
+  one table from a library argument name to the command-line flag that sets it, and
+  the messages built from it (an exception's ``argument`` attribute names the
+  argument, so that no library message is rewritten into command-line wording).
 * :func:`check_out_folder`: ``--out`` checked before any computation.
 * :func:`source_checkout`: the source checkout for ``supercoil docs`` (the working
   folder, else the checkout the package is in).
@@ -138,8 +138,10 @@ ARGUMENT_FLAGS = {
 }
 
 #: a Python keyword hint in a message: ``name=`` and what follows up to a space, comma,
-#: parenthesis or the end (``check_settled=False``, ``calibration=``)
-_KEYWORD_HINT = re.compile(r"(?<![\w-])(?P<name>[a-z_][a-z0-9_]*)=(?P<value>[^\s,;()]*)")
+#: parenthesis or the end (``check_settled=False``, ``calibration=``); not a keyword of a
+#: call written out in the message (``dna.replace(length=...)`` is Python code to type)
+_KEYWORD_HINT = re.compile(
+    r"(?<![\w-])(?<!\w\()(?P<name>[a-z_][a-z0-9_]*)=(?P<value>[^\s,;()]*)")
 
 
 def flag_text(message: str) -> str:
@@ -174,10 +176,23 @@ def error_text(command: str, exc) -> str:
     The flag comes from the exception's ``argument`` (through :data:`ARGUMENT_FLAGS`;
     left out when the message already names it); keyword hints become flags.
     """
+    return f"supercoil {command}: error: {_flagged(exc)}"
+
+
+def warning_text(command: str, warning) -> str:
+    """``supercoil COMMAND: warning: FLAG: message``: a warning as :func:`error_text` does it.
+
+    ``warning`` is the warning instance (``w.message`` of a caught warning), a string
+    for a warning that names no argument.
+    """
+    return f"supercoil {command}: warning: {_flagged(warning)}"
+
+
+def _flagged(exc) -> str:
+    """The message of ``exc`` with keyword hints as flags, the flags of its argument first."""
     text = flag_text(str(exc))
     flags = [f for f in argument_flags(exc) if f not in text]
-    prefix = f"{'/'.join(flags)}: " if flags else ""
-    return f"supercoil {command}: error: {prefix}{text}"
+    return f"{'/'.join(flags)}: {text}" if flags else text
 
 
 def check_out_folder(out, flag: str = "--out"):

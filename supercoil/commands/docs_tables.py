@@ -150,11 +150,12 @@ def family_table(fam):
                                    for m, i in zip(fam["model"], fam["interaction"],
                                                    strict=True)])
     fam = fam.sort_values("hat_seconds", kind="stable", na_position="last")
-    keys = ("construction", "hat_seconds", "fit_seconds", "extension_error", "torque_error",
-            "fit_rms", "status")
+    keys = ("construction", "hat_seconds", "fit_seconds", "extension_error", "positive_error",
+            "torque_error", "fit_rms", "status")
     cols = {k: list(fam[k]) for k in keys}
     units = {"construction": "", "hat_seconds": "s", "fit_seconds": "s",
-             "extension_error": "nm", "torque_error": "pN nm", "fit_rms": "nm", "status": ""}
+             "extension_error": "nm", "positive_error": "nm", "torque_error": "pN nm",
+             "fit_rms": "nm", "status": ""}
     prov = fam.attrs.get("provenance", {})
     return make_table(cols, units, provenance(None, source="supercoil bench",
                                               reference=prov.get("reference"),
@@ -167,12 +168,14 @@ def family_markdown(table) -> str:
         return "-" if not np.isfinite(float(x)) else f"{float(x) * scale:.{digits}g}"
 
     rows = [[f"`{r.construction}`", num(r.hat_seconds, 1e3), num(r.fit_seconds),
-             num(r.extension_error), num(r.torque_error), num(r.fit_rms), r.status]
+             num(r.extension_error), num(r.positive_error), num(r.torque_error), num(r.fit_rms),
+             r.status]
             for r in table.itertuples(index=False)]
     ref = table.attrs.get("provenance", {}).get("reference")
     ref = "/".join(str(x) for x in ref if x) if isinstance(ref, list | tuple) else str(ref)
     return (markdown_table(["construction", "hat curve CPU (ms)", "fit CPU (s)",
-                            "RMS extension difference (nm)", "RMS torque difference (pN nm)",
+                            "RMS extension difference (nm)", "same, N >= 0 (nm)",
+                            "RMS torque difference (pN nm)",
                             "fit residual RMS (nm)", "status"], rows)
             + f"\nReference: `{ref}` (its own row: difference 0). Differences at the same "
             "physical parameters, no fit; the fit is to curves simulated by the reference "

@@ -65,47 +65,6 @@ def _parse_quantity(text, what):
     return q
 
 
-#: library wording -> command-line wording, for error and warning messages
-_CLI_WORDS = (
-    ("(offsets are switched with fit_turns_offset and fit_extension_offset)",
-     "(the offsets are switched off with --no-turns-offset and --no-extension-offset)"),
-    ("fit_turns_offset", "--no-turns-offset"),
-    ("fit_extension_offset", "--no-extension-offset"),
-    ("is both in vary and in fixed", "is both in --vary and in --fix"),
-    ("nothing to fit: vary is empty", "nothing to fit: --vary is empty"),
-    ("start value given for", "--start given for"),
-    ("bounds given for", "--bound given for"),
-    ("fit_many fits each molecule alone:", "without --global each molecule is fitted alone:"),
-    ("sigma must be finite and positive", "--sigma must be finite and positive"),
-    ("the sigma argument", "--sigma"),
-    ("cannot vary ", "--vary: cannot vary "),
-)
-_CLI_PATTERNS = (
-    (r"\bfixed (\w+) must be", r"--fix \1 must be"),
-    (r"\bbounds\[('[^']*')\]", r"--bound \1"),
-    (r"^parameter ('[^']*'): ", r"parameter \1 (--fix/--start/--bound): "),
-)
-
-
-def _cli_text(message):
-    """A library message in the command's terms: flags instead of keyword arguments.
-
-    Keyword hints (``name=value``) go through the one table of the commands,
-    :data:`supercoil.commands._common.ARGUMENT_FLAGS`; the wordings above are the
-    fitting messages that name an argument in prose (they carry no ``argument``
-    attribute yet).
-    """
-    import re
-
-    from supercoil.commands._common import flag_text
-
-    for old, new in _CLI_WORDS:
-        message = message.replace(old, new)
-    for pattern, new in _CLI_PATTERNS:
-        message = re.sub(pattern, new, message)
-    return flag_text(message)
-
-
 def register(sub):
     p = sub.add_parser(
         "fit",
@@ -191,10 +150,11 @@ def _models(args):
 def run(args) -> int:
     from pathlib import Path
 
+    from supercoil.commands._common import warning_text
     from supercoil.dna.fitting import fit_hat_curves
     from supercoil.dna.material import DNA
     from supercoil.dna.tweezers import read_tweezers_csv
-    from supercoil.exceptions import FitError, ModelError, ParameterError
+    from supercoil.exceptions import ParameterError
     from supercoil.parameters import load_parameters
     from supercoil.tables import write_csv
 
@@ -232,18 +192,14 @@ def run(args) -> int:
         data = read_tweezers_csv(args.data, drop_incomplete=args.drop_incomplete)
         molecules = data["molecule"].astype(str).unique() if "molecule" in data.columns else []
         many = len(molecules) > 1 and not args.global_fit
-        try:
-            if many:
-                table = _run_many(args, data, dna, fixed, bounds, start, options)
-            else:
-                result = fit_hat_curves(data, dna, vary=args.vary, fixed=fixed, bounds=bounds,
-                                        start=start, **options)
-        except FitError as exc:
-            raise FitError(_cli_text(str(exc))) from exc
-        except ModelError as exc:
-            raise ModelError(_cli_text(str(exc))) from exc
+        # errors name their argument (``exc.argument``): the command prints its flag
+        if many:
+            table = _run_many(args, data, dna, fixed, bounds, start, options)
+        else:
+            result = fit_hat_curves(data, dna, vary=args.vary, fixed=fixed, bounds=bounds,
+                                    start=start, **options)
     for w in caught:
-        print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
+        print(warning_text("fit", w.message), file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     if many:
         csv = write_csv(table, out / "fit_molecules.csv")
@@ -283,6 +239,7 @@ def _write_single(result, out, args):
 
 def _run_compare(args, models, dna, fixed, bounds, options, out):
     """``--model a --model b``: one data set, every model; table, report and figure."""
+    from supercoil.commands._common import warning_text
     from supercoil.dna.fitting import compare_models
     from supercoil.dna.fitting.plot import plot_comparison
     from supercoil.dna.tweezers import read_tweezers_csv
@@ -299,7 +256,7 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
                                     bounds=bounds, **options)
     table, results = comparison.table, comparison.results
     for w in caught:
-        print(f"supercoil fit: warning: {_cli_text(str(w.message))}", file=sys.stderr)
+        print(warning_text("fit", w.message), file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     csv = write_csv(table, out / "fit_comparison.csv")
     report = _compare_report(table, results)
@@ -320,6 +277,8 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
 
 
 def _compare_report(table, results):
+    from supercoil.commands._common import flag_text
+
     lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) + 2k, "
              "bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit and per "
              "hat-curve evaluation)",
@@ -327,7 +286,7 @@ def _compare_report(table, results):
              f"{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
     for _, row in table.iterrows():
         if not row["success"]:
-            lines.append(f"    {row['model']:<16}  FAILED: {_cli_text(row['error'])}")
+            lines.append(f"    {row['model']:<16}  FAILED: {flag_text(row['error'])}")
             continue
         lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
                      f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
@@ -361,6 +320,8 @@ def _run_many(args, data, dna, fixed, bounds, start, options):
 def _many_report(table, args):
     import numpy as np
 
+    from supercoil.commands._common import flag_text
+
     units = table.attrs["units"]
     params = [c for c in table.columns
               if f"{c}_stderr" in table.columns]
@@ -378,7 +339,7 @@ def _many_report(table, args):
     lines.append(head)
     for _, row in table.iterrows():
         if not row["success"]:
-            lines.append(f"    {row['molecule']!s:<12}  FAILED: {_cli_text(row['error'])}")
+            lines.append(f"    {row['molecule']!s:<12}  FAILED: {flag_text(row['error'])}")
             continue
         stat = row["residual_rms"] if unit_weights else row["reduced_chi_square"]
         text = f"    {row['molecule']!s:<12}{stat:>10.4g}"

@@ -19,11 +19,13 @@ import numpy as np
 __all__ = ["DEFAULT_CONFIGS", "load_published", "plot_validation", "validate"]
 
 #: (model, parameter set, interaction): the paper's construction on the seed set,
-#: and the consistent and the Marko 2007 model on the 150 mM set
+#: the consistent and the Marko 2007 model on the 150 mM set, and the phase-ensemble
+#: model with its defaults and the set fitted to the curves of Qian et al. (2024)
 DEFAULT_CONFIGS = (
     ("li-zhao", "dna", "hard-core"),
     ("free-energy", "dna_150mM_nacl", "screened"),
     ("marko2007", "dna_150mM_nacl", None),
+    ("ensemble", "dna_qian2024_fit", None),
 )
 #: where a row gives no force (or zero force, where the models hold no plectoneme),
 #: the models are evaluated at this force (pN); the note of the row says so

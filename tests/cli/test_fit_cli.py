@@ -147,15 +147,15 @@ def test_fit_command_messages_name_the_flags(tmp_path, capsys, true_dna):
     assert "fit_turns_offset" not in err and "fit_extension_offset" not in err
     assert main(["fit", str(path), "--vary", "radius", "--fix", "radius=2nm",
                  "--out", out]) == 2
-    assert "both in --vary and in --fix" in capsys.readouterr().err
+    assert "--vary/--fix: parameter 'radius' is both varied and fixed" in capsys.readouterr().err
     assert main(["fit", str(path), "--vary", "radius", "--fix", "length=-1nm",
                  "--out", out]) == 2
     err = capsys.readouterr().err
-    assert "--fix length must be finite and positive, got -1 nm" in err
+    assert "--fix: the fixed value of length must be finite and positive, got -1 nm" in err
     assert "Quantity" not in err
     assert main(["fit", str(path), "--vary", "radius", "--start", "length=700nm",
                  "--out", out]) == 2
-    assert "--start given for 'length'" in capsys.readouterr().err
+    assert "--start: a start value is given for 'length'" in capsys.readouterr().err
     # values that do not parse name their flag
     for flag, item in (("--fix", "length=abc"), ("--start", "radius=1 parsec/"),
                        ("--bound", "radius=x:3nm"), ("--sigma", "5 blorp")):

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from supercoil.core.dna import moroz_nelson as mn
+from supercoil.core.dna import phases as ph
 from supercoil.core.dna import twist_bend as tb
 from supercoil.exceptions import ValidityError
 
@@ -17,9 +18,17 @@ def _fd(fun, x, h):
     return (fun(x + h) - fun(x - h)) / (2 * h)
 
 
+def test_one_bouchiat_inversion_for_both_kernels():
+    # the stretched phases of twist_bend and of phases invert the interpolation once
+    x = tb.wlc_extension(F[:, 0], A, KT)[0]
+    g, x2 = ph.wlc_exact_free_energy_gain(F[:, 0], A, KT)
+    assert np.array_equal(x, x2)
+    assert np.array_equal(tb.wlc_gibbs_gain(F[:, 0], A, KT)[0], g)
+
+
 def test_bouchiat_inversion_solves_the_interpolation():
     x, dx = tb.wlc_extension(F[:, 0], A, KT)
-    h, hp = tb._reduced_force(x)
+    h, hp = ph._bouchiat_reduced_force(x), ph._bouchiat_reduced_stiffness(x)
     np.testing.assert_allclose(h, F[:, 0] * A / KT, rtol=1e-13)
     np.testing.assert_allclose(dx, A / (KT * hp), rtol=1e-14)
     assert np.all((x > 0) & (x < 1)) and np.all(np.diff(x) > 0)

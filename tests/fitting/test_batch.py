@@ -107,7 +107,7 @@ def test_fit_many_in_parallel_equals_serial(many, base, pool):
 def test_fit_many_rejects_common_problems_up_front(many, base):
     with pytest.raises(FitError, match="cannot vary"):
         sc.fit_many(many, base, vary=["pitch"])
-    with pytest.raises(FitError, match="fits each molecule alone"):
+    with pytest.raises(FitError, match="each molecule is fitted alone"):
         sc.fit_many(many, base, fixed={"turns_offset[m1]": 0})
 
 

@@ -165,7 +165,7 @@ def test_bad_parameter_names(data, base):
     u = sc.ureg
     with pytest.raises(FitError, match="cannot vary 'temperature'"):
         sc.fit_hat_curves(data, base, vary=["temperature"])
-    with pytest.raises(FitError, match="both in vary and in fixed"):
+    with pytest.raises(FitError, match="is both varied and fixed"):
         sc.fit_hat_curves(data, base, vary=["radius"], fixed={"radius": 2 * u.nm})
     with pytest.raises(FitError, match="unknown parameter 'pitch'"):
         sc.fit_hat_curves(data, base, fixed={"pitch": 2 * u.nm})
@@ -227,7 +227,8 @@ def test_no_convergence_is_a_fit_error(data, base):
 def test_messages_print_plain_numbers(data, base):
     """Audit P5: no np.float64(...) or <Quantity(...)> reprs in messages."""
     u = sc.ureg
-    with pytest.raises(FitError, match=r"fixed radius must be finite and positive, got -1 nm$"):
+    with pytest.raises(FitError, match=r"fixed value of radius must be finite and positive, "
+                                       r"got -1 nm$"):
         sc.fit_hat_curves(data, base, vary=["twist_persistence"], fixed={"radius": -1 * u.nm})
     with pytest.raises(FitError, match=r"lower bound 2\.0 is not below 1\.0$"):
         sc.fit_hat_curves(data, base, bounds={"turns_offset": (np.float64(2), np.float64(1))})

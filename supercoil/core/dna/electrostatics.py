@@ -83,6 +83,10 @@ def water_permittivity(temperature):
     ------
     ValidityError
         Naming the temperature, outside 0-100 degC.
+
+    Notes
+    -----
+    Implements docs/theory/screened-interaction.md (SI1).
     """
     t = np.asarray(temperature, dtype=float) - _KELVIN_0C
     if not np.all((t >= 0.0) & (t <= 100.0)):
@@ -95,7 +99,10 @@ def water_permittivity(temperature):
 
 
 def bjerrum_length(temperature):
-    """Bjerrum length ``l_B = e^2 / (4 pi eps0 eps_r(T) k_B T)`` (m)."""
+    """Bjerrum length ``l_B = e^2 / (4 pi eps0 eps_r(T) k_B T)`` (m).
+
+    Implements docs/theory/screened-interaction.md (SI2).
+    """
     T = np.asarray(temperature, dtype=float)
     eps = water_permittivity(T)
     return ELEMENTARY_CHARGE**2 / (4.0 * np.pi * VACUUM_PERMITTIVITY * eps * _BOLTZMANN * T)
@@ -115,6 +122,10 @@ def debye_length(salt, temperature):
     ------
     ValueError
         If the salt concentration is not positive and finite.
+
+    Notes
+    -----
+    Implements docs/theory/screened-interaction.md (SI2).
     """
     c = np.asarray(salt, dtype=float)
     if not np.all(np.isfinite(c) & (c > 0)):
@@ -204,6 +215,10 @@ def effective_line_charge(salt, temperature, radius, nu0=BARE_LINE_CHARGE):
     -------
     float
         ``nu`` in charges per m.
+
+    Notes
+    -----
+    Implements docs/theory/screened-interaction.md (SI3).
     """
     for name, v in (("salt", salt), ("radius", radius), ("nu0", nu0)):
         if not (math.isfinite(v) and v > 0):

@@ -76,6 +76,10 @@ def loop_tension(gamma, torque, C):
     ------
     ValidityError
         If ``gamma_l <= 0``: no loop of finite size.
+
+    Notes
+    -----
+    Implements docs/theory/end-loop.md (EL1).
     """
     gl = np.asarray(gamma, float) - np.asarray(torque, float) ** 2 / (2.0 * C)
     if np.any(~(gl > 0.0)):
@@ -85,7 +89,10 @@ def loop_tension(gamma, torque, C):
 
 
 def loop_radius(gamma_l, B):
-    """Radius ``R* = sqrt(B / (2 gamma_l))`` (m) of the end loop [end-loop.md#2-loop]."""
+    """Radius ``R* = sqrt(B / (2 gamma_l))`` (m) of the end loop [end-loop.md#2-loop].
+
+    Implements docs/theory/end-loop.md (EL2).
+    """
     gamma_l = np.asarray(gamma_l, dtype=float)
     if np.any(~(gamma_l > 0.0)):
         raise ValidityError("end loop undefined: the loop tension gamma_l must be positive, "
@@ -94,7 +101,10 @@ def loop_radius(gamma_l, B):
 
 
 def loop_length(gamma_l, B):
-    """Contour length ``l = 2 pi R*`` (m) taken up by the end loop."""
+    """Contour length ``l = 2 pi R*`` (m) taken up by the end loop.
+
+    Implements docs/theory/end-loop.md (EL2).
+    """
     return _TWO_PI * loop_radius(gamma_l, B)
 
 
@@ -119,6 +129,10 @@ def loop_excess_free_energy(gamma_l, torque, B, writhe=LOOP_WRITHE):
     ValidityError
         If ``eps* <= 0``: the loop would lower the coexisting state and buckling
         would not be a jump (happens when ``sqrt(2 B gamma_l) <= M_p w``).
+
+    Notes
+    -----
+    Implements docs/theory/end-loop.md (EL1, EL2).
     """
     eps = _TWO_PI * (np.sqrt(2.0 * B * np.asarray(gamma_l, float))
                      - np.asarray(torque, float) * writhe)
@@ -136,12 +150,17 @@ def buckling_shift(eps, stiffness, length):
     ``stiffness`` is the stretched phase's twist rigidity c (N m^2) whose
     quadratic free energy ``(c/2) L (2 pi N/L)^2`` the coexistence line touches
     at ``N_b`` [end-loop.md#3-jump].
+
+    Implements docs/theory/end-loop.md (EL4).
     """
     return length / _TWO_PI * np.sqrt(2.0 * np.asarray(eps, float) / (stiffness * length))
 
 
 def torque_overshoot(eps, stiffness, length):
-    """Torque overshoot ``dM = sqrt(2 eps c / L)`` (N m) just before the jump."""
+    """Torque overshoot ``dM = sqrt(2 eps c / L)`` (N m) just before the jump.
+
+    Implements docs/theory/end-loop.md (EL5).
+    """
     return np.sqrt(2.0 * np.asarray(eps, float) * stiffness / length)
 
 
@@ -157,6 +176,10 @@ def coiled_state(turns_in_plectoneme, length, B, K, C):
     Returns
     -------
     (G [J], M [N m], R [m]), arrays of n's shape; needs ``n > 0`` and ``K < C``.
+
+    Notes
+    -----
+    Implements docs/theory/end-loop.md (EL6).
     """
     n = np.asarray(turns_in_plectoneme, dtype=float)
     sB, s = np.sqrt(B), np.sqrt(1.0 / K - 1.0 / C)

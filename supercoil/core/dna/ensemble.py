@@ -32,6 +32,7 @@ import numpy as np
 from supercoil.core.numerics import find_root
 from supercoil.exceptions import ValidityError
 
+from . import melting as _melt
 from . import phases as _ph
 
 __all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque",
@@ -68,6 +69,14 @@ class EnsembleParameters(NamedTuple):
     max_domains: int = 2
     nodes: int = 70
     finite_size: bool = True
+    # melted phase beyond the linear one (docs/theory/melting.md#the-ensembles-melted-phase);
+    # the defaults give the linear melted phase bit-identically
+    melt_ss_elastic: bool = False  # x_m(F) of two single strands (freely jointed chains)
+    melt_twist_stiffness: float = np.inf  # c_m of the melted phase, m (inf: rigid)
+    plectoneme_melting: bool = False  # bubbles inside the plectoneme too (no extension there)
+    #: (M_k, T_k, tau_k) of a superhelix at fixed torque (phases.tabulated_plectoneme_gibbs)
+    #: in place of the power law P(M); None: the power law
+    plectoneme_table: tuple | None = None
 
 
 class EnsemblePoints(NamedTuple):
@@ -92,7 +101,7 @@ def tail_gibbs(F, M, par, wlc=None):
                             par.resummed, wlc)
     if not np.isfinite(par.melt_energy):
         return s, np.zeros(np.shape(s.phi))
-    m = _ph.simple_melted_gibbs(F, M, par.melt_energy, par.melt_extension, par.melt_twist)
+    m = _melt.tail_melted_gibbs(F, M, par)  # the melted phase (melting.py)
     return _ph.two_state_gibbs(s, m, par.segment, par.melt_cooperativity, par.kT)
 
 
@@ -100,7 +109,14 @@ def plectoneme_phase(F, M, par):
     """The plectoneme phase's Gibbs energy and derivatives at force ``F`` and torque ``M``
     (SI; a torque below the smallest resolved one is raised to it)."""
     M = np.where(np.abs(M) < _TINY_TORQUE, _TINY_TORQUE, M)
-    return _ph.plectoneme_gibbs(F, M, par.P0, par.exponent, par.M0, par.kT)
+    if par.plectoneme_table is not None:
+        p = _ph.tabulated_plectoneme_gibbs(F, M, par.plectoneme_table, par.C, par.kT)
+    else:
+        p = _ph.plectoneme_gibbs(F, M, par.P0, par.exponent, par.M0, par.kT)
+    if par.plectoneme_melting and np.isfinite(par.melt_energy):  # bubbles in the plectoneme
+        p = _ph.two_state_gibbs(p, _melt.plectoneme_melted_gibbs(F, M, par), par.segment,
+                                par.melt_cooperativity, par.kT)[0]
+    return p
 
 
 def _wlc(F, par):

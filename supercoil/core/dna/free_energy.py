@@ -129,6 +129,8 @@ tail_bracket = _mn.zeta_bracket
 def tail_free_energy(force, torque, B, C, kT, thermal=True):
     """``(g_s, -dg_s/dF, -dg_s/dM)``: tail free energy per length (J/m), zeta_inf, l_s (1/m).
 
+    Implements docs/theory/free-energy.md (FE1, FE2, FE3).
+
     Raises
     ------
     ValidityError
@@ -151,6 +153,8 @@ def _check_bracket(Q, force, torque):
 
 def tail_torque(linking, force, B, C, kT):
     """Torque M >= 0 of the thermal tail with ``l_s(F, M) = linking`` (rad/m, >= 0).
+
+    Implements docs/theory/free-energy.md (FE7) for the stretched phase (S = 0).
 
     With ``v = M / M_Q`` (``M_Q = 2 kT sqrt(Q0)``, ``Q0 = B F/kT^2 - 1/32``: the
     bracket closes at v = 1), ``l_s(v) = v M_Q [1/C + 1/(4 B sqrt(Q0) sqrt(1 - v^2))]``
@@ -236,6 +240,8 @@ def _pull(force, B, C, kT, equilibrium):
 
 def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
     """Coexistence torque, effective pull, buckling turns and slope at each force.
+
+    Implements docs/theory/free-energy.md (FE4, FE5, FE8, FE9).
 
     Raises
     ------
@@ -335,6 +341,8 @@ def loop_constants(co, length, B, C, kT, thermal=True):
 def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
                short_tail_length=None, trial_equilibrium=None, end_loop=False):
     """Free-energy hat-curve points, one (turns, force) pair per point.
+
+    Implements docs/theory/free-energy.md (FE6, FE7).
 
     Parameters
     ----------

@@ -93,6 +93,8 @@ def wlc_free_energy_gain(force, A, kT, thermal=True):
     """``g(F) = F - sqrt(kT F / A)`` and ``g'(F) = 1 - sqrt(kT / (A F)) / 2`` (N, 1).
 
     Athermal: ``g = F``, ``g' = 1`` [marko2007.md#2-stretched].
+
+    Implements docs/theory/marko2007.md (M1).
     """
     force = np.asarray(force, dtype=float)
     if not thermal:
@@ -106,6 +108,8 @@ def stretched_twist_stiffness(force, A, Ct, kT, thermal=True):
 
     Athermal: ``c_s = C``. It is the first-order expansion of the Moroz-Nelson
     ``C/(1 + (C/4A) sqrt(kT/(A F)))`` [marko2007.md#2-stretched].
+
+    Implements docs/theory/marko2007.md (M2).
     """
     force = np.asarray(force, dtype=float)
     if not thermal:
@@ -117,7 +121,10 @@ def stretched_twist_stiffness(force, A, Ct, kT, thermal=True):
 
 
 def stretched_extension_factor(omega, force, A, Ct, kT, thermal=True):
-    """``z / L = g'(F) - (kT / 2) c_s'(F) Omega^2`` of the stretched phase."""
+    """``z / L = g'(F) - (kT / 2) c_s'(F) Omega^2`` of the stretched phase.
+
+    Implements docs/theory/marko2007.md (M3).
+    """
     _, gp = wlc_free_energy_gain(force, A, kT, thermal)
     _, csp = stretched_twist_stiffness(force, A, Ct, kT, thermal)
     return gp - 0.5 * kT * csp * np.asarray(omega, float) ** 2
@@ -147,6 +154,11 @@ def marko_parameters(force, length, A, Ct, P, kT, thermal=True, end_loop=False,
         needs ``c_s > P``), the stretched extension at buckling is not
         positive, or (end loop) the loop does not fit: non-positive excess free
         energy, or no plectoneme or no tail at the jump.
+
+    Notes
+    -----
+    Implements docs/theory/marko2007.md (M4, M6).
+    Implements docs/theory/end-loop.md (EL4, EL5) (``end_loop=True``).
     """
     force = np.asarray(force, dtype=float)
     B = A * kT
@@ -209,6 +221,9 @@ def points(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,
 
     ``turns`` and ``force`` broadcast. The free energy is relative to the
     straight, untwisted, unstretched chain [marko2007.md#5-summary].
+
+    Implements docs/theory/marko2007.md (M3, M5).
+    Implements docs/theory/end-loop.md (EL3) (``end_loop=True``).
     """
     turns, force = np.broadcast_arrays(np.asarray(turns, float), np.asarray(force, float))
     shape = turns.shape
@@ -270,6 +285,9 @@ def _points(turns, force, par, length, A, Ct, P, kT, thermal, end_loop):
 
 def free_energy(turns, force, length, A, Ct, P, kT, thermal=True, end_loop=False,
                 loop_writhe=_loop.LOOP_WRITHE):
-    """Free energy G(N, F) (J) of the three regimes [marko2007.md#5-summary]."""
+    """Free energy G(N, F) (J) of the three regimes [marko2007.md#5-summary].
+
+    Implements docs/theory/marko2007.md (M1, M5).
+    """
     return points(turns, force, length, A, Ct, P, kT, thermal, end_loop,
                   loop_writhe).free_energy

@@ -30,13 +30,15 @@ import numpy as np
 from supercoil.exceptions import ValidityError
 
 from . import twist_bend as _tb
-from .phases import PhaseGibbs
+from .phases import PhaseGibbs, simple_melted_gibbs
 
 __all__ = [
     "DEFAULTS",
     "melted_gibbs",
     "melted_stretch_gain",
     "melting_torque",
+    "plectoneme_melted_gibbs",
+    "tail_melted_gibbs",
 ]
 
 _KT_296 = 1.380649e-23 * 296.15  # kT at 23 C (J), the temperature of the Qian et al. data
@@ -56,10 +58,11 @@ DEFAULTS = {
     # c_m: assumed soft twist persistence of the bubble; no measured value read. It sets
     # only the torque dependence of the melted twist (fit parameter)
     "melt_twist_stiffness": 20e-9,  # m
-    # ssDNA elasticity: extensible freely jointed chain with persistence 0.75 nm (Kuhn
-    # length 1.5 nm), contour 0.56 nm per base and stretch modulus 800 pN; dsDNA contour
-    # 0.34 nm/bp (figure 2 caption of PMC33432 at pmc.ncbi.nlm.nih.gov, which cites the
-    # ssDNA values to its ref. 19; text of a figure caption)
+    # ssDNA elasticity: extensible freely jointed chain of persistence 7.5 A (Kuhn length
+    # 1.5 nm) and stretch modulus 800 pN (Smith, Cui & Bustamante, Science 271, 795,
+    # 1996, abstract); contour 0.56 nm per base and dsDNA rise 0.34 nm/bp (figure 2
+    # caption of the force-induced-melting study PMC33432 at pmc.ncbi.nlm.nih.gov, text
+    # of the caption; melting.md#sources-and-what-was-read)
     "ss_kuhn_length": 1.5e-9,  # m
     "ss_contour_per_base": 0.56e-9,  # m
     "ss_stretch_modulus": 800e-12,  # N
@@ -135,12 +138,40 @@ def melted_gibbs(F, M, kT, melt_free_energy=DEFAULTS["melt_free_energy"],
         Naming the force where F < 0 or not finite, or a non-positive c_m.
     """
     F, M = np.broadcast_arrays(np.asarray(F, dtype=float), np.asarray(M, dtype=float))
-    _tb.check_positive(melt_twist_stiffness, "melt_twist_stiffness c_m", "melted DNA")
+    _check_twist_stiffness(melt_twist_stiffness)
     g, x = melted_stretch_gain(F, kT, ss_kuhn_length, ss_contour_per_base,
                                ss_stretch_modulus, rise_per_bp, strands)
     kc = kT * melt_twist_stiffness
     phi = melt_free_energy - melt_twist * M - M * M / (2.0 * kc) - g
     return PhaseGibbs(phi, -x, -(melt_twist + M / kc), np.full(F.shape, -1.0 / kc))
+
+
+def _check_twist_stiffness(c_m):
+    """ValidityError unless c_m > 0 (``inf``: a torsionally rigid melted phase)."""
+    if not (np.isposinf(c_m) or np.all(np.asarray(c_m, float) > 0.0)):
+        _tb.check_positive(c_m, "melt_twist_stiffness c_m", "melted DNA")
+
+
+def tail_melted_gibbs(F, M, par):
+    """The melted phase of the ensemble's tail (docs/theory/melting.md#the-ensembles-melted-phase).
+
+    ``par``: :class:`supercoil.core.dna.ensemble.EnsembleParameters`. With
+    ``melt_ss_elastic=False`` and ``melt_twist_stiffness=inf`` (the defaults) the linear
+    phase ``e - x_m F - Omega_m M`` of :func:`~supercoil.core.dna.phases.simple_melted_gibbs`
+    (bit-identical); ``melt_ss_elastic``: ``-x_m F`` becomes ``-g_m(F)`` of two single
+    strands (:func:`melted_stretch_gain`, constants of :data:`DEFAULTS`); a finite
+    ``melt_twist_stiffness`` c_m (m) adds ``-M^2/(2 kT c_m)``.
+    """
+    cm = par.melt_twist_stiffness
+    if par.melt_ss_elastic:
+        return melted_gibbs(F, M, par.kT, par.melt_energy, par.melt_twist, cm)
+    m = simple_melted_gibbs(F, M, par.melt_energy, par.melt_extension, par.melt_twist)
+    if np.isposinf(cm):
+        return m
+    _check_twist_stiffness(cm)
+    kc = par.kT * cm
+    return PhaseGibbs(m.phi - M * M / (2.0 * kc), m.dphi_dF, m.dphi_dM - M / kc,
+                      m.d2phi_dM2 - 1.0 / kc)
 
 
 def melting_torque(F, A, C, G, kT, writhe_factor=1.0, derivative=False, **melt):
@@ -184,3 +215,16 @@ def melting_torque(F, A, C, G, kT, writhe_factor=1.0, derivative=False, **melt):
     s_ = _tb.stretched_gibbs(F, M, A, C, G, kT, writhe_factor)
     m_ = melted_gibbs(F, M, kT, **{k: p[k] for k in DEFAULTS})
     return M, -(s_.dphi_dF - m_.dphi_dF) / (s_.dphi_dM - m_.dphi_dM)
+
+
+def plectoneme_melted_gibbs(F, M, par):
+    """Melted DNA inside a plectoneme: the tail's melted phase without the force terms.
+
+    The plectoneme has no extension, so its melted segments gain no work from the force:
+    ``phi = e - Omega_m M - M^2/(2 kT c_m)`` (:func:`tail_melted_gibbs` at ``F = 0``) and
+    ``dphi/dF = 0`` (docs/theory/melting.md#bubbles-in-plectonemes).
+    """
+    F, M = np.broadcast_arrays(np.asarray(F, dtype=float), np.asarray(M, dtype=float))
+    m = tail_melted_gibbs(np.zeros_like(F), M, par)
+    return PhaseGibbs(m.phi + 0.0 * F, np.zeros_like(F), m.dphi_dM + 0.0 * F,
+                      m.d2phi_dM2 + 0.0 * F)

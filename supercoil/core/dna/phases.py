@@ -11,7 +11,8 @@ B-DNA contour length ``phi(F, M)`` (J/m) with
 Phases here: the stretched worm-like chain with the exact Bouchiat force-extension
 and the resummed Moroz-Nelson twist stiffness (:func:`stretched_gibbs`), a
 plectoneme whose effective twist stiffness grows with torque
-(:func:`plectoneme_gibbs`), a simple torque-melted phase
+(:func:`plectoneme_gibbs`), the plectoneme of a superhelix tabulated at fixed torque
+(:func:`tabulated_plectoneme_gibbs`), a simple torque-melted phase
 (:func:`simple_melted_gibbs`), the cooperative two-state (Zimm-Bragg) mixture of two
 phases along the tail (:func:`two_state_gibbs`) and the end loop of a plectoneme
 domain as a per-domain Gibbs free energy (:func:`end_loop_gibbs`). Everything
@@ -32,8 +33,10 @@ __all__ = [
     "plectoneme_gibbs",
     "simple_melted_gibbs",
     "stretched_gibbs",
+    "tabulated_plectoneme_gibbs",
     "two_state_gibbs",
     "wlc_exact_free_energy_gain",
+    "wlc_extension",
 ]
 
 #: a_2 ... a_7 of the 7-coefficient interpolation of the exact worm-like-chain
@@ -60,6 +63,14 @@ def _bouchiat_reduced_force(x):
     return out
 
 
+def _bouchiat_reduced_stiffness(x):
+    """``d(F A / kT)/dx`` of the Bouchiat interpolation (positive on ``0 <= x < 1``)."""
+    out = 1.0 + 0.5 / (1.0 - x) ** 3
+    for i, a in enumerate(BOUCHIAT_COEFFICIENTS):
+        out = out + (i + 2) * a * x ** (i + 1)
+    return out
+
+
 def _bouchiat_reduced_work(x):
     """``(A / kT) int_0^x F dx'`` of the Bouchiat interpolation."""
     out = 0.5 * x**2 + 0.25 / (1.0 - x) - 0.25 - 0.25 * x
@@ -68,18 +79,30 @@ def _bouchiat_reduced_work(x):
     return out
 
 
-def wlc_exact_free_energy_gain(force, A, kT):
-    """``g(F) = int_0^F x dF'`` (N) and ``x(F)`` of the exact worm-like chain.
+def wlc_extension(force, A, kT):
+    """Relative extension ``x(F)`` of the exact worm-like chain and ``dx/dF`` (1/N).
 
-    ``x`` inverts the Bouchiat interpolation (root in ``0 <= x < 1``) and
-    ``g = F x - int_0^x F dx'`` (integration by parts), so ``dg/dF = x``
-    [ensemble.md#21-stretched].
+    The one inversion of the Bouchiat interpolation in the package (bracketing root in
+    ``0 <= x < 1``, where ``F A / kT`` increases with x); ``dx/dF`` is
+    ``A / (kT h'(x))``. ``force`` (N) non-negative; the callers validate it.
     """
     f = np.asarray(force, dtype=float) * A / kT
     res = elementwise.find_root(lambda x, t: _bouchiat_reduced_force(x) - t,
                                 (np.zeros_like(f), np.full_like(f, 1.0 - 1e-13)), args=(f,))
     x = res.x
-    return (f * x - _bouchiat_reduced_work(x)) * kT / A, x
+    return x, A / (kT * _bouchiat_reduced_stiffness(x))
+
+
+def wlc_exact_free_energy_gain(force, A, kT, slope=False):
+    """``g(F) = int_0^F x dF'`` (N) and ``x(F)`` of the exact worm-like chain.
+
+    ``x`` from :func:`wlc_extension` and ``g = F x - int_0^x F dx'`` (integration by
+    parts), so ``dg/dF = x`` [ensemble.md#21-stretched]. ``slope``: also ``dx/dF`` (1/N).
+    """
+    x, dx = wlc_extension(force, A, kT)
+    f = np.asarray(force, dtype=float) * A / kT
+    g = (f * x - _bouchiat_reduced_work(x)) * kT / A
+    return (g, x, dx) if slope else (g, x)
 
 
 def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed=True,
@@ -132,6 +155,49 @@ def plectoneme_gibbs(force, torque, P0, exponent, M0, kT):
     inv = 1.0 / (kT * P0 * scale)  # 1 / (kT P(M)); finite at M = 0 only for a <= 0
     return PhaseGibbs(-am**2 * inv / (2.0 - a), np.zeros_like(F), -M * inv,
                       -(1.0 - a) * inv)
+
+
+def tabulated_plectoneme_gibbs(force, torque, table, C, kT):
+    """Plectoneme of a superhelix tabulated at fixed torque: ``phi_p = -T(|M|) - M^2/(2 kT C)``.
+
+    Implements docs/theory/ensemble.md (E2').
+
+    ``table = (M_k, T_k, tau_k)``: torques (N m, increasing, positive), the superhelix's
+    tension ``T_k`` (N) and writhe density ``tau_k`` (rad/m) along its equilibrium at
+    those torques, where ``dT/dM = tau`` holds exactly [ensemble.md#221-derived-plectoneme].
+    ``T(M)`` is the cubic Hermite interpolant of ``(T_k, tau_k)``, so its derivative is
+    its own ``tau`` and ``Omega_p = tau(|M|) sign(M) + M / (kT C)`` is the exact
+    derivative of ``phi_p``. Below ``M_0`` ``T = T_0 + tau_0 (M^2 - M_0^2) / (2 M_0)``
+    (constant writhe stiffness), above ``M_K`` ``T = T_K + tau_K (M - M_K)`` (the radius
+    stays at the table's end); both join with continuous ``T`` and ``tau``. No
+    extension. Symmetric in ``M`` (either handedness).
+    """
+    F, M = np.broadcast_arrays(np.asarray(force, float), np.asarray(torque, float))
+    base, c0, c1, c2, c3 = _hermite_rows(*table)
+    am = np.abs(M)
+    j = np.searchsorted(table[0], am, side="right")  # 0: below, K: beyond the table
+    d = am - base[j]
+    a1, a2, a3 = c1[j], c2[j], c3[j]
+    T = c0[j] + d * (a1 + d * (a2 + d * a3))
+    tau = a1 + d * (2.0 * a2 + 3.0 * d * a3)
+    q = 1.0 / (kT * C)
+    return PhaseGibbs(-T - 0.5 * q * M**2, np.zeros_like(F), -np.sign(M) * tau - q * M,
+                      -(2.0 * a2 + 6.0 * d * a3) - q)
+
+
+def _hermite_rows(Mk, Tk, tk):
+    """Cubic coefficients in ``d = |M| - base`` of the K + 1 pieces of the tabulated T(M):
+    row 0 below ``M_0``, rows 1..K-1 the Hermite intervals, row K beyond ``M_K``."""
+    h = np.diff(Mk)
+    slope = np.diff(Tk) / h
+    c2 = (3.0 * slope - 2.0 * tk[:-1] - tk[1:]) / h
+    c3 = (tk[:-1] + tk[1:] - 2.0 * slope) / h**2
+    base = np.concatenate([Mk[:1], Mk[:-1], Mk[-1:]])
+    c0 = np.concatenate([Tk[:1], Tk[:-1], Tk[-1:]])
+    c1 = np.concatenate([tk[:1], tk[:-1], tk[-1:]])
+    c2 = np.concatenate([[0.5 * tk[0] / Mk[0]], c2, [0.0]])
+    c3 = np.concatenate([[0.0], c3, [0.0]])
+    return base, c0, c1, c2, c3
 
 
 def simple_melted_gibbs(force, torque, energy, extension, twist):

@@ -74,6 +74,8 @@ def parallel_rods(radius, debye, prefactor):
     """``prefactor K0(2R/lambda)``: two parallel line charges at distance 2R (J/m).
 
     ``prefactor = nu^2 kT l_B`` (J/m).
+
+    Implements docs/theory/screened-interaction.md (SI5).
     """
     from scipy.special import k0
 
@@ -113,6 +115,10 @@ def electrostatic(alpha, radius, debye, prefactor):
     prefactor : float
         ``nu^2 kT l_B`` (J/m): squared effective line charge (1/m^2) times kT (J) times
         the Bjerrum length (m).
+
+    Notes
+    -----
+    Implements docs/theory/screened-interaction.md (SI4).
     """
     alpha, radius, z, dz = _nodes(alpha, radius, debye)
     d, _, _ = _distance(alpha, radius, z)
@@ -121,7 +127,10 @@ def electrostatic(alpha, radius, debye, prefactor):
 
 
 def electrostatic_partials(alpha, radius, debye, prefactor):
-    """``(w_el, dw_el/dalpha, dw_el/dR)`` in (J/m, J/m, J/m^2)."""
+    """``(w_el, dw_el/dalpha, dw_el/dR)`` in (J/m, J/m, J/m^2).
+
+    Implements docs/theory/screened-interaction.md (SI4).
+    """
     alpha, radius, z, dz = _nodes(alpha, radius, debye)
     d, q, R = _distance(alpha, radius, z)
     inv_d = 1.0 / d
@@ -142,7 +151,10 @@ def electrostatic_partials(alpha, radius, debye, prefactor):
 
 
 def confinement(alpha, radius, B, kT):
-    """Entropic confinement ``kT A^(-1/3) [R^(-2/3) + (pi R cot alpha)^(-2/3)]`` (J/m)."""
+    """Entropic confinement ``kT A^(-1/3) [R^(-2/3) + (pi R cot alpha)^(-2/3)]`` (J/m).
+
+    Implements docs/theory/screened-interaction.md (SI6).
+    """
     k = kT * (B / kT) ** (-1.0 / 3.0)
     R = np.asarray(radius, float)
     half_pitch = np.pi * R / np.tan(alpha)
@@ -150,7 +162,10 @@ def confinement(alpha, radius, B, kT):
 
 
 def confinement_partials(alpha, radius, B, kT):
-    """``(w_conf, dw_conf/dalpha, dw_conf/dR)`` of :func:`confinement`."""
+    """``(w_conf, dw_conf/dalpha, dw_conf/dR)`` of :func:`confinement`.
+
+    Implements docs/theory/screened-interaction.md (SI6).
+    """
     k = kT * (B / kT) ** (-1.0 / 3.0)
     R = np.asarray(radius, float)
     tan = np.tan(alpha)

@@ -4,7 +4,8 @@ docs/theory/melting.md#stretched-phase. Float-only kernel (SI units, broadcastin
 
 * Worm-like chain at any force: the interpolation of Bouchiat et al. (Biophys. J. 76,
   409, 1999), ``F A / kT = 1/(4 (1-x)^2) - 1/4 + x + sum_{i=2..7} a_i x^i``, inverted
-  for the extension per contour length x(F); the free-energy gain per length is the
+  for the extension per contour length x(F) by the package's one inversion
+  (:func:`supercoil.core.dna.phases.wlc_extension`); the free-energy gain per length is the
   Legendre transform ``g(F) = F x - W(x)`` of the polynomial's integral W, so
   ``dg/dF = x`` holds exactly [melting.md#wlc].
 * Twist-bend coupling G (Marko & Siggia, Macromolecules 27, 981, 1994): integrating the
@@ -26,6 +27,7 @@ import numpy as np
 
 from supercoil.exceptions import ValidityError
 
+from . import phases as _ph
 from .phases import PhaseGibbs
 
 __all__ = [
@@ -40,27 +42,8 @@ __all__ = [
 ]
 
 #: a_2 ... a_7 of the worm-like-chain interpolation (Bouchiat et al., Biophys. J. 76, 409,
-#: 1999, text eq. for F(z)); the same six numbers are in several public re-implementations
-BOUCHIAT_COEFFICIENTS = (-0.5164228, -2.737418, 16.07497, -38.87607, 39.49944, -14.17718)
-_A = np.array(BOUCHIAT_COEFFICIENTS)
-_POW = np.arange(2, 8)
-
-
-def _reduced_force(x):
-    """``h(x) = F A / kT`` of the interpolation, and ``h'(x)``."""
-    one = 1.0 - x
-    h = 0.25 / one**2 - 0.25 + x
-    hp = 0.5 / one**3 + 1.0
-    xp = x[..., None] ** (_POW - 1)
-    h = h + np.sum(_A * xp * x[..., None], axis=-1)
-    hp = hp + np.sum(_A * _POW * xp, axis=-1)
-    return h, hp
-
-
-def _reduced_work(x):
-    """``W(x) A / kT = int_0^x h``: ``1/(4(1-x)) - 1/4 - x/4 + x^2/2 + sum a_i x^(i+1)/(i+1)``."""
-    w = 0.25 / (1.0 - x) - 0.25 - 0.25 * x + 0.5 * x * x
-    return w + np.sum(_A * x[..., None] ** (_POW + 1) / (_POW + 1), axis=-1)
+#: 1999); the one copy is in :mod:`supercoil.core.dna.phases`
+BOUCHIAT_COEFFICIENTS = _ph.BOUCHIAT_COEFFICIENTS
 
 
 def check_force(force, what, allow_zero=False):
@@ -101,21 +84,7 @@ def wlc_extension(force, A, kT):
         Relative extension (0 <= x < 1) and its derivative (1/N).
     """
     f = check_force(force, "worm-like chain extension")
-    p = f * A / kT
-    lo = np.zeros_like(p)
-    hi = np.ones_like(p)
-    # h is increasing on [0, 1): bisection to ~1e-13, then two Newton polishes
-    for _ in range(44):
-        mid = 0.5 * (lo + hi)
-        below = _reduced_force(mid)[0] < p
-        lo = np.where(below, mid, lo)
-        hi = np.where(below, hi, mid)
-    x = 0.5 * (lo + hi)
-    for _ in range(2):
-        h, hp = _reduced_force(x)
-        x = np.clip(x - (h - p) / hp, lo, hi)
-    hp = _reduced_force(x)[1]
-    return x, A / (kT * hp)
+    return _ph.wlc_extension(f, A, kT)
 
 
 def wlc_gibbs_gain(force, A, kT):
@@ -124,10 +93,8 @@ def wlc_gibbs_gain(force, A, kT):
     ``-g`` is the Gibbs free energy per contour length of a torsionless stretched chain
     relative to the relaxed one [melting.md#wlc].
     """
-    x, dx = wlc_extension(force, A, kT)
-    f = np.asarray(force, dtype=float)
-    g = f * x - kT / A * _reduced_work(x)
-    return g, x, dx
+    f = check_force(force, "worm-like chain free energy")
+    return _ph.wlc_exact_free_energy_gain(f, A, kT, slope=True)
 
 
 def twist_bend_renormalisation(A, C, G):

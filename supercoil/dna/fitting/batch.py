@@ -324,7 +324,8 @@ def fit_many(data, dna, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed, bounds=DEFAULT
     """
     check_dna(dna)
     _check_executor(executor)
-    fixed, bounds, start = (strip_molecule_keys(d) for d in (fixed, bounds, start))
+    fixed, bounds, start = (strip_molecule_keys(d, name) for d, name in
+                            ((fixed, "fixed"), (bounds, "bounds"), (start, "start")))
     whole = RotationData.from_frame(data)
     if sigma is not None:
         whole = whole.with_sigma(checked_sigma(sigma, whole))  # converted once; split by rows

@@ -121,7 +121,7 @@ class RotationData:
         """The same points with the standard error ``sigma`` (Quantity, scalar or per point)."""
         s = np.broadcast_to(np.asarray(magnitude(sigma, U.m, "sigma"), dtype=float), (self.n,))
         if not np.all(np.isfinite(s)) or np.any(s <= 0):
-            raise FitError("sigma must be finite and positive")
+            raise FitError("sigma must be finite and positive", argument="sigma")
         return dataclasses.replace(self, sigma=np.array(s, dtype=float),
                                    weighting="sigma argument")
 

@@ -14,13 +14,14 @@ in ``fixed``), the parameters the DNA model and the interaction declare
 
 from __future__ import annotations
 
+import contextlib
 import math
 import re
 
 import numpy as np
 
 from supercoil import display
-from supercoil._checks import check_flag
+from supercoil._checks import check_flag, named
 from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.fit_parameters import (
@@ -132,6 +133,21 @@ def _global_parameter(names, owner, base, value, vary):
                         f"parameter {base}", scale=scale)
 
 
+@contextlib.contextmanager
+def _about(argument):
+    """A FitError raised inside names ``argument`` unless it names an argument already.
+
+    The names of ``vary``, ``fixed``, ``start`` and ``bounds`` are resolved by the same
+    helpers (unknown name, wrong unit); the error says which argument held the name.
+    """
+    try:
+        yield
+    except FitError as exc:
+        if exc.argument is None:
+            exc.argument = argument
+        raise
+
+
 def _check_vary(vary, names):
     if isinstance(vary, str):
         vary = [vary]
@@ -140,8 +156,9 @@ def _check_vary(vary, names):
     for name in vary:
         if name not in allowed:
             raise FitError(f"cannot vary {name!r}: the physical fit parameters are {allowed} "
-                           "(offsets are switched with fit_turns_offset and "
-                           "fit_extension_offset)")
+                           "(the offsets are free unless switched off with "
+                           "fit_turns_offset=False and fit_extension_offset=False)",
+                           argument="vary")
     return vary
 
 
@@ -151,14 +168,17 @@ def _apply_fixed(fixed, names, vary, values, n0, z0):
         owner, base, idx = names.kind(name)
         v = names.to_si(name, value)
         if base in vary:
-            raise FitError(f"parameter {name!r} is both in vary and in fixed")
+            raise FitError(f"parameter {name!r} is both varied and fixed",
+                           argument=("vary", "fixed"))
         if owner == "dna":
             if not (np.isfinite(v) and v > 0):
-                raise FitError(f"fixed {name} must be finite and positive, got {plain(value)}")
+                raise FitError(f"the fixed value of {name} must be finite and positive, got "
+                               f"{plain(value)}", argument="fixed")
             values[("dna", base)] = v
         elif owner in ("model", "interaction", "calibration"):
             if owner == "calibration" and not (np.isfinite(v) and v > 0):
-                raise FitError(f"fixed {name} must be finite and positive, got {plain(value)}")
+                raise FitError(f"the fixed value of {name} must be finite and positive, got "
+                               f"{plain(value)}", argument="fixed")
             values[(owner, base)] = v
         else:
             table = n0 if base == "turns_offset" else z0
@@ -172,7 +192,8 @@ def _apply_start(start, names, vary, values, n0, z0):
         v = names.to_si(name, value)
         if owner != "offset":
             if base not in vary:
-                raise FitError(f"start value given for {name!r}, which is not varied")
+                raise FitError(f"a start value is given for {name!r}, which is not varied",
+                               argument="start")
             values[(owner, base)] = v
             continue
         table = n0 if base == "turns_offset" else z0
@@ -186,16 +207,18 @@ def _apply_bounds(bounds, names, params):
         try:
             b_lo, b_hi = pair
         except (TypeError, ValueError):
-            raise FitError(f"bounds[{name!r}] must be a pair (lower, upper)") from None
+            raise FitError(f"the bounds of {name!r} must be a pair (lower, upper)",
+                           argument="bounds") from None
         lo = -np.inf if b_lo is None else names.to_si(name, b_lo)
         hi = np.inf if b_hi is None else names.to_si(name, b_hi)
         if not lo < hi:
-            raise FitError(f"bounds[{name!r}]: lower bound {plain(pair[0])} is not below "
-                           f"{plain(pair[1])}")
+            raise FitError(f"the bounds of {name!r}: lower bound {plain(pair[0])} is not "
+                           f"below {plain(pair[1])}", argument="bounds")
         hits = [p for p in params.free_params()
                 if p.kind == base and (idx is None or p.molecule == idx)]
         if not hits:
-            raise FitError(f"bounds given for {name!r}, which is not a free parameter")
+            raise FitError(f"bounds are given for {name!r}, which is not a free parameter",
+                           argument="bounds")
         for p in hits:
             p.min, p.max = lo, hi
 
@@ -252,7 +275,8 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     Returns ``(params, dna SI, model, interaction)``.
     """
     names = _Names(data.labels, model, interaction)
-    vary = _check_vary(vary, names)
+    with _about("vary"):
+        vary = _check_vary(vary, names)
     si = dna.si
     values = {("dna", k): getattr(si, k) for k in (*DNA_FIELDS, "temperature")}
     values.update({("model", k): v for k, v in model.values.items()})
@@ -262,8 +286,10 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     # per molecule: (value, given, free)
     n0 = [(0.0, False, bool(fit_turns_offset))] * n_mol
     z0 = [(0.0, False, bool(fit_extension_offset))] * n_mol
-    _apply_fixed(dict(fixed or {}), names, vary, values, n0, z0)
-    _apply_start(dict(start or {}), names, vary, values, n0, z0)
+    with _about("fixed"):
+        _apply_fixed(dict(fixed or {}), names, vary, values, n0, z0)
+    with _about("start"):
+        _apply_start(dict(start or {}), names, vary, values, n0, z0)
     si = dna_si(si, {k: values[("dna", k)] for k in (*DNA_FIELDS, "temperature")},
                 dna.wlc_persistence is None)
     model = model.replace(**{k: values[("model", k)] for k in model.parameters}) \
@@ -280,24 +306,31 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     _add_offsets(params, data, n0, z0, extension_offset_per_force)
     if "length" in params and "length" not in dict(start or {}):
         params["length"].given = False  # a varied length starts from the data
-    _apply_bounds(dict(bounds or {}), names, params)
+    with _about("bounds"):
+        _apply_bounds(dict(bounds or {}), names, params)
     n_free = len(params.free)
     if n_free == 0:
-        raise FitError("nothing to fit: vary is empty and both offsets are switched off")
+        raise FitError("nothing to fit: no parameter is varied and both offsets are switched "
+                       "off", argument="vary")
     if data.n - n_free <= 0:
         raise FitError(f"{data.n} data points cannot determine {n_free} free parameters")
     return params, si, model, interaction
 
 
-def strip_molecule_keys(d):
-    """``d`` unchanged, or FitError for a per-molecule key (fit_many fits molecules alone)."""
+def strip_molecule_keys(d, argument):
+    """``d`` unchanged, or FitError naming ``argument`` for a per-molecule key.
+
+    fit_many fits each molecule alone, so a key such as ``'turns_offset[m1]'`` has no
+    meaning there.
+    """
     if d is None:
         return None
     for k in d:
         m = _NAME.match(k)
         if m and m.group("mol") is not None:
-            raise FitError(f"fit_many fits each molecule alone: give {m.group('base')!r}, "
-                           f"not {k!r}")
+            raise FitError(f"each molecule is fitted alone here, so per-molecule names do "
+                           f"not apply: give {m.group('base')!r}, not {k!r}",
+                           argument=argument)
     return dict(d)
 
 
@@ -374,8 +407,9 @@ def extension_offset_mode(value):
     """``(fitted, per force)`` from ``fit_extension_offset`` (bool, "per-molecule", "per-force")."""
     if isinstance(value, str):
         if value not in ("per-molecule", "per-force"):
-            raise TypeError(f"fit_extension_offset must be True or False, got {value!r} (or "
-                            "'per-molecule', the default, or 'per-force')")
+            raise named(TypeError(f"fit_extension_offset must be True or False, got "
+                                  f"{value!r} (or 'per-molecule', the default, or "
+                                  "'per-force')"), "fit_extension_offset")
         return True, value == "per-force"
     return check_flag(value, "fit_extension_offset"), False
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from supercoil import display
+from supercoil._checks import named
 from supercoil.exceptions import FitError
 
 __all__ = ["SIGMA_MIN_PER_LENGTH", "check_sigma_scale", "checked_sigma"]
@@ -23,9 +24,10 @@ def checked_sigma(sigma, rot):
     """
     shape = np.shape(getattr(sigma, "magnitude", sigma))
     if shape not in ((), (rot.n,)):
-        raise ValueError(f"sigma has shape {shape}; give a scalar or one value per data row "
-                         f"(shape ({rot.n},)); for one sigma per force, map it onto the rows "
-                         "(e.g. s[np.searchsorted(forces, data['force'])])")
+        raise named(ValueError(f"sigma has shape {shape}; give a scalar or one value per "
+                               f"data row (shape ({rot.n},)); for one sigma per force, map it "
+                               "onto the rows (e.g. s[np.searchsorted(forces, "
+                               "data['force'])])"), "sigma")
     return sigma
 
 
@@ -52,4 +54,5 @@ def check_sigma_scale(rot, length):
         raise FitError(f"sigma ({rot.weighting}) of {display.text(bad, 'extension')} is {limit}: "
                        "the "
                        "standard error of an extension lies in [1e-150 L, L] (its weights "
-                       "1/sigma leave the float range below; the data determine nothing above)")
+                       "1/sigma leave the float range below; the data determine nothing above)",
+                       argument="sigma" if rot.weighting == "sigma argument" else None)

@@ -11,20 +11,22 @@ curves: ``docs/theory/ensemble.md``.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import ClassVar
 
 import numpy as np
 
 from supercoil.core.dna import ensemble as _en
+from supercoil.core.dna import equilibrium as _eq
 from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.exceptions import ModelError, ValidityError
 
 __all__ = ["Ensemble"]
 
-_FIT = ("fit of this model to the averaged rotation curves of Qian et al., bioRxiv "
-        "10.1101/2024.10.15.618270 (2024), source data of their Fig. S5 (0.3-2 pN, both "
-        "sides), docs/theory/ensemble.md#5-fit")
+_FIT = ("fit to Qian et al. 2024 Fig. S5 source data, this package: bioRxiv "
+        "10.1101/2024.10.15.618270, averaged rotation curves at 0.3-2 pN, both sides, with "
+        "the parameter set dna_qian2024_fit, docs/theory/ensemble.md#5-fit")
 _BP = 0.34e-9  # rise per base pair of B-DNA, m
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: the forces where the ensemble is evaluated: from kT/(4A) (0.02 pN for A = 50 nm; at
@@ -54,6 +56,65 @@ def check_forces(force, dna):
             "worm-like-chain tail is not stretched: no coexistence to solve)")
 
 
+#: points of the superhelix table of the derived plectoneme (cubic Hermite in the torque)
+PLECTONEME_TABLE_POINTS = 240
+
+
+@lru_cache(maxsize=32)
+def _superhelix_table(B, kT, lam, prefactor, confinement, radius, points):
+    """``(M_k, T_k, tau_k, R_k)`` along the screened superhelix's stable branch, increasing M."""
+    from supercoil.dna.interactions.screened import partials_function
+
+    part = partials_function(B, kT, lam, prefactor, confinement)
+    # the stable branch over the screened interaction's range (hard core to 1000 a)
+    br = _eq.branch_table(B, part, radius, 1000.0 * radius)
+    R = np.geomspace(br.radius[0], br.radius[-1], points)
+    alpha = _eq.solve_tilt(R, B, part)
+    M = _eq.torque(alpha, R, B, part)
+    T = _eq.tension(alpha, R, B, part)
+    tau = np.sin(alpha) * np.cos(alpha) / R
+    order = np.argsort(M)
+    keep = M[order] > 0.0
+    tables = (M[order][keep], T[order][keep], tau[order][keep], R[order][keep])
+    for a in tables:
+        a.setflags(write=False)
+    return tables
+
+
+def _table(dna, charge_fraction, confinement, radius, points=PLECTONEME_TABLE_POINTS):
+    from supercoil.dna.interactions import get_interaction
+
+    si = getattr(dna, "si", dna)
+    inter = type(get_interaction("screened"))(charge_fraction=charge_fraction,
+                                             confinement=confinement, hard_core_radius=radius)
+    lam, _, _, pref = inter.screening(si)  # ParameterError naming salt if the DNA has none
+    return _superhelix_table(float(si.bending_rigidity), float(si.kT), float(lam),
+                             float(pref), float(confinement), float(radius), int(points))
+
+
+def superhelix_table(dna, charge_fraction, confinement, radius=1e-9,
+                     points=PLECTONEME_TABLE_POINTS):
+    """Torque, tension and writhe density of the screened plectoneme's superhelix (SI).
+
+    The uniform superhelix of :mod:`supercoil.core.dna.equilibrium` with the screened
+    interaction (``interaction="screened"``: Debye-Hueckel repulsion of Stigter's
+    charge ``charge_fraction`` times the bare one, the entropic confinement term times
+    ``confinement``, hard core ``radius`` in m) for the DNA's bending stiffness, salt
+    and temperature, on ``points`` radii of its stable branch: ``(M_k [N m], T_k [N],
+    tau_k [1/m])`` with ``dT/dM = tau`` (docs/theory/ensemble.md#221-derived-plectoneme).
+    Raises :class:`~supercoil.exceptions.ParameterError` naming ``salt`` if the DNA
+    has none.
+    """
+    return _table(dna, charge_fraction, confinement, radius, points)[:3]
+
+
+def superhelix_radius(torque, dna, charge_fraction, confinement, radius=1e-9):
+    """Radius (m) of the screened superhelix at ``torque`` (N m): interpolated in log R
+    along the table of :func:`superhelix_table` (the hard core beyond its largest torque)."""
+    Mk, _, _, Rk = _table(dna, charge_fraction, confinement, radius)
+    return np.exp(np.interp(np.abs(np.asarray(torque, float)), Mk, np.log(Rk)))
+
+
 def _p(name, unit, default, lo, hi, description, source):
     return ModelParameter(name, unit, default, lo, hi, description, source)
 
@@ -67,7 +128,15 @@ class Ensemble(DNAModel):
     measured curves better, docs/theory/ensemble.md#5-fit), ``exact_wlc``
     (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
     False: first order), ``melting`` (the melted phase in the tail),
-    ``multi_domain`` (up to two domains; False: one).
+    ``multi_domain`` (up to two domains; default False: one), ``ss_melted`` (the melted
+    phase's extension x_m(F) of two single strands; default False: the constant
+    ``melted_extension``) and ``plectoneme_melting`` (bubbles inside the plectonemes
+    too; default False), both docs/theory/melting.md#the-ensembles-melted-phase (each
+    paid in AIC there with the previous positive side; off here until refitted jointly
+    with the present defaults, docs/theory/ensemble.md#51-the-packages-public-fit), and
+    ``screened_plectoneme`` (the plectoneme
+    phase derived from the screened superhelix at the DNA's salt; default False: the
+    power law ``P(M)``).
     """
 
     name: ClassVar[str] = "ensemble"
@@ -75,40 +144,51 @@ class Ensemble(DNAModel):
                               "torque-dependent stiffness, summed at fixed turns")
     uses_interaction: ClassVar[bool] = False
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
-                               "resummed": True, "melting": True, "multi_domain": True}
+                               "resummed": True, "melting": True, "multi_domain": False,
+                               "ss_melted": False, "plectoneme_melting": False,
+                               "screened_plectoneme": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
-            "twist_bend_softening", "", 1.79, 0.5, 8.0,
+            "twist_bend_softening", "", 2.25, 0.5, 8.0,
             "factor k on the Moroz-Nelson term of 1/c_s (1: Moroz-Nelson; >1 stands for "
             "twist-bend coupling)",
-            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; default 1.79 from the "
-            "constant-nucleation fit ("
-            + _FIT + ")"),
+            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; default 2.25: "
+            + _FIT),
         "plectoneme_twist_persistence_ref": _p(
-            "plectoneme_twist_persistence_ref", "nm", 13.6e-9, 3e-9, 60e-9,
+            "plectoneme_twist_persistence_ref", "nm", 13.61e-9, 3e-9, 60e-9,
             "P0: the plectoneme's effective twist stiffness at the reference torque", _FIT),
         "plectoneme_stiffness_exponent": _p(
-            "plectoneme_stiffness_exponent", "", 0.26, -0.5, 0.9,
+            "plectoneme_stiffness_exponent", "", 0.179, -0.5, 0.9,
             "a of P(M) = P0 (|M|/M0)^a (0: Marko 2007's constant P)", _FIT),
         "reference_torque": _p(
             "reference_torque", "pN*nm", 10e-21, 1e-21, 50e-21,
             "M0 of P(M) (a convention: P0 and M0 are degenerate)", "choice"),
         "domain_nucleation": _p(
-            "domain_nucleation", "pN*nm", 79.8e-21, -100e-21, 150e-21,
+            "domain_nucleation", "pN*nm", 83.9e-21, -100e-21, 150e-21,
             "extra free energy per plectoneme domain beyond its end loop", _FIT),
         "end_loop_writhe": _p(
             "end_loop_writhe", "", 1.0, 0.5, 1.5,
             "turns of linking absorbed as writhe by each domain's end loop",
             "one closed loop, docs/theory/end-loop.md#2-loop"),
         "melting_free_energy": _p(
-            "melting_free_energy", "pN*nm", 4.19e-21, 0.5e-21, 25e-21,
+            "melting_free_energy", "pN*nm", 4.43e-21, 0.5e-21, 25e-21,
             "free energy of melting one base pair at zero force and torque", _FIT),
         "melting_cooperativity": _p(
-            "melting_cooperativity", "pN*nm", 49.5e-21, 0.0, 250e-21,
+            "melting_cooperativity", "pN*nm", 63.3e-21, 0.0, 250e-21,
             "boundary free energy of one melted bubble (both ends)", _FIT),
         "melted_extension": _p(
-            "melted_extension", "", 0.07, -0.5, 1.5,
-            "extension per B-DNA contour length of the melted phase", _FIT),
+            "melted_extension", "", 0.165, -0.5, 1.5,
+            "extension per B-DNA contour length of the melted phase (used only with "
+            "ss_melted=False)", _FIT),
+        "plectoneme_charge_fraction": _p(
+            "plectoneme_charge_fraction", "", 1.0, 0.05, 1.5,
+            "screened_plectoneme: fraction of the bare charge on Stigter's cylinder",
+            "1: the screened interaction's default (docs/theory/screened-interaction.md)"),
+        "plectoneme_confinement": _p(
+            "plectoneme_confinement", "", 0.0, 0.0, 1.0,
+            "screened_plectoneme: coefficient of the entropic confinement term",
+            "0: Clauvelin, Audoly & Neukirch, Biophys. J. 96, 3716 (2009); 1: Marko & "
+            "Siggia, Phys. Rev. E 52, 2912 (1995)"),
         "positional_length": _p(
             "positional_length", "nm", 1e-9, 0.1e-9, 100e-9,
             "b: microscopic length of a domain's positional and length entropy (degenerate "
@@ -149,7 +229,11 @@ class Ensemble(DNAModel):
             v["melted_extension"], segment=_BP, microscopic_length=v["positional_length"],
             exact_wlc=self.exact_wlc, resummed=self.resummed,
             physical_loop=self.physical_loop, max_domains=2 if self.multi_domain else 1,
-            nodes=nodes, finite_size=self.finite_size)
+            nodes=nodes, finite_size=self.finite_size, melt_ss_elastic=self.ss_melted,
+            plectoneme_melting=self.plectoneme_melting,
+            plectoneme_table=superhelix_table(dna, v["plectoneme_charge_fraction"],
+                                              v["plectoneme_confinement"])
+            if self.screened_plectoneme else None)
 
     def _buckling(self, force, dna, thermal, interaction):
         """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
@@ -162,6 +246,18 @@ class Ensemble(DNAModel):
         om_p = -_en.plectoneme_phase(f, Mb, par).dphi_dM
         slope = -2.0 * np.pi * (-t.dphi_dF) / (om_p - om_t)
         return Buckling(dna.length * om_t / (2.0 * np.pi), Mb, slope)
+
+    def plectoneme_radius(self, force, dna):
+        """Superhelix radius (m) at the thermodynamic-limit coexistence torque, or None
+        without ``screened_plectoneme`` (the power-law plectoneme has no geometry)."""
+        if not self.screened_plectoneme:
+            return None
+        check_forces(force, dna)
+        par = self.kernel_parameters(dna)
+        Mb = _en.coexistence_torque(np.asarray(force, float), par)
+        v = self.values
+        return superhelix_radius(Mb, dna, v["plectoneme_charge_fraction"],
+                                 v["plectoneme_confinement"])
 
     def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
         """Ensemble averages: extension, torque, plectoneme length, phase, G."""
