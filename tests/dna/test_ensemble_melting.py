@@ -141,7 +141,7 @@ def test_model_options_reach_the_melted_phase():
     dna = supercoil.DNA(length=1500 * u.nm, bending_persistence=45 * u.nm,
                         twist_persistence=100 * u.nm, radius=1 * u.nm,
                         temperature=296 * u.K).si
-    off, on = Ensemble(ss_melted=False, plectoneme_melting=False), Ensemble()  # on: defaults
+    off, on = Ensemble(), Ensemble(ss_melted=True, plectoneme_melting=True)  # off: defaults
     par = on.kernel_parameters(dna)
     assert par.melt_ss_elastic and par.plectoneme_melting
     assert not off.kernel_parameters(dna).melt_ss_elastic

@@ -11,6 +11,7 @@ curves: ``docs/theory/ensemble.md``.
 
 from __future__ import annotations
 
+import warnings
 from typing import ClassVar
 
 import numpy as np
@@ -18,15 +19,13 @@ import numpy as np
 from supercoil.core.dna import ensemble as _en
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.dna.parameters import ModelParameter
-from supercoil.exceptions import ModelError, ValidityError
+from supercoil.exceptions import ModelError, ValidityError, ValidityWarning
 
 __all__ = ["Ensemble"]
 
 _FIT = ("fit of this model to the averaged rotation curves of Qian et al., bioRxiv "
         "10.1101/2024.10.15.618270 (2024), source data of their Fig. S5 (0.3-2 pN, both "
         "sides), docs/theory/ensemble.md#5-fit")
-_MELT_FIT = ("joint fit (both sides, all six forces) with ss_melted and plectoneme_melting on, "
-             "docs/theory/melting.md#measured-on-the-qian-et-al-curves")
 _BP = 0.34e-9  # rise per base pair of B-DNA, m
 SHORT_TAIL_PERSISTENCE_LENGTHS = 3.0
 #: the forces where the ensemble is evaluated: from kT/(4A) (0.02 pN for A = 50 nm; at
@@ -56,6 +55,18 @@ def check_forces(force, dna):
             "worm-like-chain tail is not stretched: no coexistence to solve)")
 
 
+def _warn_overstretched(extension, force, length):
+    """ValidityWarning where the melted single strands make z longer than the B contour."""
+    over = extension > length
+    if np.any(over):
+        f = float(force[np.flatnonzero(over)[0]] if force.size == over.size else force.flat[0])
+        warnings.warn(ValidityWarning(
+            f"ensemble model at force {f * 1e12:.6g} pN: extension beyond the B-DNA contour "
+            "(the tail melted into stretched single strands, force-induced melting as in "
+            "overstretching; outside the torque-melting range the model was fitted to)"),
+            stacklevel=3)
+
+
 def _p(name, unit, default, lo, hi, description, source):
     return ModelParameter(name, unit, default, lo, hi, description, source)
 
@@ -69,11 +80,12 @@ class Ensemble(DNAModel):
     measured curves better, docs/theory/ensemble.md#5-fit), ``exact_wlc``
     (Bouchiat; False: Marko's expansion), ``resummed`` (Moroz-Nelson resummed;
     False: first order), ``melting`` (the melted phase in the tail),
-    ``multi_domain`` (up to two domains; False: one), ``ss_melted`` (default True:
-    the melted phase's extension x_m(F) of two single strands; False: the constant
-    ``melted_extension``) and ``plectoneme_melting`` (default True: bubbles inside the
-    plectonemes too), both docs/theory/melting.md#the-ensembles-melted-phase (each paid
-    in AIC on the measured curves there).
+    ``multi_domain`` (up to two domains; False: one), ``ss_melted`` (the melted phase's
+    extension x_m(F) of two single strands; False, the default: the constant
+    ``melted_extension``) and ``plectoneme_melting`` (bubbles inside the plectonemes
+    too; default False), both docs/theory/melting.md#the-ensembles-melted-phase: together
+    AIC -116 on the measured curves there, opt-in because with ``ss_melted`` a tail
+    melted at high force is longer than the B contour (a ValidityWarning).
     """
 
     name: ClassVar[str] = "ensemble"
@@ -82,7 +94,7 @@ class Ensemble(DNAModel):
     uses_interaction: ClassVar[bool] = False
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
                                "resummed": True, "melting": True, "multi_domain": True,
-                               "ss_melted": True, "plectoneme_melting": True}
+                               "ss_melted": False, "plectoneme_melting": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
             "twist_bend_softening", "", 1.79, 0.5, 8.0,
@@ -108,11 +120,11 @@ class Ensemble(DNAModel):
             "turns of linking absorbed as writhe by each domain's end loop",
             "one closed loop, docs/theory/end-loop.md#2-loop"),
         "melting_free_energy": _p(
-            "melting_free_energy", "pN*nm", 4.29e-21, 0.5e-21, 25e-21,
-            "free energy of melting one base pair at zero force and torque", _MELT_FIT),
+            "melting_free_energy", "pN*nm", 4.19e-21, 0.5e-21, 25e-21,
+            "free energy of melting one base pair at zero force and torque", _FIT),
         "melting_cooperativity": _p(
-            "melting_cooperativity", "pN*nm", 45.0e-21, 0.0, 250e-21,
-            "boundary free energy of one melted bubble (both ends)", _MELT_FIT),
+            "melting_cooperativity", "pN*nm", 49.5e-21, 0.0, 250e-21,
+            "boundary free energy of one melted bubble (both ends)", _FIT),
         "melted_extension": _p(
             "melted_extension", "", 0.07, -0.5, 1.5,
             "extension per B-DNA contour length of the melted phase (used only with "
@@ -180,6 +192,7 @@ class Ensemble(DNAModel):
                         par)
         if short_tail_length is None:
             short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * dna.bending_persistence
+        _warn_overstretched(pt.extension, np.asarray(force, float).ravel(), dna.length)
         tail = dna.length - pt.plectoneme_length
         phase = np.where(pt.stretched_probability > 0.5, 0,
                          np.where(tail < short_tail_length, 2, 1)).astype(np.int8)
