@@ -152,3 +152,18 @@ def test_model_options_reach_the_melted_phase():
     b = en.tail_gibbs(F, M, par)[0]
     assert b.dphi_dF[0] == pytest.approx(a.dphi_dF[0], rel=1e-6)
     assert -b.dphi_dF[1] > -a.dphi_dF[1] + 0.01
+
+
+def test_melted_tail_longer_than_the_contour_is_named():
+    """Force-induced melting into stretched single strands: z > L with a ValidityWarning."""
+    from supercoil.dna.models.ensemble import Ensemble
+    from supercoil.exceptions import ValidityWarning
+
+    u = supercoil.ureg
+    dna = supercoil.DNA(length=500 * u.nm, bending_persistence=45 * u.nm,
+                        twist_persistence=100 * u.nm, radius=1 * u.nm,
+                        temperature=296 * u.K).si
+    with pytest.warns(ValidityWarning, match="beyond the B-DNA contour"):
+        hp = Ensemble(ss_melted=True).points(np.array([-20.0]), np.array([200 * PN]), dna,
+                                             True)
+    assert hp.extension[0] > dna.length
