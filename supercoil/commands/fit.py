@@ -259,7 +259,9 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
         print(warning_text("fit", w.message), file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     csv = write_csv(table, out / "fit_comparison.csv")
-    report = _compare_report(table, results)
+    from supercoil.commands._common import flag_text
+
+    report = comparison.report(error_text=flag_text)
     (out / "fit_report.txt").write_text(report + "\n")
     print(report)
     print(f"wrote {csv}, {out / 'fit_report.txt'}")
@@ -274,27 +276,6 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
         plt.close(fig)
         print(f"wrote {out / 'fit_comparison.png'}")
     return 0 if table["success"].all() else 1
-
-
-def _compare_report(table, results):
-    from supercoil.commands._common import flag_text
-
-    lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) + 2k, "
-             "bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit and per "
-             "hat-curve evaluation)",
-             f"    {'model':<16}{'k':>4}{'chi-square':>14}{'AIC':>12}{'dAIC':>10}{'BIC':>12}"
-             f"{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
-    for _, row in table.iterrows():
-        if not row["success"]:
-            lines.append(f"    {row['model']:<16}  FAILED: {flag_text(row['error'])}")
-            continue
-        lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
-                     f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
-                     f"{row['delta_bic']:>10.2f}{row['cpu_seconds']:>11.3g}"
-                     f"{row['curve_cpu_seconds']:>13.3g}")
-    for name, result in results.items():
-        lines += ["", f"==== model {name} ====", result.report()]
-    return "\n".join(lines)
 
 
 def _run_many(args, data, dna, fixed, bounds, start, options):

@@ -43,9 +43,11 @@ def _h(a, a_coef, S, n, r):
 
 def _h_df(a, a_coef, S, n, r):
     """:func:`_h` and its derivative in alpha (for the Newton estimate)."""
-    c, s = np.cos(2.0 * a), np.sin(2.0 * a)
+    # the double angles from sin a, cos a (an estimate only: the signs come from _h);
+    # y = 1 - cos 2a = 2 sin^2 a without cancellation at small tilts
+    sa, ca = np.sin(a), np.cos(a)
+    c, s, y = (ca - sa) * (ca + sa), 2.0 * sa * ca, 2.0 * sa * sa
     k, m = S / (2.0 * r), TWO_PI * n
-    y = sc.y_of_alpha(a)  # 1 - cos 2a without cancellation at small tilts
     f = a_coef * y * s + c * (k * s - m)
     df = 2.0 * (a_coef * (s * s + y * c) + k * (c * c - s * s) + m * s)
     return f, df

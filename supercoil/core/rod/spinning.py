@@ -120,7 +120,9 @@ def _G(a, n, Tp, r, B, C):
 
 def _G_df(a, n, Tp, r, B, C):
     """:func:`_G` and its derivative in alpha (for the Newton estimate)."""
-    sa, ca, s2, c2 = np.sin(a), np.cos(a), np.sin(2 * a), np.cos(2 * a)
+    # two sines, the double angles from them: an estimate only (the signs come from _G)
+    sa, ca = np.sin(a), np.cos(a)
+    s2, c2 = 2.0 * sa * ca, (ca - sa) * (ca + sa)
     f = B * sa**2 * s2 / r**2 + 0.5 * Tp * sa - TWO_PI * C * n * c2 / r
     df = (B * (2.0 * sa * ca * s2 + 2.0 * sa**2 * c2) / r**2 + 0.5 * Tp * ca
           + 2.0 * TWO_PI * C * n * s2 / r)
@@ -133,8 +135,9 @@ def _h0(a, rhs):
 
 
 def _h0_df(a, rhs):
-    s2, c2 = np.sin(2.0 * a), np.cos(2.0 * a)
-    y = sc.y_of_alpha(a)  # 1 - cos 2a without cancellation at small tilts
+    """:func:`_h0` and its derivative (Newton estimate; double angles from sin a, cos a)."""
+    sa, ca = np.sin(a), np.cos(a)
+    s2, c2, y = 2.0 * sa * ca, (ca - sa) * (ca + sa), 2.0 * sa * sa
     return y * s2 - rhs * c2, 2.0 * (s2 * s2 + y * c2 + rhs * s2)
 
 

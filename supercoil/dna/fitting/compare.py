@@ -250,8 +250,12 @@ class Comparison:
         ok = self.table[self.table["success"]]
         return None if ok.empty else str(ok["model"].iloc[0])
 
-    def report(self) -> str:
-        """The ranked table as text (AIC, BIC, CPU cost), then each model's fit report."""
+    def report(self, error_text=str) -> str:
+        """The ranked table as text (AIC, BIC, CPU cost), then each model's fit report.
+
+        ``error_text`` formats the error of a failed row (the command line passes its
+        keyword-to-flag wording).
+        """
         lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) "
                  "+ 2k, bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit "
                  "and per hat-curve evaluation)",
@@ -259,7 +263,7 @@ class Comparison:
                  f"{'BIC':>12}{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
         for _, row in self.table.iterrows():
             if not row["success"]:
-                lines.append(f"    {row['model']:<16}  FAILED: {row['error']}")
+                lines.append(f"    {row['model']:<16}  FAILED: {error_text(row['error'])}")
                 continue
             lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
                          f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"
