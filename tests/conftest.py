@@ -1,10 +1,17 @@
 import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
 
 import matplotlib
 import pytest
+from fresh_scripts import Lane, background_job
 from hypothesis import HealthCheck, settings
 
 matplotlib.use("Agg")
+ROOT = Path(__file__).resolve().parent.parent
 
 settings.register_profile(
     "default", deadline=None, max_examples=60, suppress_health_check=[HealthCheck.too_slow]
@@ -37,35 +44,35 @@ def rubber_rod():
     return supercoil.load_parameters("silicone_rubber_rod")
 
 
+@background_job("wheel")
+def _build_wheel(lane, folder):
+    """The package built as a wheel and unpacked in ``folder``: ``(names, site folder)``."""
+    import zipfile
+
+    proc = lane.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
+                     "-w", str(folder / "dist"), str(ROOT)], timeout=180)
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
+    (wheel,) = (folder / "dist").glob("supercoil-*.whl")
+    site = folder / "site"
+    with zipfile.ZipFile(wheel) as zf:
+        names = zf.namelist()
+        zf.extractall(site)
+    return names, site
+
+
 @pytest.fixture(scope="session")
-def installed_wheel(tmp_path_factory):
-    """The package built as a wheel and unpacked away from the checkout, once per session.
+def installed_wheel(background):
+    """The package built as a wheel and unpacked away from the checkout, once per session
+    (the background job ``wheel``: tests that use it carry ``background("wheel")``).
 
     Returns ``(names in the wheel, site folder, run)``; ``run(code)`` runs Python code with
     only the unpacked wheel on the path and returns its stdout.
     """
-    import subprocess
-    import sys
-    import zipfile
-    from pathlib import Path
-
-    root = Path(__file__).resolve().parent.parent
-    tmp = tmp_path_factory.mktemp("wheel")
-    proc = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
-         "-w", str(tmp / "dist"), str(root)],
-        capture_output=True, text=True, timeout=180,
-    )
-    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
-    (wheel,) = (tmp / "dist").glob("supercoil-*.whl")
-    site = tmp / "site"
-    with zipfile.ZipFile(wheel) as zf:
-        names = zf.namelist()
-        zf.extractall(site)
+    names, site = background.result("wheel")
 
     def run(code):
         env = dict(os.environ, PYTHONPATH=str(site))
-        out = subprocess.run([sys.executable, "-c", code], cwd=tmp, env=env,
+        out = subprocess.run([sys.executable, "-c", code], cwd=site.parent, env=env,
                              capture_output=True, text=True, timeout=60)
         assert out.returncode == 0, out.stderr
         return out.stdout
@@ -73,33 +80,86 @@ def installed_wheel(tmp_path_factory):
     return names, site, run
 
 
+def _example_job(script):
+    def job(lane, folder):
+        status, _, stderr = lane.scripts().run(script, ["--out", folder / "out", "--quick"],
+                                               cwd=folder, timeout=240)
+        return status, stderr, folder / "out"
+    return job
+
+
+#: every example is the background job ``example:<name>``
+EXAMPLES = sorted((ROOT / "examples").glob("*.py"))
+for _script in EXAMPLES:
+    background_job(f"example:{_script.stem}", _example_job(_script))
+
+
 @pytest.fixture(scope="session")
-def example_run(tmp_path_factory):
+def example_run(background):
     """``run(name)``: ``(exit status, stderr, output folder)`` of ``python
-    examples/<name>.py --out DIR --quick``, run once per session (a fresh process forked
-    from the helper of :mod:`fresh_scripts`, headless), shared by every test that
-    checks that example's outputs."""
-    from pathlib import Path
+    examples/<name>.py --out DIR --quick``, run once per session in the background lane
+    (the job ``example:<name>``: a fresh process forked from the helper of
+    :mod:`fresh_scripts`, headless), shared by every test that checks that example's
+    outputs (they carry ``background("example:<name>")``)."""
+    return lambda name: background.result(f"example:{name}")
 
-    from fresh_scripts import FreshScripts
 
-    examples = Path(__file__).resolve().parent.parent / "examples"
-    env = dict(os.environ, MPLBACKEND="Agg")
-    env.pop("DISPLAY", None)
-    helper = FreshScripts(env)
-    done = {}
+# --- the background lane (tests/fresh_scripts.py: Lane) ---------------------------------
+# CI runs the suite on two cores without pytest-xdist. The subprocess tests (the benchmark
+# smoke run, the examples, the README's commands, the wheel) only wait for their
+# processes, so one background lane runs those processes on the second core while the
+# in-process tests run on the first: every job that a selected test names in its
+# ``background`` marker is queued when collection ends, the tests that wait for a job run
+# last (in their order), and each checks its job's result. A job that fails or outlives
+# its timeout fails the tests that read it; the lane is closed (jobs cancelled, processes
+# killed) when the session ends.
+LANE = pytest.StashKey()
 
-    def run(name):
-        if name not in done:
-            cwd = tmp_path_factory.mktemp(f"example_{name}")
-            status, _, stderr = helper.run(examples / f"{name}.py",
-                                           ["--out", cwd / "out", "--quick"], cwd=cwd,
-                                           timeout=240)
-            done[name] = status, stderr, cwd / "out"
-        return done[name]
 
-    yield run
-    helper.close()
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "background(*jobs): the test reads these jobs of tests/fresh_scripts.py's "
+        "JOBS (queued at the start of the session, run in the background lane); the test "
+        "runs after the tests that need none")
+
+
+def _jobs(item):
+    return [name for mark in item.iter_markers("background") for name in mark.args]
+
+
+def pytest_collection_modifyitems(config, items):
+    """The tests that wait for background jobs run last, so that their jobs have run."""
+    items[:] = ([item for item in items if not _jobs(item)]
+                + [item for item in items if _jobs(item)])
+
+
+def pytest_collection_finish(session):
+    """Queue the background jobs of the selected tests, in the order the tests run."""
+    if session.config.option.collectonly:
+        return
+    lane = _lane(session.config)
+    for item in session.items:
+        for name in _jobs(item):
+            lane.submit(name)
+
+
+def _lane(config):
+    if LANE not in config.stash:
+        config.stash[LANE] = Lane(tempfile.mkdtemp(prefix="supercoil-tests-"))
+    return config.stash[LANE]
+
+
+def pytest_unconfigure(config):
+    lane = config.stash.get(LANE, None)
+    if lane is not None:
+        lane.close()
+        shutil.rmtree(lane.folder, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def background(request):
+    """The session's background lane (:class:`fresh_scripts.Lane`)."""
+    return _lane(request.config)
 
 
 def pytest_addoption(parser):

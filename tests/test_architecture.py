@@ -36,9 +36,15 @@ def _module_name(path):
     return ".".join(parts)
 
 
+@functools.cache
+def _parse(path):
+    """The AST of a file, parsed once per session (the rules only read it)."""
+    return ast.parse(path.read_text())
+
+
 def _imports(path):
     """(absolute module, imported names) of every import in ``path``."""
-    tree = ast.parse(path.read_text())
+    tree = _parse(path)
     mod = _module_name(path)
     pkg = mod.split(".") if path.name == "__init__.py" else mod.split(".")[:-1]
     for node in ast.walk(tree):
@@ -130,8 +136,9 @@ def _defined_names(tree):
 def private_attribute_reads(source, allowed=FOREIGN_PRIVATE_API):
     """``(line, name)`` of each read of another module's private attribute in ``source``:
     ``obj._name`` (or ``getattr``/``hasattr(obj, "_name")``) with ``obj`` not ``self``,
-    ``cls`` or ``super()``, and ``_name`` bound nowhere in the module."""
-    tree = ast.parse(source)
+    ``cls`` or ``super()``, and ``_name`` bound nowhere in the module (``source`` may be
+    its AST)."""
+    tree = _tree(source)
     own = _defined_names(tree) | set(allowed)
     found = []
     for node in ast.walk(tree):
@@ -154,7 +161,7 @@ def private_attribute_reads(source, allowed=FOREIGN_PRIVATE_API):
 
 def test_no_module_reads_private_attributes_of_another():
     offenders = [f"{path.relative_to(ROOT)}:{line}: {name}" for path in _package_files()
-                 for line, name in private_attribute_reads(path.read_text())]
+                 for line, name in private_attribute_reads(_parse(path))]
     assert not offenders, f"private attributes of other modules read: {offenders}"
 
 
@@ -244,7 +251,7 @@ def test_no_function_over_80_lines_without_a_reason():
     for path in _package_files():
         src = path.read_text()
         lines = src.splitlines()
-        for node in ast.walk(ast.parse(src)):
+        for node in ast.walk(_parse(path)):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
                     _code_lines(node) > 80:
                 text = "\n".join(lines[node.lineno - 1:node.end_lineno])
@@ -279,7 +286,7 @@ def test_no_function_more_complex_than_radon_grade_c():
     """Cyclomatic complexity <= 20 (radon grade C) for every function."""
     offenders = []
     for path in _package_files():
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(_parse(path)):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
                     (cc := _complexity(node)) > 20:
                 offenders.append(f"{path.relative_to(ROOT)}:{node.name} ({cc})")
@@ -421,7 +428,7 @@ _GENERIC = {"name", "summary", "parameters", "values"}
 @functools.cache
 def _parsed():
     """``[(path, module name, AST)]`` of the package, parsed once for the contract rules."""
-    return [(p, _module_name(p), ast.parse(p.read_text())) for p in _package_files()]
+    return [(p, _module_name(p), _parse(p)) for p in _package_files()]
 
 
 def _tree(source):

@@ -66,6 +66,7 @@ def test_the_data_are_the_stated_model_plus_the_stated_noise():
     assert abs(r.mean()) < 4 * noise / np.sqrt(r.size), r.mean()
 
 
+@pytest.mark.background("wheel")
 def test_the_sample_is_shipped_in_the_wheel(installed_wheel):
     names, site, run = installed_wheel
     assert "supercoil/datasets/rotation_curves.csv" in names

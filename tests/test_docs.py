@@ -9,11 +9,13 @@ from __future__ import annotations
 import contextlib
 import importlib.util
 import io
+import os
 import re
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import pytest
+from fresh_scripts import background_job
 
 import supercoil
 
@@ -115,7 +117,6 @@ def _doc_commands(page):
 def _run_command(command, cwd):
     """Run a page's command line as bash expands it (``$(python ...)`` with this Python),
     in-process through :func:`supercoil.cli.main`; returns the exit status."""
-    import os
     import subprocess
     import sys
 
@@ -136,31 +137,64 @@ def _run_command(command, cwd):
     assert status == 0, (command, err.getvalue()[-2000:])
 
 
-def run_page(page, tmp_path, monkeypatch):
-    """Run a page as a reader would: its Python blocks in order in one namespace, then its
-    ``supercoil`` command lines, all in ``tmp_path``; returns the namespace."""
-    from supercoil.datasets.published import ENV_VAR
-
-    # the tutorials run on their synthetic stand-ins; the real files are the opt-in tests'
-    monkeypatch.delenv(ENV_VAR, raising=False)
+def run_page(page):
+    """Run a page as a reader would, in the current folder: its Python blocks in order in
+    one namespace, then its ``supercoil`` command lines; returns the namespace."""
     blocks = re.findall(r"^```python\n(.*?)^```", page.read_text(), re.M | re.S)
     assert blocks, f"{page.name} has no Python code"
-    monkeypatch.chdir(tmp_path)
     namespace = {"__name__": "__tutorial__"}
     with contextlib.redirect_stdout(io.StringIO()):
         for i, block in enumerate(blocks):
             exec(compile(block, f"{page.name} block {i}", "exec"), namespace)
         for command in _doc_commands(page):
-            _run_command(command, tmp_path)
+            _run_command(command, Path.cwd())
     plt.close("all")
     return namespace
 
 
-@pytest.mark.parametrize("page", TUTORIALS, ids=[p.stem for p in TUTORIALS])
-def test_tutorial_code_runs(page, tmp_path, monkeypatch):
+#: what the tests read of a tutorial's namespace (pickled by :func:`tutorial_process`)
+KEPT = ("fit", "intervals", "table")
+
+
+def tutorial_process(page, kept):
+    """The process of the job ``tutorial:<page>``: :func:`run_page` in the current folder,
+    then the names of :data:`KEPT` that the page defined, pickled to ``kept``."""
+    import pickle
+
+    from supercoil.datasets.published import ENV_VAR
+
+    # the tutorials run on their synthetic stand-ins; the real files are the opt-in tests'
+    os.environ.pop(ENV_VAR, None)
+    namespace = run_page(Path(page))
+    with open(kept, "wb") as f:
+        pickle.dump({k: namespace[k] for k in KEPT if k in namespace}, f)
+
+
+def _tutorial_job(page):
+    def job(lane, folder):
+        proc = lane.call(__file__, "tutorial_process", page, folder / ".kept.pkl",
+                         timeout=600, cwd=folder)
+        return proc, folder
+    return job
+
+
+for _page in TUTORIALS:
+    background_job(f"tutorial:{_page.stem}", _tutorial_job(_page))
+
+
+@pytest.mark.parametrize("page", [
+    pytest.param(p, marks=pytest.mark.background(f"tutorial:{p.stem}"), id=p.stem)
+    for p in TUTORIALS])
+def test_tutorial_code_runs(page, background):
     """The Python blocks of a tutorial run in order in one namespace (a reader's session),
-    then its command lines."""
-    namespace = run_page(page, tmp_path, monkeypatch)
+    then its command lines: in a fresh interpreter of the background lane (the job
+    ``tutorial:<page>``, warnings are errors as here)."""
+    import pickle
+
+    proc, folder = background.result(f"tutorial:{page.stem}")
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    with open(folder / ".kept.pkl", "rb") as f:
+        namespace = pickle.load(f)
     if page.stem == "own-data":  # on the stand-in the fit recovers what it was made with
         from supercoil.datasets.published import SYNTHETIC_LENGTH_NM, SYNTHETIC_TORQUE_SCALE
 
@@ -175,7 +209,7 @@ def test_tutorial_code_runs(page, tmp_path, monkeypatch):
             true = SYNTHETIC_LENGTH_NM if name == "length" else SYNTHETIC_TORQUE_SCALE
             assert row["lower_2sigma"] < true < row["upper_2sigma"]
         assert any("from the torque zero crossing" in n for n in fit.notes)
-        assert (tmp_path / "profile_P.png").is_file()
+        assert (folder / "profile_P.png").is_file()
         table = namespace["table"]  # the recording's beads, made with C_t = 95 nm
         ok = table[table["success"]]
         assert len(ok) == 3

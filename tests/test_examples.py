@@ -5,8 +5,9 @@ Each example takes ``--out DIR`` (where to write PNG and CSV files) and
 stay within the suite's time budget).
 
 Each script runs once per session as ``python SCRIPT --out DIR --quick`` in a fresh
-process, forked from a helper that has imported numpy, scipy, pandas, matplotlib and
-supercoil once (the ``example_run`` fixture of ``conftest.py`` and :mod:`fresh_scripts`:
+process, in the suite's background lane, forked from a helper that has imported numpy,
+scipy, pandas, matplotlib and supercoil once (the ``example_run`` fixture of
+``conftest.py`` and :mod:`fresh_scripts`:
 the same argv, ``sys.path``, ``__main__`` and Agg backend as a fresh interpreter; no state
 passes from one script to the next); tests that check an example's outputs further
 (``tests/fitting/test_csv_outputs.py``) read the same run.
@@ -23,7 +24,9 @@ def test_there_are_examples():
     assert EXAMPLES, "examples/ holds no scripts"
 
 
-@pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+@pytest.mark.parametrize("script", [
+    pytest.param(p, marks=pytest.mark.background(f"example:{p.stem}"), id=p.stem)
+    for p in EXAMPLES])
 def test_example_runs_and_writes_outputs(script, example_run):
     status, stderr, out = example_run(script.stem)
     assert status == 0, stderr[-3000:]

@@ -93,6 +93,7 @@ def test_unknown_name_and_unknown_key(tmp_path):
         sc.load_parameters(p)
 
 
+@pytest.mark.background("wheel")
 def test_parameter_sets_load_from_a_built_wheel(installed_wheel):
     """Build the wheel, unpack it away from the checkout and load both sets from it."""
     names, site, run = installed_wheel

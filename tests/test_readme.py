@@ -11,7 +11,8 @@ only parsed, in-process. The two set-up commands are not run (they build a virtu
 environment); they are checked against ``.ci/run``, which runs the test command
 verbatim.
 
-As a user runs them after the set-up: in a shell
+The commands run as written run in the suite's background lane (``tests/fresh_scripts.py``),
+one job per command. As a user runs them after the set-up: in a shell
 whose environment is activated (the interpreter's ``bin`` first on ``PATH``, no
 ``PYTHONPATH``), the ``python -c`` lines in the repository folder itself (where the
 repository's ``supercoil/`` is first on ``sys.path``), the ``supercoil`` lines through
@@ -32,6 +33,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import pytest
+from fresh_scripts import background_job
 
 from supercoil import cli
 
@@ -165,21 +167,37 @@ def _activated_env():
     return env
 
 
+#: the commands that run as written from an activated environment (in a venv)
+AS_WRITTEN = [c for c in COMMANDS if c.split()[1] not in PARSE_ONLY]
+
+
+def _as_written_job(command):
+    """The background job of one command: (process, folder it ran in)."""
+    def job(lane, folder):
+        # python -c lines in the repository folder, where the checkout's package shadows the
+        # installed one
+        cwd = ROOT if command.startswith("python -c ") else folder
+        return lane.run(["bash", "-c", command], timeout=600, cwd=cwd,
+                        env=_activated_env()), folder
+    return job
+
+
+for _i, _command in enumerate(AS_WRITTEN):
+    background_job(f"readme:{_i}", _as_written_job(_command))
+
+
 @pytest.mark.skipif(not IN_VENV, reason="needs the suite to run in a virtual environment "
                     "with the supercoil console script (the set-up commands make one)")
-@pytest.mark.parametrize("command", [c for c in COMMANDS
-                                     if c.split()[1] not in PARSE_ONLY],
-                         ids=[c.split()[1] for c in COMMANDS if c.split()[1] not in PARSE_ONLY])
-def test_command_runs_as_written_from_an_activated_environment(command, tmp_path):
-    python_c = command.startswith("python -c ")
-    # python -c lines in the repository folder, where the checkout's package shadows the
-    # installed one
-    cwd = ROOT if python_c else tmp_path
-    proc = subprocess.run(["bash", "-c", command], cwd=cwd, env=_activated_env(),
-                          capture_output=True, text=True, timeout=600)
+@pytest.mark.parametrize("index", [
+    pytest.param(i, marks=() if not IN_VENV else pytest.mark.background(f"readme:{i}"),
+                 id=c.split()[1]) for i, c in enumerate(AS_WRITTEN)])
+def test_command_runs_as_written_from_an_activated_environment(index, background):
+    """Each command runs in the background lane (the job ``readme:<index>``)."""
+    command = AS_WRITTEN[index]
+    proc, folder = background.result(f"readme:{index}")
     assert proc.returncode == 0, proc.stderr[-2000:]
-    if python_c:
+    if command.startswith("python -c "):
         assert Path(proc.stdout.strip()).is_file()
     elif "--out" in command.split():
         out = command.split()[command.split().index("--out") + 1]
-        assert any(p.suffix == ".csv" for p in (tmp_path / out).rglob("*"))
+        assert any(p.suffix == ".csv" for p in (folder / out).rglob("*"))

@@ -1,7 +1,9 @@
 """`supercoil bench --smoke` runs end to end and its measurements make physical sense.
 
 The smoke run is ``--quick`` at the smallest sizes that still write and fill every chart
-and table (``supercoil.benchmark.suite.SIZES``).
+and table (``supercoil.benchmark.suite.SIZES``). It runs once per session in a fresh
+interpreter (:func:`bench_process`) in the suite's background lane (the job ``bench``,
+``tests/fresh_scripts.py``); the tests that read its outputs carry ``background("bench")``.
 
 No timing is asserted (timings live in the benchmark outputs); the checks are on
 the errors, which do not depend on the machine, on the bookkeeping of the
@@ -15,18 +17,35 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
+from fresh_scripts import background_job
 
 import supercoil as sc
 from supercoil.cli import main
 
+#: the tests that read the smoke run's outputs
+ON_BENCH = pytest.mark.background("bench")
+
+
+def bench_process(out):
+    """The process of the job ``bench``: ``supercoil bench --smoke --out OUT``."""
+    return main(["bench", "--smoke", "--out", out])
+
+
+@background_job("bench")
+def _bench_smoke(lane, folder):
+    """:func:`bench_process` in a fresh process: (process, output folder)."""
+    return lane.call(__file__, "bench_process", folder / "out", timeout=900,
+                     cwd=folder), folder / "out"
+
 
 @pytest.fixture(scope="module")
-def bench_dir(tmp_path_factory):
-    out = tmp_path_factory.mktemp("bench")
-    assert main(["bench", "--smoke", "--out", str(out)]) == 0
+def bench_dir(background):
+    proc, out = background.result("bench")
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     return out
 
 
+@ON_BENCH
 def test_bench_writes_every_chart_and_table(bench_dir):
     for name in ("work_precision.png", "unit_boundary.png", "stability_map.png",
                  "family_precision.png", "bench_measurements.csv", "hat_curve_cost.csv",
@@ -47,6 +66,7 @@ def _bound(target):
     return "<=", float(m.group(1))
 
 
+@ON_BENCH
 def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
     head = sc.read_csv(bench_dir / "headline.csv")
     text = " ".join(head["measurement"])
@@ -74,6 +94,7 @@ def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
         assert re.search(rf"{phase} [0-9.]+ s", cli), phase
 
 
+@ON_BENCH
 def test_work_precision_errors_against_independent_references(bench_dir):
     wp = sc.read_csv(bench_dir / "bench_measurements.csv")
     # a failure (a missing point) is allowed only at loose tolerances: there an ODE's
@@ -91,6 +112,7 @@ def test_work_precision_errors_against_independent_references(bench_dir):
     assert (tight["error"] < 1e-12).all()  # both solvers agree with the MINPACK reference
 
 
+@ON_BENCH
 def test_stability_map_in_bench_has_no_wrong_cell(bench_dir):
     smap = sc.read_csv(bench_dir / "stability_map.csv")
     assert set(smap["category"]) <= {"ok", "flagged", "named error"}
@@ -190,6 +212,7 @@ def test_markdown_escapes_pipes_and_keeps_the_four_columns():
     assert lines[-1] == "Measured on: a machine; load average 1.0 at the start, 2.0 at the end."
 
 
+@ON_BENCH
 def test_the_two_memory_regimes_differ_in_page_faults(bench_dir):
     """The children of hat_throughput_regimes run under glibc settings that reuse freed
     memory (no page faults per call) or map every large array anew (faults, the pass's

@@ -14,6 +14,10 @@ from supercoil.cli import main
 from supercoil.dna.fitting import simulate_rotation_curves
 from supercoil.units import ureg
 
+#: the examples' runs that ``written`` reads (the ones test_examples checks)
+EXAMPLES = ("fit_tweezers_data", "validate_fit_coverage")
+pytestmark = pytest.mark.background(*(f"example:{name}" for name in EXAMPLES))
+
 #: a header cell: a name (may hold a molecule label "[m1]" glued to it), then " [unit]"
 HEADER = re.compile(r"^(?P<name>[A-Za-z_][\w.]*(\[[^\[\]]+\])?\w*)( \[(?P<unit>[^\[\]()]+)\])?$")
 DIMENSIONS = {"force": "[force]", "extension": "[length]", "torque": "[force] * [length]",
@@ -24,7 +28,7 @@ DIMENSIONS = {"force": "[force]", "extension": "[length]", "torque": "[force] * 
 def written(tmp_path_factory, true_dna, example_run):
     root = tmp_path_factory.mktemp("csv")
     examples = []
-    for name in ("fit_tweezers_data", "validate_fit_coverage"):  # the runs test_examples checks
+    for name in EXAMPLES:
         status, stderr, out = example_run(name)
         assert status == 0, stderr[-3000:]
         examples += list(out.rglob("*.csv"))
