@@ -137,6 +137,32 @@ def background_job(name, job=None):
     return job
 
 
+def in_background(test):
+    """Run a test function that takes no fixtures in a fresh process of the lane.
+
+    For the costliest self-contained in-process tests: the same function, its asserts and
+    the suite's warnings-as-errors, forked from the lane's helper (:meth:`Lane.call`) while
+    the other tests run; the test that pytest sees reads its exit status and fails with its
+    traceback (plain ``assert`` messages: pytest does not rewrite the module there).
+    """
+    import pytest
+
+    path = sys.modules[test.__module__].__file__
+    name = f"test:{Path(path).stem}::{test.__name__}"
+    background_job(name, lambda lane, folder: lane.call(path, test.__name__, timeout=900,
+                                                        cwd=folder))
+
+    def wrapper(background):
+        proc = background.result(name)
+        assert proc.returncode == 0, f"{name} failed in the background lane:\n" + \
+            proc.stdout[-3000:] + proc.stderr[-5000:]
+
+    wrapper.__name__, wrapper.__qualname__ = test.__name__, test.__qualname__
+    wrapper.__doc__, wrapper.__module__ = test.__doc__, test.__module__
+    wrapper.background_body = test
+    return pytest.mark.background(name)(wrapper)
+
+
 def _kill_group(proc):
     """Kill a process started with ``start_new_session=True`` and everything it started."""
     try:
@@ -243,4 +269,5 @@ if __name__ == "__main__":  # Lane.call: python fresh_scripts.py MODULE_FILE FUN
     sys.path.insert(0, os.path.dirname(_file))
     _module = importlib.import_module(Path(_file).stem)
     warnings.simplefilter("error")  # as pytest's filters, set after the imports
-    sys.exit(getattr(_module, _function)(*_args))
+    _call = getattr(_module, _function)
+    sys.exit(getattr(_call, "background_body", _call)(*_args))  # in_background: the test
