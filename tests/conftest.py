@@ -105,14 +105,16 @@ def example_run(background):
 
 
 # --- the background lane (tests/fresh_scripts.py: Lane) ---------------------------------
-# CI runs the suite on two cores without pytest-xdist. The subprocess tests (the benchmark
-# smoke run, the examples, the README's commands, the wheel) only wait for their
-# processes, so one background lane runs those processes on the second core while the
-# in-process tests run on the first: every job that a selected test names in its
-# ``background`` marker is queued when collection ends, the tests that wait for a job run
-# last (in their order), and each checks its job's result. A job that fails or outlives
-# its timeout fails the tests that read it; the lane is closed (jobs cancelled, processes
-# killed) when the session ends.
+# Why: CI runs the suite on two cores without pytest-xdist, and the slowest tests are
+# processes the suite only waits for (the benchmark smoke run, the examples, the README's
+# commands, the tutorials, the wheel build) or a few costly self-contained tests
+# (fresh_scripts.in_background). One background lane runs those processes, one after
+# another, on the second core while the in-process tests run on the first: every job that
+# a selected test names in its ``background`` marker is queued when collection ends (a
+# file or a -k selection queues only its own jobs), the tests that wait for a job run last
+# (in their order), and each checks its job's result. A job that fails or outlives its
+# timeout fails the tests that read it, with its output, never the session; the lane is
+# closed (jobs not started cancelled, running processes killed) when pytest ends.
 LANE = pytest.StashKey()
 
 
