@@ -15,13 +15,15 @@ most of the CPU of a short script are paid once. Only top-level packages are imp
 ahead (and ``matplotlib.pyplot``), so that a script which uses a submodule it never
 imports fails here as it would in a fresh interpreter.
 
-Used by ``tests/test_examples.py``.
+Used by the background lane for the examples, the tutorials, the benchmark smoke run and
+the tests of :func:`in_background` (:meth:`Lane.scripts`, :meth:`Lane.call`).
 
 **The background lane** (:class:`Lane`, started by ``tests/conftest.py``): CI has two cores
 and no pytest-xdist, and the slowest tests are subprocesses the suite only waits for (the
-benchmark smoke run, the examples, the README's commands, the wheel build). The lane is one
-thread that runs such jobs one after another, in subprocesses, while the in-process tests
-run on the other core. A job is a function ``job(lane, folder)`` registered by name in
+benchmark smoke run, the examples, the README's commands, the tutorials, the wheel build)
+or a few costly self-contained tests (:func:`in_background`). The lane is one thread that
+runs such jobs one after another, in subprocesses, while the in-process tests run on the
+other core. A job is a function ``job(lane, folder)`` registered by name in
 :data:`JOBS` (:func:`background_job`); a test that needs it carries
 ``@pytest.mark.background(name)`` (the suite starts the job at the start of the session and
 runs the test near the end) and reads the job's result with ``background.result(name)``,
