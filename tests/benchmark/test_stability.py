@@ -30,8 +30,26 @@ u = sc.ureg
 
 
 @pytest.fixture(scope="module")
-def coarse():
-    return stability.run(quick=True)
+def bench_out(background):
+    """The output folder of the suite's ``supercoil bench --smoke`` (the background job
+    ``bench`` of tests/benchmark/test_bench.py), which computes the whole quick map."""
+    proc, out = background.result("bench")
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    return out
+
+
+@pytest.fixture(scope="module")
+def coarse(bench_out):
+    """``stability.run(quick=True)`` of the default materials, as the smoke run computed it
+    (pickled there with its attrs: computing it once per session, in the lane)."""
+    import pickle
+
+    with open(bench_out / "stability_map.pickle", "rb") as f:
+        return pickle.load(f)
+
+
+#: the tests of the coarse map read it from the smoke run
+ON_BENCH = pytest.mark.background("bench")
 
 
 @pytest.fixture(scope="module")
@@ -42,6 +60,7 @@ def rod():
 # ------------------------------------------------------------------ the coarse map
 
 
+@ON_BENCH
 def test_coarse_map_spans_every_solver_into_its_failure_regions(coarse):
     counts = stability.summary(coarse)
     assert list(counts.columns) == list(stability.CATEGORIES)
@@ -66,6 +85,7 @@ def test_coarse_map_spans_every_solver_into_its_failure_regions(coarse):
         assert np.isfinite(row[row["x_quantity"]]) and np.isfinite(row[row["y_quantity"]])
 
 
+@ON_BENCH
 def test_coarse_map_has_no_wrong_cell(coarse):
     wrong = coarse[coarse["category"] == "WRONG"]
     assert wrong.empty, [(r.solver, r.detail) for r in wrong.itertuples()]
@@ -95,16 +115,19 @@ def test_classification_catches_silent_failures():
     assert stability.verdict(exc, warns)[0] == "flagged"
 
 
-def test_plot_writes_one_png(coarse, tmp_path):
-    import matplotlib.pyplot as plt
+@ON_BENCH
+def test_plot_writes_one_png(coarse, bench_out):
+    """The smoke run drew the quick map with ``stability.plot`` (``stability_map.png``);
+    its process recorded what the figure shows (``stability_plot.json``)."""
+    import json
 
-    fig = stability.plot(coarse, tmp_path / "stability.png")
-    assert (tmp_path / "stability.png").stat().st_size > 10_000
-    panels = [ax for ax in fig.axes if ax.get_title()]
+    assert (bench_out / "stability_map.png").stat().st_size > 10_000
+    shown = json.loads((bench_out / "stability_plot.json").read_text())
+    assert shown["solvers"] == coarse["solver"].nunique()
+    panels = [p for p in shown["panels"] if p[0]]
     assert len(panels) == coarse["solver"].nunique()
-    assert all(ax.get_xlabel() and ax.get_ylabel() for ax in panels)
-    assert "[pN]" in " ".join(ax.get_xlabel() for ax in panels)
-    plt.close(fig)
+    assert all(xl and yl for _, xl, yl in panels)
+    assert "[pN]" in " ".join(xl for _, xl, _ in panels)
 
 
 # ------------------------------------------------- alpha -> pi/4: the twist load limit

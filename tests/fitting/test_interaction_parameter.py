@@ -1,4 +1,5 @@
-"""An interaction parameter is fitted by name like a DNA field (interaction registered here).
+"""An interaction parameter is fitted by name like a DNA field (interaction registered here, for
+this module's tests only).
 
 The toy interaction is the paper's hard core with the radius scaled: ``r0 ->
 s r0``. In the li-zhao construction r0 enters only through the plectoneme
@@ -14,7 +15,7 @@ import pytest
 import supercoil as sc
 from supercoil.dna.fitting import fit as fitting
 from supercoil.dna.fitting.model import HatCurveModel
-from supercoil.dna.interactions import HardCore, get_interaction
+from supercoil.dna.interactions import HardCore, get_interaction, unregister_interaction
 from supercoil.dna.model_parameters import ModelParameter
 
 
@@ -36,7 +37,13 @@ class ScaledCore(HardCore):
         return super()._equilibrium(tension, self._scaled(dna))
 
 
-sc.register_interaction(ScaledCore, replace=True)
+@pytest.fixture(autouse=True, scope="module")
+def _scaled_core_registered():
+    """The toy is registered for this module's tests only: the other tests (the stability
+    map's family maps, the model lists) see the built-in registry, as a fresh process does."""
+    sc.register_interaction(ScaledCore, replace=True)
+    yield
+    unregister_interaction("scaled-core")
 
 
 def test_interaction_parameter_fit_equals_the_radius_fit(data, base, result):
