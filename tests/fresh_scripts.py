@@ -13,7 +13,11 @@ next one. What differs from a fresh interpreter is only that those modules are a
 imported (at the state their import leaves them in): the start-up of the interpreter and
 most of the CPU of a short script are paid once. Only top-level packages are imported
 ahead (and ``matplotlib.pyplot``), so that a script which uses a submodule it never
-imports fails here as it would in a fresh interpreter.
+imports fails here as it would in a fresh interpreter; scipy's submodules are the
+exception (scipy loads them on first attribute access anyway, so nothing that fails in a
+fresh interpreter passes here): ``scipy.integrate``, ``scipy.optimize`` and
+``scipy.stats``, which the fitting module and its scripts import (about half a second
+per script otherwise).
 
 Used by the background lane for the examples, the tutorials, the benchmark smoke run and
 the tests of :func:`in_background` (:meth:`Lane.scripts`, :meth:`Lane.call`).
@@ -47,7 +51,7 @@ from pathlib import Path
 #: the helper process: imports once, then one fork per request line (JSON) on stdin
 _HELPER = r"""
 import json, os, runpy, signal, sys, traceback
-import numpy, scipy.integrate, scipy.optimize, pandas, matplotlib
+import numpy, scipy.integrate, scipy.optimize, scipy.stats, pandas, matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot
 import supercoil
