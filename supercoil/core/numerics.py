@@ -142,7 +142,7 @@ def find_root(f, init, args=(), **kwargs):
 CELL_BITS = 2
 
 
-def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None):
+def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None, estimate=None):
     """The sign change of an increasing ``fun(x, *args)``, bisected in a cell at a Newton estimate.
 
     :func:`bisect_increasing` halves ``[lo, hi]`` about 55 times, evaluating ``fun``
@@ -168,11 +168,21 @@ def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None):
     Newton iteration's first point (default: the bracket's midpoint), only saves
     iterations. The iteration stops at steps below 1e-8 relative: Newton's next error
     is then of the order of the rounding (quadratic convergence), and the cell check
-    catches any element for which it is not.
+    catches any element for which it is not. ``estimate``, if given, is x0 itself (the
+    caller's own cheaper estimate; ``fun_df`` and ``start`` are then not used).
+
+    Work saved without changing a sign evaluation's outcome: a moved cell shares one
+    end with the first cell (the grid points are exact multiples of ``g``), whose sign
+    is known, so only its other end is evaluated; and the last halving, needed only
+    where the cell reaches below x0's binade (twice the spacings), runs only on the
+    elements whose bracket is not yet two adjacent floats (elsewhere it is a no-op).
     """
-    x_start = 0.5 * (lo + hi) if start is None else start
     with np.errstate(all="ignore"):
-        x0 = safe_newton(lambda x: fun_df(x, *args), x_start, lo, hi, 1e-8, maxiter=40)
+        if estimate is None:
+            x_start = 0.5 * (lo + hi) if start is None else start
+            x0 = safe_newton(lambda x: fun_df(x, *args), x_start, lo, hi, 1e-8, maxiter=40)
+        else:
+            x0 = np.asarray(estimate, float)
         _, e = np.frexp(x0)
         g = np.ldexp(1.0, e - 53 + CELL_BITS)
         a = np.floor(x0 / g) * g
@@ -185,13 +195,26 @@ def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None):
         moved = np.flatnonzero(left | right)
         if moved.size:  # a moved cell is verified again (it may be off by more)
             sub = tuple(v[moved] if np.ndim(v) else v for v in args)
-            ok[moved] &= ~(fun(a[moved], *sub) > 0) & (fun(b[moved], *sub) > 0)
-    for _ in range(CELL_BITS + 1):  # 2^CELL_BITS spacings (twice that below the binade)
+            # moved left: its right end is the old left end (sign > 0 known); moved
+            # right: its left end is the old right end (sign <= 0 known)
+            to_left = left[moved]
+            up = fun(np.where(to_left, a[moved], b[moved]), *sub) > 0
+            ok[moved] &= up != to_left
+    for _ in range(CELL_BITS):  # 2^CELL_BITS spacings (twice that below the binade)
         mid = 0.5 * (a + b)
         up = fun(mid, *args) > 0
         np.copyto(b, mid, where=up)
         np.copyto(a, mid, where=~up)
     out = 0.5 * (a + b)
+    wide = np.flatnonzero((out != a) & (out != b))
+    if wide.size:  # the last halving (below the binade)
+        sub = tuple(v[wide] if np.ndim(v) else v for v in args)
+        aw, bw = a[wide], b[wide]
+        mid = 0.5 * (aw + bw)
+        up = fun(mid, *sub) > 0
+        a[wide] = np.where(up, aw, mid)
+        b[wide] = np.where(up, mid, bw)
+        out[wide] = 0.5 * (a[wide] + b[wide])
     bad = ~(ok & ((out == a) | (out == b)))
     if np.any(bad):
         sub = tuple(v[bad] if np.ndim(v) else v for v in args)
