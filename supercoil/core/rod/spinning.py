@@ -79,7 +79,7 @@ import numpy as np
 
 from supercoil.core.numerics import bisect_from_estimate
 from supercoil.core.rod import contact as sc
-from supercoil.core.rod.smooth import BLOCK
+from supercoil.core.rod.smooth import BLOCK, S_MAX, small_tilt
 from supercoil.exceptions import NoHelixError
 
 TWO_PI = 2.0 * np.pi
@@ -112,22 +112,9 @@ def _tilt_block(n, Tp, r, B, C):
     k = TWO_PI * C * n  # the factors of _G, as it forms them
     h = 0.5 * Tp
     x0 = _tilt_estimate(2.0 * B / r**2, h, k / r,
-                        _small_tilt(Tp * r**2 / (4.0 * B), np.pi * C * n * r / B))
+                        small_tilt(Tp * r**2 / (4.0 * B), np.pi * C * n * r / B))
     return bisect_from_estimate(_G_signs, None, (k, h, B, r), np.zeros(n.shape),
                                 np.full(n.shape, sc.QUARTER_PI), estimate=x0)
-
-
-def _small_tilt(p, q):
-    """Root of the small-tilt limit ``a^3 + p a = q`` of [f4] (p, q >= 0; Cardano), capped
-    below pi/4: a start for Newton (sin a ~ a, sin 2a ~ 2a, cos 2a ~ 1), nothing more."""
-    with np.errstate(all="ignore"):
-        d = np.sqrt(0.25 * q * q + (p / 3.0) ** 3)
-        a = np.cbrt(0.5 * q + d) + np.cbrt(0.5 * q - d)
-    return np.where(np.isfinite(a), np.clip(a, 0.0, 0.99 * sc.QUARTER_PI), 0.5 * sc.QUARTER_PI)
-
-
-#: sin(pi/4), the largest s = sin(alpha) of :func:`_tilt_estimate`.
-_S_MAX = np.sqrt(0.5)
 
 
 def _tilt_estimate(p, q, k, s):
@@ -142,7 +129,7 @@ def _tilt_estimate(p, q, k, s):
     order of the rounding), or where a step is NaN (the cell check then fails and
     the element gets the plain bisection).
     """
-    s = np.minimum(s, 0.99 * _S_MAX)
+    s = np.minimum(s, 0.99 * S_MAX)
     with np.errstate(all="ignore"):
         for _ in range(40):
             s2 = s * s
@@ -165,7 +152,7 @@ def _tilt_estimate(p, q, k, s):
             df += s2c  # p (3 s^2 c - s^4 / c) + q + 4 k s
             f /= df  # the step
             s -= f
-            np.clip(s, 0.0, _S_MAX, out=s)
+            np.clip(s, 0.0, S_MAX, out=s)
             np.abs(f, out=f)
             if not np.any(f > 1e-8 * s):
                 break
@@ -239,7 +226,7 @@ def slacking_tilt(turns_abs, r, L, B, C):
 def _slacking_block(t, r, L, B, C):
     """alpha_0 of [eq ini] on one block of |N_0| > 0 (1-D)."""
     rhs = (C / B) * 4.0 * np.pi * r * t / L
-    x0 = _tilt_estimate(4.0, 0.0, rhs, _small_tilt(0.0, 0.25 * rhs))
+    x0 = _tilt_estimate(4.0, 0.0, rhs, small_tilt(0.0, 0.25 * rhs))
     return bisect_from_estimate(_h0_signs, None, (rhs,), np.zeros(rhs.shape),
                                 np.full(rhs.shape, sc.QUARTER_PI), estimate=x0)
 
