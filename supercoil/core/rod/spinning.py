@@ -85,12 +85,21 @@ from supercoil.exceptions import NoHelixError
 TWO_PI = 2.0 * np.pi
 
 
-def _checked(turns_abs, head_tension, L):
-    """|N| and T' broadcast together (float arrays, views), after the checks of [f4]."""
-    t, Tp = np.broadcast_arrays(np.asarray(turns_abs, float), np.asarray(head_tension, float))
+def _checked(turns, head_tension, L, signed=False):
+    """N and T' broadcast together (float arrays, views), after the checks of [f4].
+
+    ``signed``: N may carry a sign (its magnitude is checked, without a temporary of
+    the array's size); else it is |N|.
+    """
+    n = np.asarray(turns, float)
+    t, Tp = np.broadcast_arrays(n, np.asarray(head_tension, float))
     # min(|N|) / L > 0 is all(|N| / L > 0): the division is monotone, a NaN propagates
-    if t.size and not np.min(t) / L > 0:
-        raise NoHelixError("turns N = 0: no twist, no helix (twist-spinning needs |N| > 0)")
+    if t.size:
+        flat = n.reshape(-1)
+        least = (np.min([np.min(np.abs(flat[i:i + BLOCK])) for i in range(0, flat.size, BLOCK)])
+                 if signed else np.min(flat))
+        if not least / L > 0:
+            raise NoHelixError("turns N = 0: no twist, no helix (twist-spinning needs |N| > 0)")
     if np.any(Tp < 0) or not np.all(np.isfinite(Tp)):
         raise NoHelixError("head tension T' must be finite and >= 0 (a push buckles the head)")
     return t, Tp
@@ -273,17 +282,16 @@ def spinning_scene(turns, head_tension, r, L, B, C):
 
 def _in_blocks(turns, head_tension, r, L, B, C, fields, scene):
     """The block loop of :func:`spinning_state` (|N|) and :func:`spinning_scene` (signed N)."""
-    n = np.asarray(turns, float)
-    t, Tp = _checked(np.abs(n) if scene else n, head_tension, L)
-    if scene:
-        n = np.broadcast_to(n, t.shape)
-    out = {k: np.empty(t.shape) for k in fields}
+    n, Tp = _checked(turns, head_tension, L, signed=scene)
+    out = {k: np.empty(n.shape) for k in fields}
     flat = {k: v.reshape(-1) for k, v in out.items()}
-    for start in range(0, t.size, BLOCK):
+    for start in range(0, n.size, BLOCK):
         stop = start + BLOCK
-        part = _state_block(t.flat[start:stop], Tp.flat[start:stop], r, L, B, C)
+        nb = n.flat[start:stop]
+        t = np.abs(nb) if scene else nb
+        part = _state_block(t, Tp.flat[start:stop], r, L, B, C)
         if scene:
-            _add_slacking(part, n.flat[start:stop], t.flat[start:stop], r, L, B, C)
+            _add_slacking(part, nb, t, r, L, B, C)
         for k, v in flat.items():
             v[start:stop] = part[k]
     return {k: v[()] if v.ndim == 0 else v for k, v in out.items()}
