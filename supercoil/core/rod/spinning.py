@@ -169,7 +169,8 @@ def _tilt_estimate(p, q, k, s):
 
 
 def _G(a, n, Tp, r, B, C):
-    """[f4] as G(alpha) of the module doc (n = |N| / L), as it is bisected."""
+    """[f4] as G(alpha) of the module doc (n = |N| / L): the bisected form (the solver
+    evaluates it as :func:`_G_signs`, the same floats)."""
     sa = np.sin(a)  # once: the same floats as two calls
     return B * sa**2 * np.sin(2 * a) / r**2 + 0.5 * Tp * sa - TWO_PI * C * n * np.cos(2 * a) / r
 
@@ -194,7 +195,8 @@ def _G_signs(a, k, h, B, r):
 
 
 def _h0(a, rhs):
-    """[eq ini] as :func:`supercoil.core.rod.contact.initial_tilt` bisects it."""
+    """[eq ini] as :func:`supercoil.core.rod.contact.initial_tilt` bisects it (the solver
+    evaluates it as :func:`_h0_signs`, the same floats)."""
     return sc.y_of_alpha(a) * np.sin(2.0 * a) - rhs * np.cos(2.0 * a)
 
 
