@@ -237,7 +237,8 @@ def slacking_tilt(turns_abs, r, L, B, C):
 def _slacking_block(t, r, L, B, C):
     """alpha_0 of [eq ini] on one block of |N_0| > 0 (1-D)."""
     rhs = (C / B) * 4.0 * np.pi * r * t / L
-    x0 = _tilt_estimate(4.0, 0.0, rhs, small_tilt(0.0, 0.25 * rhs))
+    # start: the small-tilt root a^3 = rhs / 4 (small_tilt(0, rhs / 4) without its algebra)
+    x0 = _tilt_estimate(4.0, 0.0, rhs, np.cbrt(0.25 * rhs))
     return bisect_from_estimate(_h0_signs, None, (rhs,), np.zeros(rhs.shape),
                                 np.full(rhs.shape, sc.QUARTER_PI), estimate=x0)
 
