@@ -66,9 +66,13 @@ __all__ = [
     "Series",
     "branch_linking",
     "branch_series",
+    "coefficients",
     "evaluate_inverse",
+    "hermite",
+    "interleave",
     "inverse_of",
     "inverse_table",
+    "lobatto",
     "secant",
     "solve_series",
     "torque_at_linking",
@@ -112,13 +116,13 @@ def branch_linking(torque, torsion, tension, C, loop=None):
     return torque / C + torsion * (1.0 - _loop.loop_length(tension, loop[0]) / loop[1])
 
 
-def _lobatto(degree):
+def lobatto(degree):
     """Chebyshev-Lobatto nodes ``cos(pi j / degree)``, j = 0..degree (descending)."""
     return np.cos(np.pi * np.arange(degree + 1) / degree)
 
 
-def _coefficients(values):
-    """Chebyshev coefficients of the interpolant through values at :func:`_lobatto` nodes."""
+def coefficients(values):
+    """Chebyshev coefficients of the interpolant through values at :func:`lobatto` nodes."""
     n = values.size - 1
     ext = np.concatenate([values, values[-2:0:-1]])
     c = np.fft.rfft(ext).real / n
@@ -145,13 +149,13 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
     """
     half = 0.5 * (u_hi - u_lo)
     degree = START_DEGREE
-    M, lp = _nodes(_lobatto(degree), u_lo, half, C, equilibrium, loop)
+    M, lp = _nodes(lobatto(degree), u_lo, half, C, equilibrium, loop)
     err_prev = np.inf
     while True:
         if not np.all(np.diff(lp) < 0.0):  # nodes descend in t: l_p must rise with u
             return None
-        cl, cM = _coefficients(lp), _coefficients(M)
-        slope = np.min(-np.diff(lp) / np.diff(_lobatto(degree))) / half  # min dl_p/du, node pairs
+        cl, cM = coefficients(lp), coefficients(M)
+        slope = np.min(-np.diff(lp) / np.diff(lobatto(degree))) / half  # min dl_p/du, node pairs
         scale_l = max(TAIL_RTOL * slope, NOISE * np.max(np.abs(lp)))
         err = max(max(abs(cl[-1]), abs(cl[-2])) / scale_l,
                   max(abs(cM[-1]), abs(cM[-2])) / (TAIL_RTOL * np.max(np.abs(M))))
@@ -161,11 +165,11 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
             return None
         err_prev = err
         degree *= 2  # the nested new nodes are the odd ones of the doubled degree
-        M_new, lp_new = _nodes(_lobatto(degree)[1::2], u_lo, half, C, equilibrium, loop)
-        M, lp = _interleave(M, M_new), _interleave(lp, lp_new)
+        M_new, lp_new = _nodes(lobatto(degree)[1::2], u_lo, half, C, equilibrium, loop)
+        M, lp = interleave(M, M_new), interleave(lp, lp_new)
 
 
-def _interleave(old, new):
+def interleave(old, new):
     out = np.empty(old.size + new.size)
     out[0::2], out[1::2] = old, new
     return out
@@ -241,7 +245,7 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     Started from ``t`` if given, else from linear interpolation of the node values.
     """
     if t is None:
-        t = np.interp(x, lp_nodes[::-1], _lobatto(cl.size - 1)[::-1])
+        t = np.interp(x, lp_nodes[::-1], lobatto(cl.size - 1)[::-1])
     last = None
     for _ in range(_NEWTON_MAXITER):
         lp, dlp = _ch.chebval(t, cl), _ch.chebval(t, dcl)
@@ -335,8 +339,8 @@ def inverse_of(series):
         T = np.exp(u_lo + half * (t + 1.0))
         M, dl = _ch.chebval(t, cM), _ch.chebval(t, dcl)  # dl_p/dt; dT/dt = half T
         h = (x_hi - x_lo) / pieces  # from the width itself: a node spacing would add rounding
-        cT = _hermite(T[0::2], half * T[0::2] / dl[0::2], h)
-        cM_ = _hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
+        cT = hermite(T[0::2], half * T[0::2] / dl[0::2], h)
+        cM_ = hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
         at_T, at_M = (c[0] + 0.5 * (c[1] + 0.5 * (c[2] + 0.5 * c[3])) for c in (cT, cM_))
         err = max(np.max(np.abs(at_T / T[1::2] - 1.0)),
                   np.max(np.abs(at_M - M[1::2])) / np.max(np.abs(M)))
@@ -354,7 +358,7 @@ def inverse_of(series):
     return inverse
 
 
-def _hermite(y, dy, h):
+def hermite(y, dy, h):
     """Coefficient rows (4, K) of the cubic Hermite pieces through values y and slopes dy."""
     y0, y1, m0, m1 = y[:-1], y[1:], h * dy[:-1], h * dy[1:]
     return np.stack([y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1, 2.0 * (y0 - y1) + m0 + m1])

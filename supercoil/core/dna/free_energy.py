@@ -57,7 +57,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.blocks import outside as _outside
 from supercoil.core.blocks import points_in_blocks
+from supercoil.core.blocks import select as _select
+from supercoil.core.dna import branch_memo as _memo
 from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
@@ -148,7 +151,8 @@ def tail_free_energy(force, torque, B, C, kT, thermal=True):
 
 
 def _check_bracket(Q, force, torque):
-    _mn.check_bracket(Q, force, torque, what="Moroz-Nelson tail free energy")
+    if not np.min(Q) > 0.0:  # one reduction in the common case (NaN fails it too)
+        _mn.check_bracket(Q, force, torque, what="Moroz-Nelson tail free energy")
 
 
 def tail_torque(linking, force, B, C, kT):
@@ -183,7 +187,7 @@ def tail_torque(linking, force, B, C, kT):
         f = v * MQ * (a + b / w) - x
         df = MQ * (a + b / (w * w * w))
         dv = f / df
-        v = np.clip(v - dv, 0.0, 1.0 - 2.0**-52)
+        v = np.minimum(np.maximum(v - dv, 0.0), 1.0 - 2.0**-52)  # np.clip, without its wrapper
         if np.all(np.abs(dv) <= 2e-15 * v):
             return v * MQ
     i = np.flatnonzero(~(np.abs(dv) <= 2e-15 * v))[0]
@@ -238,10 +242,11 @@ def _pull(force, B, C, kT, equilibrium):
         f"the tail's effective pull did not converge in {_PULL_MAXITER} steps")
 
 
-def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
+def coexistence(force, length, B, C, kT, equilibrium, thermal=True, memo=None):
     """Coexistence torque, effective pull, buckling turns and slope at each force.
 
-    Implements docs/theory/free-energy.md (FE4, FE5, FE8, FE9).
+    Implements docs/theory/free-energy.md (FE4, FE5, FE8, FE9). ``memo``: a caller's
+    dict keeping the C-free pull per force (:mod:`supercoil.core.dna.branch_memo`).
 
     Raises
     ------
@@ -254,7 +259,8 @@ def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
     """
     force = np.atleast_1d(np.asarray(force, float))
     if thermal:
-        T, M, tau, Q = _pull(force, B, C, kT, equilibrium)
+        T, M, tau, Q = _memo.remember(memo, ("pull", B, kT, force.tobytes()),
+                                      lambda: _pull(force, B, C, kT, equilibrium))
         r = np.sqrt(Q)
         zinf = 1.0 - 0.5 / r
         extra = M / (4.0 * B * r)
@@ -339,7 +345,7 @@ def loop_constants(co, length, B, C, kT, thermal=True):
 
 
 def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
-               short_tail_length=None, trial_equilibrium=None, end_loop=False):
+               short_tail_length=None, trial_equilibrium=None, end_loop=False, memo=None):
     """Free-energy hat-curve points, one (turns, force) pair per point.
 
     Implements docs/theory/free-energy.md (FE6, FE7).
@@ -364,6 +370,9 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     end_loop : bool
         Add the plectoneme end loop (docs/theory/end-loop.md#7-free-energy); the
         returned plectoneme length then includes the loop's contour.
+    memo : dict, optional
+        The caller's store of C-free results for this ``equilibrium`` across calls (the
+        pull, the fully coiled branch: :mod:`supercoil.core.dna.branch_memo`).
 
     Returns
     -------
@@ -381,11 +390,10 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         return FreeEnergyPoints(e, e, e, e.astype(np.int8), e.astype(bool), e, e)
     one = force.min() == force.max()  # one force: skip the sort of np.unique
     uf = force.reshape(-1)[:1].copy() if one else np.unique(force)
-    co = coexistence(uf, length, B, C, kT, equilibrium, thermal)
+    co = coexistence(uf, length, B, C, kT, equilibrium, thermal, memo)
     loop = loop_constants(co, length, B, C, kT, thermal) if end_loop else None
-
     branch = _points.call_branch(turns.reshape(-1), force.reshape(-1), uf, co, loop, length,
-                                 B, C, trial_equilibrium or equilibrium, BLOCK)
+                                 B, C, trial_equilibrium or equilibrium, BLOCK, memo)
 
     def block(t, f):
         inv = None if one else np.searchsorted(uf, f)
@@ -472,26 +480,6 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
         phase[coiled] = FULLY_COILED
     return FreeEnergyPoints(extension, np.copysign(M, turns), S, phase,
                             tail < short_tail_length, zeta, G)
-
-
-def _select(mask):
-    """``mask`` as an index: None (no point), a slice (contiguous points: views, no copies)
-    or the indices (a gather costs a third of a boolean mask's)."""
-    idx = np.flatnonzero(mask)
-    if idx.size == 0:
-        return None
-    if idx[-1] - idx[0] + 1 == idx.size:
-        return slice(int(idx[0]), int(idx[-1]) + 1)
-    return idx
-
-
-def _outside(size, *selections):
-    """Boolean mask of the points in none of the selections (of :func:`_select`)."""
-    out = np.ones(size, bool)
-    for sel in selections:
-        if sel is not None:
-            out[sel] = False
-    return out
 
 
 def free_energy(turns, force, length, B, C, kT, equilibrium, thermal=True, end_loop=False):
