@@ -32,7 +32,8 @@ from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import coiled_table as _table
 
-__all__ = ["GROWTH", "HERMITE_RTOL", "BranchTable", "build", "covers", "remember", "solve",
+__all__ = ["GROWTH", "HERMITE_RTOL", "START_DEGREE", "BranchTable", "build", "covers", "remember",
+           "solve",
            "table_for"]
 
 #: Hermite pieces accepted once their midpoint values of M_p and tau are within this
@@ -40,6 +41,10 @@ __all__ = ["GROWTH", "HERMITE_RTOL", "BranchTable", "build", "covers", "remember
 HERMITE_RTOL = 1e-13
 #: the domain built: this factor times the width in log T that the request needs
 GROWTH = 1.25
+#: first degree of the series (33 nodes in one equilibrium call: a fit's branch has needed
+#: 32-64 on the bench problems, which from degree 8 takes three or four calls; the per-call
+#: table starts lower, for the hard-core equilibrium's scalar path on few tensions)
+START_DEGREE = 32
 _START_PIECES = 128
 _MAX_PIECES = 1 << 14
 _NEWTON_MAXITER = 8
@@ -77,7 +82,7 @@ class BranchTable(NamedTuple):
 def _series(u_lo, u_hi, equilibrium):
     """Chebyshev coefficients of ``M_p`` and ``tau`` in t on [u_lo, u_hi], or None.
 
-    Lobatto nodes doubled (nested) from :data:`~coiled_table.START_DEGREE` until the
+    Lobatto nodes doubled (nested) from :data:`START_DEGREE` until the
     last two coefficients of each are below ``TAIL_RTOL`` times its largest node value
     (or the equilibrium's noise); None beyond ``MAX_DEGREE``, where a doubling from
     degree 32 on shrinks them by less than 20 times (a kink: contact), or where
@@ -89,7 +94,7 @@ def _series(u_lo, u_hi, equilibrium):
         st = equilibrium(np.exp(u_lo + half * (t + 1.0)))
         return np.asarray(st.torque, float), np.asarray(st.torsion, float)
 
-    degree = _table.START_DEGREE
+    degree = START_DEGREE
     M, tau = nodes(_table.lobatto(degree))
     err_prev = np.inf
     while True:
@@ -113,7 +118,9 @@ def build(u_lo, u_hi, equilibrium):
     """The :class:`BranchTable` of the branch on ``[u_lo, u_hi]``, or None (not resolved).
 
     The pieces double from 128 until every midpoint agrees with the series to
-    :data:`HERMITE_RTOL` (the error falls as pieces^-4); None beyond 16384 pieces.
+    :data:`HERMITE_RTOL` (the error falls as pieces^-4) and every piece's cubic bends
+    little (``|p''/p'| <= 0.1``, which :func:`solve`'s stopping rule assumes); None
+    beyond 16384 pieces.
     """
     series = _series(u_lo, u_hi, equilibrium)
     if series is None:
@@ -132,12 +139,16 @@ def build(u_lo, u_hi, equilibrium):
             mid = r[0] + 0.5 * (r[1] + 0.5 * (r[2] + 0.5 * r[3]))
             err = max(err, np.max(np.abs(mid - v[1::2])) / np.max(np.abs(v)))
             rows.append((r, v[0::2].copy()))
-        if err <= HERMITE_RTOL:
+        # the Newton of solve() stops on the quadratic-convergence bound |p''/p'| < 0.1
+        bend = max(np.max((2.0 * np.abs(r[2]) + 6.0 * np.abs(r[3])) / np.abs(r[1]))
+                   for r, _ in rows)
+        if err <= HERMITE_RTOL and bend <= 0.1:
             (rM, nM), (rt, nt) = rows
             rising = bool(np.all(np.diff(nM) > 0.0) and np.all(np.diff(nt) > 0.0))
             return BranchTable(float(u_lo), float(u_hi), pieces / (2.0 * half), rM, rt, nM,
                                nt, float(err), rising)
-        pieces *= 2 ** max(1, int(np.ceil(np.log2(1.25 * (err / HERMITE_RTOL) ** 0.25))))
+        pieces *= 2 ** max(1, int(np.ceil(np.log2(1.25 * (err / HERMITE_RTOL) ** 0.25))),
+                           int(np.ceil(np.log2(bend / 0.1))))
     return None
 
 
@@ -159,32 +170,51 @@ def solve(table, x, C):
     if not (x.max() <= ln[-1] and x.min() >= ln[0] - 1e-9 * span
             and (table.rising or np.all(ln[1:] > ln[:-1]))):
         return None
-    j = np.searchsorted(ln, x)
-    j = np.minimum(np.maximum(j - 1, 0), ln.size - 2)
-    rM, rt = table.torque[:, j], table.torsion[:, j]  # (4, points) each
-    c = rM / C
-    c += rt
+    # array methods and in-place ufuncs throughout: a few hundred points, where numpy's
+    # per-call overhead, not the arithmetic, is the cost
+    j = ln.searchsorted(x)
+    j -= 1
+    np.maximum(j, 0, out=j)
+    np.minimum(j, ln.size - 2, out=j)
+    rM = table.torque.take(j, axis=1)  # (4, points)
+    c = table.torsion.take(j, axis=1)
+    c += rM / C
     c0, c1, c2, c3 = c
-    d1, d2, d3 = c1, 2.0 * c2, 3.0 * c3
-    lo = ln[j]
-    s = (x - lo) / (ln[j + 1] - lo)
-    c0 = c0 - x
+    d2, d3 = 2.0 * c2, 3.0 * c3
+    lo = ln.take(j)
+    s = x - lo
+    s /= ln.take(j + 1) - lo
+    c0 -= x
     for _ in range(_NEWTON_MAXITER):
-        step = ((c3 * s + c2) * s + c1) * s + c0
-        step /= (d3 * s + d2) * s + d1
+        step = c3 * s
+        step += c2
+        step *= s
+        step += c1
+        step *= s
+        step += c0
+        den = d3 * s
+        den += d2
+        den *= s
+        den += c1
+        step /= den
         s -= step
         # quadratic convergence: after a step of 1e-6 the error in s is below
         # |p''/(2 p')| 1e-12, p the cubic of a piece (|p''/p'| < 0.1 on the pieces of
         # HERMITE_RTOL): under 1e-13 of a piece, 1e-16 in log T
-        if float(np.max(np.abs(step))) <= 1e-6:
+        np.abs(step, out=step)
+        if step.max() <= 1e-6:
             break
     else:
         return None
-    M = ((rM[3] * s + rM[2]) * s + rM[1]) * s + rM[0]
+    M = rM[3] * s
+    for k in (2, 1, 0):
+        M += rM[k]
+        if k:
+            M *= s
     s += j
     s /= table.scale
     s += table.u_lo
-    return M, np.exp(s)
+    return M, np.exp(s, out=s)
 
 
 def table_for(memo, u_lo, x_top, C, upper_tension):
