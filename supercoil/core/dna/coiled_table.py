@@ -13,8 +13,8 @@ secant per point (5-11 equilibrium calls on all of them), :func:`torque_at_linki
    by the caller's secant, which raises the caller's errors (no plectoneme at that
    tension, no convergence) exactly as before;
 2. tabulates ``l_p(u)`` and ``M_p(u)`` at Chebyshev-Lobatto nodes of the domain
-   (one equilibrium call on 9 nodes, doubled on the nested new nodes until the
-   trailing coefficients are converged, at most :data:`MAX_DEGREE`);
+   (one equilibrium call on :data:`START_DEGREE` + 1 nodes, doubled on the nested new
+   nodes until the trailing coefficients are converged, at most :data:`MAX_DEGREE`);
 3. inverts the interpolant of ``l_p`` per point by Newton in the Chebyshev
    variable (started by linear interpolation of the node values) and evaluates
    the interpolant of ``M_p`` at the root; ``T = exp(u)``.
@@ -27,8 +27,8 @@ in u, i.e. relative in T, of ~1e-14) or below the equilibrium's own rounding noi
 real equilibrium, solved to 1e-15 in u (0.3-10 pN, full coiling to 3 times its
 turns and 60-800 turns, with and without the loop): T and M within 6e-14 relative,
 typically 5e-15, against 9e-14 for the secant it replaces (tests/dna/
-test_coiled_table.py asserts 1e-13). Degree 16 (17 equilibrium nodes in two calls)
-for ``|N| <= 25`` at 1.2 pN, 32 for three times full coiling, 64 for 800 turns.
+test_coiled_table.py asserts 1e-13). Degree 16 suffices for ``|N| <= 25`` at 1.2 pN,
+32 for three times full coiling, 64 for 800 turns (the table starts at 32).
 
 Cost (1.2 pN, seed set, N in linspace(-25, 25, n), CPU, medians of 7): with 74 fully
 coiled points (n = 1000) the table costs about a fifth of the secant, with 7,362 points
@@ -78,8 +78,11 @@ __all__ = [
     "torque_at_linking",
 ]
 
-#: first table degree (9 nodes: the equilibrium's pure-float path for <= 12 tensions)
-START_DEGREE = 8
+#: first table degree (33 nodes in one equilibrium call: for hard-core about the cost of the
+#: 9 + 8 nodes of degree 16 on the scalar path of <= 12 tensions, and of the 9 + 8 + 16 calls
+#: up to degree 32 less than two thirds; for screened, whose calls cost more, one call for
+#: up to three)
+START_DEGREE = 32
 #: largest table degree tried before giving up (the caller's secant then solves)
 MAX_DEGREE = 128
 #: trailing coefficients accepted, relative to the smallest slope |dl_p/du| and max |M|
@@ -148,7 +151,7 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
     coefficients fall as a power, not geometrically; the secant then solves).
     """
     half = 0.5 * (u_hi - u_lo)
-    degree = START_DEGREE
+    degree = min(START_DEGREE, MAX_DEGREE)
     M, lp = _nodes(lobatto(degree), u_lo, half, C, equilibrium, loop)
     err_prev = np.inf
     while True:
@@ -370,15 +373,18 @@ def evaluate_inverse(inverse, x):
     Per point: the piece index, the position in it and two cubics by Horner's rule
     (eight gathers from coefficient rows that stay in cache).
     """
-    z = (np.asarray(x, float) - inverse.x_lo) * inverse.scale
-    j = np.clip(z.astype(np.intp), 0, inverse.torque.shape[1] - 1)
-    s = z - j
+    z = np.asarray(x, float) - inverse.x_lo
+    z *= inverse.scale
+    j = z.astype(np.intp)
+    np.maximum(j, 0, out=j)  # np.clip, without its wrapper
+    np.minimum(j, inverse.torque.shape[1] - 1, out=j)
+    z -= j  # the position in the piece
     out = []
     for c in (inverse.torque, inverse.tension):
-        v = c[3][j]
+        v = c[3].take(j)
         for k in (2, 1, 0):
-            v *= s
-            v += c[k][j]
+            v *= z
+            v += c[k].take(j)
         out.append(v)
     return out[0], out[1]
 
