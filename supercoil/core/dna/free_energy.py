@@ -447,9 +447,9 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
     tail = room - S
     if loop is not None:  # the stretched molecule has no loop
         tail = np.where(stretched, length, tail)
-    M = np.full(n.shape, co.torque[0]) if inv is None else co.torque[inv]
-    g = np.full(n.shape, co.free_energy_density[0]) if inv is None \
-        else co.free_energy_density[inv]
+    M, g = out.torque, out.free_energy  # |M| and g in place: signed and turned into G last
+    M[...] = co.torque[0] if inv is None else co.torque[inv]
+    g[...] = co.free_energy_density[0] if inv is None else co.free_energy_density[inv]
     zeta = out.zeta
     zeta[...] = co.long_tail_factor[0] if inv is None else co.long_tail_factor[inv]
     stretched, coiled = _select(stretched), _select(coiled)
@@ -469,9 +469,9 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
         g[coiled] = -Tc - Mc * Mc / (2.0 * C)
         zeta[coiled] = 0.0
     np.multiply(zeta, tail, out=out.extension)
-    G = np.multiply(n, _TWO_PI, out=out.free_energy)
-    G *= M
-    G += length * g
+    G = g  # L g + (2 pi N) M: the sum of the two products, as (2 pi N) M + L g
+    G *= length
+    G += np.multiply(n, _TWO_PI) * M
     if loop is not None:
         G[...] = np.where(_outside(n.size, stretched, coiled), G + at(loop.excess), G)
         if any_coiled:  # -(L - 2 l) T - L M^2/(2C) + 2 pi (|N| - w) M, l T = pi B / R
@@ -488,7 +488,7 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
         phase[stretched] = STRETCHED
     if any_coiled:
         phase[coiled] = FULLY_COILED
-    np.copysign(M, turns, out=out.torque)
+    np.copysign(M, turns, out=M)
     np.less(tail, short_tail_length, out=out.short_tail)
 
 
