@@ -47,14 +47,15 @@ def _close(a, b, rtol=1e-8):
 
 @pytest.mark.filterwarnings("ignore::supercoil.exceptions.ValidityWarning")  # 260 turns
 def test_memo_points_match_the_direct_solve_in_every_phase(screened):
-    """Extension and torque within 1e-8 of the direct solve, one memo across four calls:
-    three C (the table built at the first, used at the others) and a wider turns range
-    (the table rebuilt wider)."""
+    """Extension and torque within 1e-8 of the direct solve, one memo across five calls:
+    three C (the table built at the first, used at the others), a wider turns range (the
+    table rebuilt wider) and 3 % lower forces (a smaller pull: rebuilt from lower down)."""
     dna, eq = screened
-    force = np.repeat([0.5e-12, 1.0e-12, 2.0e-12], 61)
     memo = {}
     C0 = dna.torsional_rigidity
-    for C, top in ((C0, 150.0), (0.8 * C0, 150.0), (1.25 * C0, 150.0), (C0, 260.0)):
+    for C, top, scale in ((C0, 150.0, 1.0), (0.8 * C0, 150.0, 1.0), (1.25 * C0, 150.0, 1.0),
+                          (C0, 260.0, 1.0), (C0, 260.0, 0.97)):
+        force = np.repeat([0.5e-12, 1.0e-12, 2.0e-12], 61) * scale
         turns = np.tile(np.linspace(-top, top, 61), 3)
         got = _points(dna, eq, turns, force, C, memo)
         ref = _points(dna, eq, turns, force, C, None)
@@ -63,7 +64,9 @@ def test_memo_points_match_the_direct_solve_in_every_phase(screened):
         assert _close(got.extension, ref.extension) <= 1e-8
         assert _close(got.torque, ref.torque) <= 1e-8
         assert _close(got.free_energy, ref.free_energy) <= 1e-8
-    table = memo[next(k for k in memo if k[0] == "coiled branch")]
+        table = memo["coiled branch"]
+        assert table.u_lo <= np.log(fe.coexistence(
+            force[:1], dna.length, dna.bending_rigidity, C, dna.kT, eq).pull[0])
     assert table.error <= bm.HERMITE_RTOL
     assert np.exp(table.u_hi) > 2.0 * np.exp(table.u_lo)
 
@@ -92,8 +95,8 @@ def test_memo_table_roots_against_brentq(screened):
 def _fit_data():
     dna = sc.load_parameters("dna_150mM_nacl")
     data = sc.simulate_rotation_curves(dna.replace(twist_persistence=95 * u.nm),
-                                       np.array([0.5, 1.0, 2.0]) * u.pN, points_per_force=40,
-                                       noise=5 * u.nm, seed=3, turns=np.linspace(-200, 200, 40),
+                                       np.array([0.5, 1.0, 2.0]) * u.pN, points_per_force=24,
+                                       noise=5 * u.nm, seed=3, turns=np.linspace(-200, 200, 24),
                                        model="free-energy", interaction="screened")
     return dna, data
 

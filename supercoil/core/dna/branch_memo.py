@@ -32,9 +32,8 @@ from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import coiled_table as _table
 
-__all__ = ["GROWTH", "HERMITE_RTOL", "START_DEGREE", "BranchTable", "build", "covers", "remember",
-           "solve",
-           "table_for"]
+__all__ = ["GROWTH", "HERMITE_RTOL", "REMEMBERED", "START_DEGREE", "BranchTable", "build",
+           "covers", "remember", "solve", "table_for"]
 
 #: Hermite pieces accepted once their midpoint values of M_p and tau are within this
 #: (relative to the largest |M_p|, |tau|) of the Chebyshev series
@@ -45,18 +44,27 @@ GROWTH = 1.25
 #: 32-64 on the bench problems, which from degree 8 takes three or four calls; the per-call
 #: table starts lower, for the hard-core equilibrium's scalar path on few tensions)
 START_DEGREE = 32
+#: results kept by :func:`remember` per memo
+REMEMBERED = 16
 _START_PIECES = 128
 _MAX_PIECES = 1 << 14
 _NEWTON_MAXITER = 8
 
 
 def remember(memo, key, compute):
-    """``memo[key]``, computed by ``compute()`` on the first request (no memo: computed)."""
+    """``compute()``, kept in ``memo`` under ``key`` (no memo: computed each time).
+
+    At most :data:`REMEMBERED` results are kept (the oldest is dropped): a fit that
+    varies the force scale asks for new forces at every evaluation.
+    """
     if memo is None:
         return compute()
-    hit = memo.get(key)
+    store = memo.setdefault("remembered", {})
+    hit = store.get(key)
     if hit is None:
-        hit = memo[key] = compute()
+        hit = store[key] = compute()
+        if len(store) > REMEMBERED:
+            del store[next(iter(store))]
     return hit
 
 
@@ -217,24 +225,29 @@ def solve(table, x, C):
     return M, np.exp(s, out=s)
 
 
-def table_for(memo, u_lo, x_top, C, upper_tension):
-    """The memo's :class:`BranchTable` from ``u_lo`` covering ``x_top`` at C, or None.
+def table_for(memo, u_lo, x_top, C, equilibrium, upper_tension):
+    """The memo's :class:`BranchTable` from ``u_lo`` or below covering ``x_top`` at C, or None.
 
-    ``upper_tension()`` -> (T above the root of ``x_top``, equilibrium): called only
-    where no table covers ``x_top`` yet; the table is then built on ``GROWTH`` times the
-    width needed (at least 1.5 times the width of the table it replaces). A branch the
-    table does not resolve is remembered (False): every later request returns None.
+    One table per memo. ``upper_tension()`` -> a tension above the root of ``x_top``:
+    called only where the table does not reach ``x_top``, which is then built on
+    ``GROWTH`` times the width needed (at least 1.5 times the width of the table it
+    replaces); where only its lower end lies above ``u_lo`` (a smaller pull: a fitted
+    force scale), it is rebuilt from ``u_lo`` to its upper end. A branch the table
+    does not resolve is remembered (False): every later request returns None.
     """
-    key = ("coiled branch", float(u_lo))
-    table = memo.get(key)
+    table = memo.get("coiled branch")
     if table is False:
         return None
-    if table is not None and covers(table, x_top, C):
+    reaches = table is not None and covers(table, x_top, C)
+    if reaches and table.u_lo <= u_lo:
         return table
-    T_hi, equilibrium = upper_tension()
-    width = GROWTH * (np.log(T_hi) - u_lo)
-    if table is not None:
-        width = max(width, 1.5 * (table.u_hi - table.u_lo))
-    new = build(u_lo, u_lo + width, equilibrium)
-    memo[key] = False if new is None or not covers(new, x_top, C) else new
-    return memo[key] or None
+    lo = u_lo if table is None else min(u_lo, table.u_lo)
+    if reaches:
+        width = table.u_hi - lo
+    else:
+        width = GROWTH * (np.log(upper_tension()) - lo)
+        if table is not None:
+            width = max(width, 1.5 * (table.u_hi - lo))
+    new = build(lo, lo + width, equilibrium)
+    memo["coiled branch"] = False if new is None or not covers(new, x_top, C) else new
+    return memo["coiled branch"] or None

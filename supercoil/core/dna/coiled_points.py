@@ -92,16 +92,16 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, me
             with _naming_turns(top, length):
                 T = _table.secant(np.array([x_top]), co.pull[i:i + 1], start, C, equilibrium,
                                   ends, upper=_table.DOMAIN_OVERSHOOT)[1][0]
-        return T, equilibrium
+        return T
 
     if memo is not None and loop is None:
-        table = _memo.table_for(memo, np.log(co.pull[i]), x_top, C,
+        table = _memo.table_for(memo, np.log(co.pull[i]), x_top, C, equilibrium,
                                 lambda: upper(LADDER[:SHORT_LADDER]))
         if table is not None:
             return _AtC(table, C)
         if count < _table.MIN_POINTS:
             return None
-    T_hi = upper()[0]
+    T_hi = upper()
     series = _table.branch_series((co.pull[i], T_hi), C, equilibrium, ends)
     if series is None:
         return False
