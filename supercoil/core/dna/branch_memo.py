@@ -25,12 +25,14 @@ relative in extension and torque (tests/dna/test_branch_memo.py).
 
 from __future__ import annotations
 
+import warnings
 from typing import NamedTuple
 
 import numpy as np
 from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import coiled_table as _table
+from supercoil.exceptions import NoEquilibriumError, ValidityError
 
 __all__ = ["GROWTH", "HERMITE_RTOL", "REMEMBERED", "START_DEGREE", "BranchTable", "build",
            "covers", "remember", "solve", "table_for"]
@@ -233,7 +235,11 @@ def table_for(memo, u_lo, x_top, C, equilibrium, upper_tension):
     ``GROWTH`` times the width needed (at least 1.5 times the width of the table it
     replaces); where only its lower end lies above ``u_lo`` (a smaller pull: a fitted
     force scale), it is rebuilt from ``u_lo`` to its upper end. A branch the table
-    does not resolve is remembered (False): every later request returns None.
+    does not resolve, or with a node beyond the interaction's range, is remembered
+    (False): every later request returns None (the caller's solvers raise where the
+    points themselves lie beyond it). The nodes' warnings are dropped; where there
+    were any, the state at ``x_top`` is solved once, so that its own warnings are
+    issued as the caller's solvers would.
     """
     table = memo.get("coiled branch")
     if table is False:
@@ -248,6 +254,17 @@ def table_for(memo, u_lo, x_top, C, equilibrium, upper_tension):
         width = GROWTH * (np.log(upper_tension()) - lo)
         if table is not None:
             width = max(width, 1.5 * (table.u_hi - lo))
-    new = build(lo, lo + width, equilibrium)
-    memo["coiled branch"] = False if new is None or not covers(new, x_top, C) else new
-    return memo["coiled branch"] or None
+    with warnings.catch_warnings(record=True) as caught:  # a node's state is no result
+        warnings.simplefilter("always")
+        try:
+            new = build(lo, lo + width, equilibrium)
+        except (NoEquilibriumError, ValidityError):  # a node beyond the interaction's range
+            new = None
+    if new is None or not covers(new, x_top, C):
+        memo["coiled branch"] = False  # the caller's own solvers from now on
+        return None
+    memo["coiled branch"] = new
+    top = solve(new, np.array([x_top]), C) if caught else None
+    if top is not None:  # the warnings the largest point's own state gives, as without it
+        equilibrium(top[1])
+    return new
