@@ -13,8 +13,9 @@ secant per point (5-11 equilibrium calls on all of them), :func:`torque_at_linki
    by the caller's secant, which raises the caller's errors (no plectoneme at that
    tension, no convergence) exactly as before;
 2. tabulates ``l_p(u)`` and ``M_p(u)`` at Chebyshev-Lobatto nodes of the domain
-   (one equilibrium call on :data:`START_DEGREE` + 1 nodes, doubled on the nested new
-   nodes until the trailing coefficients are converged, at most :data:`MAX_DEGREE`);
+   (one equilibrium call on :data:`START_DEGREE` + 1 nodes, :data:`NARROW_DEGREE` + 1 on a
+   narrow domain, doubled on the nested new nodes until the trailing coefficients are
+   converged, at most :data:`MAX_DEGREE`);
 3. inverts the interpolant of ``l_p`` per point by Newton in the Chebyshev
    variable (started by linear interpolation of the node values) and evaluates
    the interpolant of ``M_p`` at the root; ``T = exp(u)``.
@@ -58,6 +59,8 @@ __all__ = [
     "MAX_DEGREE",
     "MAX_PIECES",
     "MIN_POINTS",
+    "NARROW_DEGREE",
+    "NARROW_WIDTH",
     "NOISE",
     "START_DEGREE",
     "START_PIECES",
@@ -83,6 +86,10 @@ __all__ = [
 #: up to degree 32 less than two thirds; for screened, whose calls cost more, one call for
 #: up to three)
 START_DEGREE = 32
+#: a domain narrower than this in log T (a few turns past full coiling: degree 16 has
+#: sufficed) starts at NARROW_DEGREE instead, 9 + 8 nodes on that scalar path
+NARROW_WIDTH = 1.0
+NARROW_DEGREE = 8
 #: largest table degree tried before giving up (the caller's secant then solves)
 MAX_DEGREE = 128
 #: trailing coefficients accepted, relative to the smallest slope |dl_p/du| and max |M|
@@ -151,7 +158,7 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
     coefficients fall as a power, not geometrically; the secant then solves).
     """
     half = 0.5 * (u_hi - u_lo)
-    degree = min(START_DEGREE, MAX_DEGREE)
+    degree = min(START_DEGREE if u_hi - u_lo > NARROW_WIDTH else NARROW_DEGREE, MAX_DEGREE)
     M, lp = _nodes(lobatto(degree), u_lo, half, C, equilibrium, loop)
     err_prev = np.inf
     while True:
