@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["in_blocks", "points_in_blocks"]
+__all__ = ["in_blocks", "outside", "points_in_blocks", "select"]
 
 
 def in_blocks(solve, x, block, keep=None):
@@ -65,3 +65,23 @@ def points_in_blocks(solve, turns, force, block):
                 v[start:stop] = getattr(part, k)
         del part
     return type(first)(**out)
+
+
+def select(mask):
+    """``mask`` as an index: None (no point), a slice (contiguous points: views, no copies)
+    or the indices (a gather costs a third of a boolean mask's)."""
+    idx = np.flatnonzero(mask)
+    if idx.size == 0:
+        return None
+    if idx[-1] - idx[0] + 1 == idx.size:
+        return slice(int(idx[0]), int(idx[-1]) + 1)
+    return idx
+
+
+def outside(size, *selections):
+    """Boolean mask of the points in none of the selections (of :func:`select`)."""
+    out = np.ones(size, bool)
+    for sel in selections:
+        if sel is not None:
+            out[sel] = False
+    return out

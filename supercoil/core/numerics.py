@@ -141,8 +141,12 @@ def find_root(f, init, args=(), **kwargs):
 #: (2^2 = 4 spacings; the rod tilt equations' signs are exact to within one spacing).
 CELL_BITS = 2
 
+_EXPONENT_BITS = np.int64(0x7FF0000000000000)  # the exponent field of a float64
+_CELL_MASK = np.int64(~((1 << CELL_BITS) - 1))  # all bits but the mantissa's last CELL_BITS
+_CELL_SCALE = 2.0 ** (CELL_BITS - 52)  # from 2^(e-1), the binade's start, to the cell width
 
-def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None):
+
+def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None, estimate=None):
     """The sign change of an increasing ``fun(x, *args)``, bisected in a cell at a Newton estimate.
 
     :func:`bisect_increasing` halves ``[lo, hi]`` about 55 times, evaluating ``fun``
@@ -168,32 +172,68 @@ def bisect_from_estimate(fun, fun_df, args, lo, hi, start=None):
     Newton iteration's first point (default: the bracket's midpoint), only saves
     iterations. The iteration stops at steps below 1e-8 relative: Newton's next error
     is then of the order of the rounding (quadratic convergence), and the cell check
-    catches any element for which it is not.
+    catches any element for which it is not. ``estimate``, if given, is x0 itself (the
+    caller's own cheaper estimate; ``fun_df`` and ``start`` are then not used).
+
+    Work saved without changing a sign evaluation's outcome: a moved cell shares one
+    end with the first cell (the grid points are exact multiples of ``g``), whose sign
+    is known, so only its other end is evaluated; and the last halving, needed only
+    where the cell reaches below x0's binade (twice the spacings), runs only on the
+    elements whose bracket is not yet two adjacent floats (elsewhere it is a no-op).
     """
-    x_start = 0.5 * (lo + hi) if start is None else start
     with np.errstate(all="ignore"):
-        x0 = safe_newton(lambda x: fun_df(x, *args), x_start, lo, hi, 1e-8, maxiter=40)
-        _, e = np.frexp(x0)
-        g = np.ldexp(1.0, e - 53 + CELL_BITS)
-        a = np.floor(x0 / g) * g
+        if estimate is None:
+            x_start = 0.5 * (lo + hi) if start is None else start
+            x0 = safe_newton(lambda x: fun_df(x, *args), x_start, lo, hi, 1e-8, maxiter=40)
+        else:
+            x0 = np.array(estimate, dtype=float)  # a contiguous copy (its bits are read)
+        # for a positive normal x0 (all others fail the check below): g = 2^(e - 53 +
+        # CELL_BITS) for x0 = m 2^e, 1/2 <= m < 1 (the exponent bits, scaled by a power
+        # of two), and a = floor(x0 / g) g (the mantissa's last CELL_BITS bits cleared)
+        bits = x0.view(np.int64)
+        g = (bits & _EXPONENT_BITS).view(float) * _CELL_SCALE
+        a = (bits & _CELL_MASK).view(float)
         b = a + g
         left = fun(a, *args) > 0
         right = ~(fun(b, *args) > 0)
-        a = np.where(left, a - g, np.where(right, b, a))
+        right &= ~left  # (both: the cell moves left)
+        np.subtract(a, g, out=a, where=left)
+        np.copyto(a, b, where=right)
         b = a + g
-        ok = (np.isfinite(x0) & (x0 >= np.finfo(float).tiny) & (a >= lo) & (b <= hi))
+        ok = np.isfinite(x0) & (x0 >= np.finfo(float).tiny) & (a >= lo) & (b <= hi)
         moved = np.flatnonzero(left | right)
         if moved.size:  # a moved cell is verified again (it may be off by more)
             sub = tuple(v[moved] if np.ndim(v) else v for v in args)
-            ok[moved] &= ~(fun(a[moved], *sub) > 0) & (fun(b[moved], *sub) > 0)
-    for _ in range(CELL_BITS + 1):  # 2^CELL_BITS spacings (twice that below the binade)
-        mid = 0.5 * (a + b)
-        up = fun(mid, *args) > 0
-        np.copyto(b, mid, where=up)
-        np.copyto(a, mid, where=~up)
-    out = 0.5 * (a + b)
-    bad = ~(ok & ((out == a) | (out == b)))
-    if np.any(bad):
+            # moved left: its right end is the old left end (sign > 0 known); moved
+            # right: its left end is the old right end (sign <= 0 known)
+            to_left = left[moved]
+            up = fun(np.where(to_left, a[moved], b[moved]), *sub) > 0
+            ok[moved] &= up != to_left
+        mid = np.empty_like(a)
+        for _ in range(CELL_BITS):  # 2^CELL_BITS spacings (twice that below the binade)
+            np.add(a, b, out=mid)
+            mid *= 0.5
+            up = fun(mid, *args) > 0
+            np.copyto(b, mid, where=up)
+            np.invert(up, out=up)
+            np.copyto(a, mid, where=up)
+        out = np.add(a, b, out=mid)
+        out *= 0.5
+        adjacent = out == a
+        adjacent |= out == b
+        wide = np.flatnonzero(~adjacent)
+        if wide.size:  # the last halving (below the binade), where it is not a no-op
+            sub = tuple(v[wide] if np.ndim(v) else v for v in args)
+            aw, bw = a[wide], b[wide]
+            mw = 0.5 * (aw + bw)
+            up = fun(mw, *sub) > 0
+            aw, bw = np.where(up, aw, mw), np.where(up, mw, bw)
+            ow = 0.5 * (aw + bw)
+            out[wide] = ow
+            adjacent[wide] = (ow == aw) | (ow == bw)
+        ok &= adjacent
+    if not np.all(ok):
+        bad = ~ok
         sub = tuple(v[bad] if np.ndim(v) else v for v in args)
         out[bad] = bisect_increasing(lambda x: fun(x, *sub), lo[bad], hi[bad])
     return out

@@ -15,7 +15,7 @@ from supercoil.core.rod import spinning as _ts
 from supercoil.records import Record, si_value
 from supercoil.rod.material import check_rod
 from supercoil.rod.smooth import checked_turns
-from supercoil.rod.validity import check_finite, warn_hard_contact
+from supercoil.rod.validity import check_finite_scaled, warn_hard_contact
 from supercoil.tables import provenance
 from supercoil.units import U, magnitude
 
@@ -103,27 +103,20 @@ def twist_spinning(rod, turns, head_tension):
     n = np.asarray(checked_turns(turns, "turns"), float)
     Tp = np.asarray(magnitude(head_tension, U.N, "head_tension"), float)
     broadcast_shape(turns=n, head_tension=Tp)
-    st = _ts.spinning_state(np.abs(n), Tp, r, L, B, C)
+    st = _ts.spinning_scene(n, Tp, r, L, B, C)
     _sc.check_tilt(st["alpha"], "twist-spinning helix")
     shape = st["alpha"].shape
-    a0 = np.broadcast_to(_ts.slacking_tilt(np.abs(n), r, L, B, C), shape)
-    with np.errstate(over="ignore", divide="ignore"):  # results checked below
-        p0 = 2 * np.pi * r / np.tan(a0)
-    sign = np.broadcast_to(np.sign(n), shape)
-
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        increase = st["pitch"] / p0 - 1.0
-        check_finite({"pitch [mm]": st["pitch"] * 1e3,
-                              "pitch_slacking [mm]": p0 * 1e3,
-                              "pitch_increase": increase},
-                             "twist_spinning: tiny |N| or huge head_tension")
+    a0, p0, increase = st["alpha_slacking"], st["pitch_slacking"], st["pitch_increase"]
+    check_finite_scaled({"pitch [mm]": (st["pitch"], 1e3), "pitch_slacking [mm]": (p0, 1e3),
+                         "pitch_increase": (increase, 1.0)},
+                        "twist_spinning: tiny |N| or huge head_tension")
 
     warn_hard_contact(st["alpha"], "twist-spinning helix")
     return TwistSpinningHelix(
         turns=si_value(np.broadcast_to(n, shape)),
         head_tension=si_value(np.broadcast_to(Tp, shape)),
         alpha=si_value(st["alpha"]), beta=si_value(st["beta"]),
-        pitch=si_value(st["pitch"]), omega=si_value(sign * st["omega"]),
+        pitch=si_value(st["pitch"]), omega=si_value(st["omega"]),
         alpha_slacking=si_value(a0), pitch_slacking=si_value(p0),
         pitch_increase=si_value(increase),
         provenance=provenance(rod, scene="twist_spinning"))

@@ -56,6 +56,22 @@ def check_finite(fields, where):
                 "finite result exists")
 
 
+def check_finite_scaled(fields, where):
+    """:func:`check_finite` of ``x * scale`` for ``fields`` mapping names to ``(x, scale)``.
+
+    ``scale > 0``. The product is monotone in x and a NaN reaches both extremes, so
+    ``x * scale`` is finite everywhere exactly when it is at ``min(x)`` and ``max(x)``:
+    the products (a temporary of the array's size each) are formed only for a field
+    that fails this, to give :func:`check_finite`'s message.
+    """
+    for name, (x, scale) in fields.items():
+        x = np.asarray(x, float)
+        with np.errstate(over="ignore", invalid="ignore"):
+            if x.size and np.isfinite(np.min(x) * scale) and np.isfinite(np.max(x) * scale):
+                continue
+            check_finite({name: x * scale}, where)
+
+
 def warn_no_friction(scene, consequence, stacklevel=3):
     """Warn that ``rod.friction_coefficient`` is None, so no-slip is not checked."""
     warnings.warn(

@@ -168,8 +168,8 @@ def test_out_of_range_still_names_the_turns(si):
 
 def test_kinked_branch_falls_back_to_the_secant():
     """A branch with a kink in l_p (as where the screened interaction's strands reach hard
-    contact, R = a): the coefficients decay as a power, the table gives up by degree 32
-    and the secant solves, bit-identical to the old one."""
+    contact, R = a): the coefficients decay as a power, the table gives up by degree 64
+    (its first doubling) and the secant solves, bit-identical to the old one."""
     from types import SimpleNamespace
 
     C, Tk = 4e-28, 2e-11
@@ -193,7 +193,7 @@ def test_kinked_branch_falls_back_to_the_secant():
         return equilibrium(T)
 
     assert ct.torque_at_linking(x, (T0, T_hi[0] * 1.01), C, counted, None) is None
-    assert calls == [9, 8, 16]  # gave up at degree 32, not 128
+    assert calls == [ct.START_DEGREE + 1, ct.START_DEGREE]  # gave up at 64, not 128
     M, T = fe.plectoneme_torque_at_linking(x, p, s, C, equilibrium)
     M0, T0_ = _old_secant(x, p, s, C, equilibrium)
     np.testing.assert_array_equal(M, M0)

@@ -31,6 +31,19 @@ def test_check_finite_names_the_field_value_and_position():
                         "N = 1e-300")
 
 
+def test_check_finite_scaled_finds_what_the_scaled_product_overflows():
+    # finite in m but 1e306 m is inf in mm: caught from the extremes, with
+    # check_finite's message on the product (first field first)
+    rv.check_finite_scaled({"pitch [mm]": (np.array([1.0, -1e305]), 1e3),
+                            "none": (np.array([]), 1e3)}, "fine")
+    with pytest.raises(sc.ValidityError, match=r"'pitch \[mm\]' is inf at index 1 \(N = 1\)"):
+        rv.check_finite_scaled({"pitch [mm]": (np.array([1.0, 1e306, np.nan]), 1e3),
+                                "other": (np.array([np.nan]), 1.0)}, "N = 1")
+    with pytest.raises(sc.ValidityError, match=r"'other' is nan at index 0"):
+        rv.check_finite_scaled({"pitch [mm]": (np.array([1.0]), 1e3),
+                                "other": (np.array([np.nan, 1.0]), 1.0)}, "N = 1")
+
+
 def test_no_friction_warning_names_the_scene():
     with pytest.warns(sc.ValidityWarning, match="no-slip condition .* of the rough helix"):
         rv.warn_no_friction("rough helix", "slip_onset is None")

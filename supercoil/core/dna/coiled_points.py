@@ -12,9 +12,11 @@ the call has few such points or the inverse does not resolve the branch.
 from __future__ import annotations
 
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.dna import branch_memo as _memo
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.exceptions import NoEquilibriumError, ValidityError
@@ -42,7 +44,14 @@ def _start(ci, co, loop, length, B, C):
     return (lambda n: _TWO_PI * (n - _loop.LOOP_WRITHE) / length), start, (B, length)
 
 
-def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
+class _AtC(NamedTuple):
+    """A memo's C-free :class:`~supercoil.core.dna.branch_memo.BranchTable` at one C."""
+
+    table: _memo.BranchTable
+    C: float
+
+
+def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, memo=None):
     """One table of the fully coiled branch for all points of a call, or None.
 
     A pass over the points (in blocks, no per-point temporaries kept) finds the fully
@@ -52,6 +61,10 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
     has no plectoneme there) and :func:`~supercoil.core.dna.coiled_table.inverse_table`
     covers every point of every force (``l_p`` does not depend on the force); False
     where it does not resolve the branch (the secant then solves every block).
+
+    With a caller's ``memo`` (no end loop): the memo's C-free table of the branch
+    (:func:`supercoil.core.dna.branch_memo.table_for`) where it has or builds one, for
+    any number of fully coiled points.
     """
     thr = coiled_turns(co, loop, length)
     count, top = 0, -np.inf
@@ -65,16 +78,30 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
             if hit.any():
                 count += np.count_nonzero(hit)
                 top = max(top, a[hit].max())
-    if count < _table.MIN_POINTS:
+    if count == 0 or (count < _table.MIN_POINTS and (memo is None or loop is not None)):
         return None
     i = int(np.argmin(co.pull))
     x_of, start, ends = _start(np.array([i]), co, loop, length, B, C)
     x_top = x_of(top)
-    T_hi = _ladder(x_top, co.pull[i], start[0], C, equilibrium, ends)
-    if T_hi is None:
-        with _naming_turns(top, length):
-            T_hi = _table.secant(np.array([x_top]), co.pull[i:i + 1], start, C, equilibrium,
-                                 ends, upper=_table.DOMAIN_OVERSHOOT)[1][0]
+
+    def upper(rungs=LADDER):
+        T = _ladder(x_top, co.pull[i], start[0], C, equilibrium, ends, rungs)
+        if T is None and rungs is not LADDER:
+            T = _ladder(x_top, co.pull[i], start[0], C, equilibrium, ends)
+        if T is None:
+            with _naming_turns(top, length):
+                T = _table.secant(np.array([x_top]), co.pull[i:i + 1], start, C, equilibrium,
+                                  ends, upper=_table.DOMAIN_OVERSHOOT)[1][0]
+        return T
+
+    if memo is not None and loop is None:
+        table = _memo.table_for(memo, np.log(co.pull[i]), x_top, C, equilibrium,
+                                lambda: upper(LADDER[:SHORT_LADDER]))
+        if table is not None:
+            return _AtC(table, C)
+        if count < _table.MIN_POINTS:
+            return None
+    T_hi = upper()
     series = _table.branch_series((co.pull[i], T_hi), C, equilibrium, ends)
     if series is None:
         return False
@@ -88,10 +115,13 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block):
 #: times full coiling); rungs above :data:`LADDER_MAX` times ``T_eff`` are not probed
 LADDER = (1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.5, 8.5, 11.0)
 LADDER_MAX = 1e3
+#: rungs probed first for a memo's table (its domain grows by itself): the high rungs'
+#: tensions reach the strands' contact, where a screened state costs several times more
+SHORT_LADDER = 6
 
 
-def _ladder(x, T0, l0, C, equilibrium, loop):
-    """The lowest rung of :data:`LADDER` whose ``l_p`` reaches x (an upper end of the
+def _ladder(x, T0, l0, C, equilibrium, loop, rungs=LADDER):
+    """The lowest rung of ``rungs`` whose ``l_p`` reaches x (an upper end of the
     table's domain, above the root by at most the rung spacing), or None.
 
     One equilibrium call on up to nine tensions, about the cost of one (instead of the
@@ -101,7 +131,7 @@ def _ladder(x, T0, l0, C, equilibrium, loop):
     error where it applies.
     """
     x = float(np.ravel(x)[0])
-    T = T0 * (x / l0) ** np.asarray(LADDER)
+    T = T0 * (x / l0) ** np.asarray(rungs)
     T = T[(T > T0) & (T <= LADDER_MAX * T0)]
     if T.size == 0:
         return None
@@ -141,6 +171,10 @@ def _domain(branch):
     """``(x_lo, x_hi)``: the linkings an :class:`Inverse` or a :class:`Series` covers."""
     if isinstance(branch, _table.Inverse):
         return branch.x_lo, branch.x_hi
+    if isinstance(branch, _AtC):
+        t = branch.table
+        return (t.torque_nodes[0] / branch.C + t.torsion_nodes[0],
+                t.torque_nodes[-1] / branch.C + t.torsion_nodes[-1])
     return branch.nodes[-1], branch.nodes[0]
 
 
@@ -160,8 +194,12 @@ def solve(n, inv, coiled, co, loop, length, B, C, equilibrium, trial_equilibrium
     if branch:
         x_lo, x_hi = _domain(branch)
         if x.max() <= x_hi and x.min() >= x_lo - 1e-9 * (x_hi - x_lo):
-            got = (_table.evaluate_inverse(branch, x) if isinstance(branch, _table.Inverse)
-                   else _table.solve_series(branch, x))
+            if isinstance(branch, _AtC):
+                got = _memo.solve(branch.table, x, branch.C)
+            elif isinstance(branch, _table.Inverse):
+                got = _table.evaluate_inverse(branch, x)
+            else:
+                got = _table.solve_series(branch, x)
     if got is not None:
         Mc, Tc = got
     else:  # few points in the call, or a branch the table cannot resolve

@@ -13,8 +13,9 @@ secant per point (5-11 equilibrium calls on all of them), :func:`torque_at_linki
    by the caller's secant, which raises the caller's errors (no plectoneme at that
    tension, no convergence) exactly as before;
 2. tabulates ``l_p(u)`` and ``M_p(u)`` at Chebyshev-Lobatto nodes of the domain
-   (one equilibrium call on 9 nodes, doubled on the nested new nodes until the
-   trailing coefficients are converged, at most :data:`MAX_DEGREE`);
+   (one equilibrium call on :data:`START_DEGREE` + 1 nodes, :data:`NARROW_DEGREE` + 1 on a
+   narrow domain, doubled on the nested new nodes until the trailing coefficients are
+   converged, at most :data:`MAX_DEGREE`);
 3. inverts the interpolant of ``l_p`` per point by Newton in the Chebyshev
    variable (started by linear interpolation of the node values) and evaluates
    the interpolant of ``M_p`` at the root; ``T = exp(u)``.
@@ -27,8 +28,8 @@ in u, i.e. relative in T, of ~1e-14) or below the equilibrium's own rounding noi
 real equilibrium, solved to 1e-15 in u (0.3-10 pN, full coiling to 3 times its
 turns and 60-800 turns, with and without the loop): T and M within 6e-14 relative,
 typically 5e-15, against 9e-14 for the secant it replaces (tests/dna/
-test_coiled_table.py asserts 1e-13). Degree 16 (17 equilibrium nodes in two calls)
-for ``|N| <= 25`` at 1.2 pN, 32 for three times full coiling, 64 for 800 turns.
+test_coiled_table.py asserts 1e-13). Degree 16 suffices for ``|N| <= 25`` at 1.2 pN,
+32 for three times full coiling, 64 for 800 turns (the table starts at 32).
 
 Cost (1.2 pN, seed set, N in linspace(-25, 25, n), CPU, medians of 7): with 74 fully
 coiled points (n = 1000) the table costs about a fifth of the secant, with 7,362 points
@@ -58,6 +59,8 @@ __all__ = [
     "MAX_DEGREE",
     "MAX_PIECES",
     "MIN_POINTS",
+    "NARROW_DEGREE",
+    "NARROW_WIDTH",
     "NOISE",
     "START_DEGREE",
     "START_PIECES",
@@ -66,16 +69,27 @@ __all__ = [
     "Series",
     "branch_linking",
     "branch_series",
+    "coefficients",
     "evaluate_inverse",
+    "hermite",
+    "interleave",
     "inverse_of",
     "inverse_table",
+    "lobatto",
     "secant",
     "solve_series",
     "torque_at_linking",
 ]
 
-#: first table degree (9 nodes: the equilibrium's pure-float path for <= 12 tensions)
-START_DEGREE = 8
+#: first table degree (33 nodes in one equilibrium call: for hard-core about the cost of the
+#: 9 + 8 nodes of degree 16 on the scalar path of <= 12 tensions, and of the 9 + 8 + 16 calls
+#: up to degree 32 less than two thirds; for screened, whose calls cost more, one call for
+#: up to three)
+START_DEGREE = 32
+#: a domain narrower than this in log T (a few turns past full coiling: degree 16 has
+#: sufficed) starts at NARROW_DEGREE instead, 9 + 8 nodes on that scalar path
+NARROW_WIDTH = 1.0
+NARROW_DEGREE = 8
 #: largest table degree tried before giving up (the caller's secant then solves)
 MAX_DEGREE = 128
 #: trailing coefficients accepted, relative to the smallest slope |dl_p/du| and max |M|
@@ -112,13 +126,13 @@ def branch_linking(torque, torsion, tension, C, loop=None):
     return torque / C + torsion * (1.0 - _loop.loop_length(tension, loop[0]) / loop[1])
 
 
-def _lobatto(degree):
+def lobatto(degree):
     """Chebyshev-Lobatto nodes ``cos(pi j / degree)``, j = 0..degree (descending)."""
     return np.cos(np.pi * np.arange(degree + 1) / degree)
 
 
-def _coefficients(values):
-    """Chebyshev coefficients of the interpolant through values at :func:`_lobatto` nodes."""
+def coefficients(values):
+    """Chebyshev coefficients of the interpolant through values at :func:`lobatto` nodes."""
     n = values.size - 1
     ext = np.concatenate([values, values[-2:0:-1]])
     c = np.fft.rfft(ext).real / n
@@ -144,14 +158,14 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
     coefficients fall as a power, not geometrically; the secant then solves).
     """
     half = 0.5 * (u_hi - u_lo)
-    degree = START_DEGREE
-    M, lp = _nodes(_lobatto(degree), u_lo, half, C, equilibrium, loop)
+    degree = min(START_DEGREE if u_hi - u_lo > NARROW_WIDTH else NARROW_DEGREE, MAX_DEGREE)
+    M, lp = _nodes(lobatto(degree), u_lo, half, C, equilibrium, loop)
     err_prev = np.inf
     while True:
         if not np.all(np.diff(lp) < 0.0):  # nodes descend in t: l_p must rise with u
             return None
-        cl, cM = _coefficients(lp), _coefficients(M)
-        slope = np.min(-np.diff(lp) / np.diff(_lobatto(degree))) / half  # min dl_p/du, node pairs
+        cl, cM = coefficients(lp), coefficients(M)
+        slope = np.min(-np.diff(lp) / np.diff(lobatto(degree))) / half  # min dl_p/du, node pairs
         scale_l = max(TAIL_RTOL * slope, NOISE * np.max(np.abs(lp)))
         err = max(max(abs(cl[-1]), abs(cl[-2])) / scale_l,
                   max(abs(cM[-1]), abs(cM[-2])) / (TAIL_RTOL * np.max(np.abs(M))))
@@ -161,11 +175,11 @@ def _table(u_lo, u_hi, C, equilibrium, loop):
             return None
         err_prev = err
         degree *= 2  # the nested new nodes are the odd ones of the doubled degree
-        M_new, lp_new = _nodes(_lobatto(degree)[1::2], u_lo, half, C, equilibrium, loop)
-        M, lp = _interleave(M, M_new), _interleave(lp, lp_new)
+        M_new, lp_new = _nodes(lobatto(degree)[1::2], u_lo, half, C, equilibrium, loop)
+        M, lp = interleave(M, M_new), interleave(lp, lp_new)
 
 
-def _interleave(old, new):
+def interleave(old, new):
     out = np.empty(old.size + new.size)
     out[0::2], out[1::2] = old, new
     return out
@@ -241,7 +255,7 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     Started from ``t`` if given, else from linear interpolation of the node values.
     """
     if t is None:
-        t = np.interp(x, lp_nodes[::-1], _lobatto(cl.size - 1)[::-1])
+        t = np.interp(x, lp_nodes[::-1], lobatto(cl.size - 1)[::-1])
     last = None
     for _ in range(_NEWTON_MAXITER):
         lp, dlp = _ch.chebval(t, cl), _ch.chebval(t, dcl)
@@ -335,8 +349,8 @@ def inverse_of(series):
         T = np.exp(u_lo + half * (t + 1.0))
         M, dl = _ch.chebval(t, cM), _ch.chebval(t, dcl)  # dl_p/dt; dT/dt = half T
         h = (x_hi - x_lo) / pieces  # from the width itself: a node spacing would add rounding
-        cT = _hermite(T[0::2], half * T[0::2] / dl[0::2], h)
-        cM_ = _hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
+        cT = hermite(T[0::2], half * T[0::2] / dl[0::2], h)
+        cM_ = hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
         at_T, at_M = (c[0] + 0.5 * (c[1] + 0.5 * (c[2] + 0.5 * c[3])) for c in (cT, cM_))
         err = max(np.max(np.abs(at_T / T[1::2] - 1.0)),
                   np.max(np.abs(at_M - M[1::2])) / np.max(np.abs(M)))
@@ -354,7 +368,7 @@ def inverse_of(series):
     return inverse
 
 
-def _hermite(y, dy, h):
+def hermite(y, dy, h):
     """Coefficient rows (4, K) of the cubic Hermite pieces through values y and slopes dy."""
     y0, y1, m0, m1 = y[:-1], y[1:], h * dy[:-1], h * dy[1:]
     return np.stack([y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1, 2.0 * (y0 - y1) + m0 + m1])
@@ -366,15 +380,18 @@ def evaluate_inverse(inverse, x):
     Per point: the piece index, the position in it and two cubics by Horner's rule
     (eight gathers from coefficient rows that stay in cache).
     """
-    z = (np.asarray(x, float) - inverse.x_lo) * inverse.scale
-    j = np.clip(z.astype(np.intp), 0, inverse.torque.shape[1] - 1)
-    s = z - j
+    z = np.asarray(x, float) - inverse.x_lo
+    z *= inverse.scale
+    j = z.astype(np.intp)
+    np.maximum(j, 0, out=j)  # np.clip, without its wrapper
+    np.minimum(j, inverse.torque.shape[1] - 1, out=j)
+    z -= j  # the position in the piece
     out = []
     for c in (inverse.torque, inverse.tension):
-        v = c[3][j]
+        v = c[3].take(j)
         for k in (2, 1, 0):
-            v *= s
-            v += c[k][j]
+            v *= z
+            v += c[k].take(j)
         out.append(v)
     return out[0], out[1]
 

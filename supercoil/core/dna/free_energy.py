@@ -57,7 +57,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from supercoil.core.blocks import points_in_blocks
+from supercoil.core.blocks import outside as _outside
+from supercoil.core.blocks import select as _select
+from supercoil.core.dna import branch_memo as _memo
 from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
@@ -148,7 +150,8 @@ def tail_free_energy(force, torque, B, C, kT, thermal=True):
 
 
 def _check_bracket(Q, force, torque):
-    _mn.check_bracket(Q, force, torque, what="Moroz-Nelson tail free energy")
+    if not np.min(Q) > 0.0:  # one reduction in the common case (NaN fails it too)
+        _mn.check_bracket(Q, force, torque, what="Moroz-Nelson tail free energy")
 
 
 def tail_torque(linking, force, B, C, kT):
@@ -183,7 +186,7 @@ def tail_torque(linking, force, B, C, kT):
         f = v * MQ * (a + b / w) - x
         df = MQ * (a + b / (w * w * w))
         dv = f / df
-        v = np.clip(v - dv, 0.0, 1.0 - 2.0**-52)
+        v = np.minimum(np.maximum(v - dv, 0.0), 1.0 - 2.0**-52)  # np.clip, without its wrapper
         if np.all(np.abs(dv) <= 2e-15 * v):
             return v * MQ
     i = np.flatnonzero(~(np.abs(dv) <= 2e-15 * v))[0]
@@ -238,10 +241,11 @@ def _pull(force, B, C, kT, equilibrium):
         f"the tail's effective pull did not converge in {_PULL_MAXITER} steps")
 
 
-def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
+def coexistence(force, length, B, C, kT, equilibrium, thermal=True, memo=None):
     """Coexistence torque, effective pull, buckling turns and slope at each force.
 
-    Implements docs/theory/free-energy.md (FE4, FE5, FE8, FE9).
+    Implements docs/theory/free-energy.md (FE4, FE5, FE8, FE9). ``memo``: a caller's
+    dict keeping the C-free pull per force (:mod:`supercoil.core.dna.branch_memo`).
 
     Raises
     ------
@@ -254,7 +258,8 @@ def coexistence(force, length, B, C, kT, equilibrium, thermal=True):
     """
     force = np.atleast_1d(np.asarray(force, float))
     if thermal:
-        T, M, tau, Q = _pull(force, B, C, kT, equilibrium)
+        T, M, tau, Q = _memo.remember(memo, ("pull", B, kT, force.tobytes()),
+                                      lambda: _pull(force, B, C, kT, equilibrium))
         r = np.sqrt(Q)
         zinf = 1.0 - 0.5 / r
         extra = M / (4.0 * B * r)
@@ -339,7 +344,7 @@ def loop_constants(co, length, B, C, kT, thermal=True):
 
 
 def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
-               short_tail_length=None, trial_equilibrium=None, end_loop=False):
+               short_tail_length=None, trial_equilibrium=None, end_loop=False, memo=None):
     """Free-energy hat-curve points, one (turns, force) pair per point.
 
     Implements docs/theory/free-energy.md (FE6, FE7).
@@ -364,6 +369,9 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     end_loop : bool
         Add the plectoneme end loop (docs/theory/end-loop.md#7-free-energy); the
         returned plectoneme length then includes the loop's contour.
+    memo : dict, optional
+        The caller's store of C-free results for this ``equilibrium`` across calls (the
+        pull, the fully coiled branch: :mod:`supercoil.core.dna.branch_memo`).
 
     Returns
     -------
@@ -372,27 +380,32 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     turns, force = np.broadcast_arrays(np.asarray(turns, float), np.asarray(force, float))
     if not (np.isfinite(length) and length > 0):
         raise ValueError(f"length must be positive and finite, got {length!r}")
-    if not (np.all(np.isfinite(turns)) and np.all(np.isfinite(force))):
+    f_lo, f_hi = (force.min(), force.max()) if force.size else (1.0, 1.0)
+    if not (np.isfinite(f_lo) and np.isfinite(f_hi) and (turns.size == 0 or (
+            np.isfinite(turns.min()) and np.isfinite(turns.max())))):  # NaN propagates
         raise ValueError("turns and force must be finite")
     if short_tail_length is None:
         short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * B / kT
     if turns.size == 0:
         e = np.empty(turns.shape)
         return FreeEnergyPoints(e, e, e, e.astype(np.int8), e.astype(bool), e, e)
-    one = force.min() == force.max()  # one force: skip the sort of np.unique
+    one = f_lo == f_hi  # one force: skip the sort of np.unique
     uf = force.reshape(-1)[:1].copy() if one else np.unique(force)
-    co = coexistence(uf, length, B, C, kT, equilibrium, thermal)
+    co = coexistence(uf, length, B, C, kT, equilibrium, thermal, memo)
     loop = loop_constants(co, length, B, C, kT, thermal) if end_loop else None
-
     branch = _points.call_branch(turns.reshape(-1), force.reshape(-1), uf, co, loop, length,
-                                 B, C, trial_equilibrium or equilibrium, BLOCK)
+                                 B, C, trial_equilibrium or equilibrium, BLOCK, memo)
 
-    def block(t, f):
-        inv = None if one else np.searchsorted(uf, f)
-        return _assemble(np.abs(t), t, f, inv, co, loop, length, B, C, kT, equilibrium,
-                         thermal, short_tail_length, trial_equilibrium, branch)
-
-    out = points_in_blocks(block, turns.reshape(-1), force.reshape(-1), BLOCK)
+    t_all, f_all = turns.reshape(-1), force.reshape(-1)
+    size = t_all.size
+    out = FreeEnergyPoints(*(np.empty(size, t) for t in (float,) * 3 + (np.int8, bool)
+                             + (float,) * 2))
+    for lo in range(0, size, BLOCK):  # each block writes its slice of the result (no copies)
+        sl = slice(lo, lo + BLOCK)
+        t, f = t_all[sl], f_all[sl]
+        _assemble(np.abs(t), t, f, None if one else np.searchsorted(uf, f), co, loop, length,
+                  B, C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
+                  branch, FreeEnergyPoints(*(a[sl] for a in out)))
     if turns.ndim == 1:  # the arrays themselves (owned: the public layer scales them in place)
         return out
     return FreeEnergyPoints(*(a.reshape(turns.shape) for a in out))
@@ -405,8 +418,9 @@ BLOCK = 1 << 15
 
 
 def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, thermal,
-              short_tail_length, trial_equilibrium, branch=None):
-    """Phases, torque, extension and G of :func:`hat_points` (``loop`` None: no end loop).
+              short_tail_length, trial_equilibrium, branch, out):
+    """Phases, torque, extension and G of :func:`hat_points` (``loop`` None: no end loop),
+    written into ``out`` (:class:`FreeEnergyPoints` of the block's slices of the result).
 
     ``inv`` None: every point at the one force ``co.force[0]``, whose constants enter as
     scalars (no gathers).
@@ -417,7 +431,8 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
     if loop is None:
         Nb = at(co.buckling_turns)
         stretched = n <= Nb
-        S = np.maximum(n - Nb, 0.0)
+        S = np.subtract(n, Nb, out=out.plectoneme_length)
+        np.maximum(S, 0.0, out=S)
         S *= _TWO_PI / at(co.linking_rate)
         room = length
     else:  # (link) with the loop's w + t turns and its contour l [end-loop.md#7-free-energy]
@@ -428,15 +443,15 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
         S = np.where(stretched, 0.0, np.maximum(S, 0.0))
         room = length - ell
     coiled = S >= room
-    S = np.minimum(S, room)
+    np.minimum(S, room, out=S)
     tail = room - S
     if loop is not None:  # the stretched molecule has no loop
         tail = np.where(stretched, length, tail)
-    M = np.full(n.shape, co.torque[0]) if inv is None else co.torque[inv]
-    g = np.full(n.shape, co.free_energy_density[0]) if inv is None \
-        else co.free_energy_density[inv]
-    zeta = np.full(n.shape, co.long_tail_factor[0]) if inv is None \
-        else co.long_tail_factor[inv]
+    M, g = out.torque, out.free_energy  # |M| and g in place: signed and turned into G last
+    M[...] = co.torque[0] if inv is None else co.torque[inv]
+    g[...] = co.free_energy_density[0] if inv is None else co.free_energy_density[inv]
+    zeta = out.zeta
+    zeta[...] = co.long_tail_factor[0] if inv is None else co.long_tail_factor[inv]
     stretched, coiled = _select(stretched), _select(coiled)
     any_stretched, any_coiled = stretched is not None, coiled is not None
     if any_stretched:
@@ -453,11 +468,12 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
         M[coiled] = Mc
         g[coiled] = -Tc - Mc * Mc / (2.0 * C)
         zeta[coiled] = 0.0
-    extension = zeta * tail
-    G = _TWO_PI * n * M
-    G += length * g
+    np.multiply(zeta, tail, out=out.extension)
+    G = g  # L g + (2 pi N) M: the sum of the two products, as (2 pi N) M + L g
+    G *= length
+    G += np.multiply(n, _TWO_PI) * M
     if loop is not None:
-        G = np.where(_outside(n.size, stretched, coiled), G + at(loop.excess), G)
+        G[...] = np.where(_outside(n.size, stretched, coiled), G + at(loop.excess), G)
         if any_coiled:  # -(L - 2 l) T - L M^2/(2C) + 2 pi (|N| - w) M, l T = pi B / R
             lc = _loop.loop_length(Tc, B)
             G[coiled] = -(length - 2.0 * lc) * Tc - length * Mc * Mc / (2.0 * C) \
@@ -465,33 +481,15 @@ def _assemble(n, turns, force, inv, co, loop, length, B, C, kT, equilibrium, the
         S += ell
         if any_stretched:
             S[stretched] = 0.0
-    phase = np.full(n.shape, PLECTONEME, np.int8)
+        out.plectoneme_length[...] = S
+    phase = out.phase
+    phase.fill(PLECTONEME)
     if any_stretched:
         phase[stretched] = STRETCHED
     if any_coiled:
         phase[coiled] = FULLY_COILED
-    return FreeEnergyPoints(extension, np.copysign(M, turns), S, phase,
-                            tail < short_tail_length, zeta, G)
-
-
-def _select(mask):
-    """``mask`` as an index: None (no point), a slice (contiguous points: views, no copies)
-    or the indices (a gather costs a third of a boolean mask's)."""
-    idx = np.flatnonzero(mask)
-    if idx.size == 0:
-        return None
-    if idx[-1] - idx[0] + 1 == idx.size:
-        return slice(int(idx[0]), int(idx[-1]) + 1)
-    return idx
-
-
-def _outside(size, *selections):
-    """Boolean mask of the points in none of the selections (of :func:`_select`)."""
-    out = np.ones(size, bool)
-    for sel in selections:
-        if sel is not None:
-            out[sel] = False
-    return out
+    np.copysign(M, turns, out=M)
+    np.less(tail, short_tail_length, out=out.short_tail)
 
 
 def free_energy(turns, force, length, B, C, kT, equilibrium, thermal=True, end_loop=False):

@@ -122,6 +122,11 @@ def contact_warning(alpha, where):
     a = np.asarray(alpha, float)
     if a.size == 0:
         return None
+    lo, hi = float(np.min(a)), float(np.max(a))
+    if 0.0 <= lo and contact_width_ratio(hi) <= CONTACT_WIDTH_MAX * (1.0 - 1e-12):
+        # b / r increases with alpha on [0, pi/4): below the limit at the largest tilt
+        # (with a margin far above the rounding) it is below it everywhere
+        return None
     ratio = contact_width_ratio(a)
     worst = float(np.max(ratio))
     if not worst > CONTACT_WIDTH_MAX:
@@ -323,6 +328,13 @@ def check_tilt(alpha, where, cos2a_min=COS2A_MIN):
         ``where`` (the inputs that led there).
     """
     a = np.asarray(alpha, float)
+    if a.size:
+        lo, hi = float(np.min(a)), float(np.max(a))  # NaN reaches both
+        m = max(-lo, hi)
+        if m < 0.25 * np.pi and np.cos(2.0 * m) >= cos2a_min + 1e-12:
+            # cos 2 alpha decreases with |alpha| up to pi/4: above the limit at the
+            # largest |alpha| (with a margin far above the rounding), above it everywhere
+            return a
     if not np.all(np.isfinite(a)):
         raise SingularityError(f"tilt alpha is not finite ({where})")
     c = np.cos(2.0 * a)

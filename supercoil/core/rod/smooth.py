@@ -41,16 +41,81 @@ def _h(a, a_coef, S, n, r):
     return a_coef * sc.y_of_alpha(a) * s2 + c * (S * s2 / (2.0 * r) - TWO_PI * n)
 
 
-def _h_df(a, a_coef, S, n, r):
-    """:func:`_h` and its derivative in alpha (for the Newton estimate)."""
-    # the double angles from sin a, cos a (an estimate only: the signs come from _h);
-    # y = 1 - cos 2a = 2 sin^2 a without cancellation at small tilts
-    sa, ca = np.sin(a), np.cos(a)
-    c, s, y = (ca - sa) * (ca + sa), 2.0 * sa * ca, 2.0 * sa * sa
-    k, m = S / (2.0 * r), TWO_PI * n
-    f = a_coef * y * s + c * (k * s - m)
-    df = 2.0 * (a_coef * (s * s + y * c) + k * (c * c - s * s) + m * s)
-    return f, df
+def _h_signs(a, a_coef, S, m, r):
+    """:func:`_h` with ``m = TWO_PI * n`` given: the same operations in the same order
+    (the same floats), in place."""
+    t = 2.0 * a
+    c = np.cos(t)
+    s2 = np.sin(t, out=t)
+    y = np.sin(a)
+    np.square(y, out=y)
+    y *= 2.0  # y_of_alpha
+    y *= a_coef
+    y *= s2
+    np.multiply(S, s2, out=s2)
+    s2 /= 2.0 * r
+    s2 -= m
+    c *= s2
+    y += c
+    return y
+
+
+def small_tilt(p, q):
+    """Root of a small-tilt limit ``a^3 + p a = q`` (p, q >= 0; Cardano), capped below
+    pi/4: a start for Newton (sin a ~ a, sin 2a ~ 2a, cos 2a ~ 1), nothing more."""
+    with np.errstate(all="ignore"):
+        d = np.sqrt(0.25 * q * q + (p / 3.0) ** 3)
+        a = np.cbrt(0.5 * q + d) + np.cbrt(0.5 * q - d)
+    return np.where(np.isfinite(a), np.clip(a, 0.0, 0.99 * sc.QUARTER_PI), 0.5 * sc.QUARTER_PI)
+
+
+#: sin(pi/4), the largest s = sin(alpha) of the Newton estimates.
+S_MAX = np.sqrt(0.5)
+
+
+def _tilt_estimate(a4, k, m, s):
+    """Estimate of the root of :func:`_h` by Newton's iteration on s = sin(alpha).
+
+    ``_h = a4 s^3 c + (c^2 - s^2) (k s c - m)`` with ``c = sqrt(1 - s^2)``,
+    ``a4 = 4 a_coef``, ``k = S / r``, ``m = 2 pi n``: one square root and no sine per
+    step, one arcsine at the end. ``s``: the start. The bisection's cell check
+    verifies the estimate, so it only saves work; the iteration stops at steps below
+    1e-8 relative (the next error is of the order of the rounding), or where a step
+    is NaN (the cell check then fails and the element gets the plain bisection).
+    """
+    s = np.minimum(s, 0.99 * S_MAX)
+    with np.errstate(all="ignore"):
+        for _ in range(40):
+            s2 = s * s
+            c = np.sqrt(1.0 - s2)
+            d = 1.0 - 2.0 * s2  # cos 2a
+            u = k * s
+            u *= c
+            u -= m  # k s c - m
+            f = a4 * s2
+            f *= s
+            f *= c
+            df = d * u
+            f += df  # _h
+            u *= 4.0
+            u *= s  # 4 s (k s c - m)
+            df = s2 * s2
+            df /= c
+            np.multiply(3.0 * s2, c, out=s2)
+            s2 -= df
+            s2 *= a4  # a4 (3 s^2 c - s^4 / c)
+            s2 -= u
+            d *= d
+            d *= k
+            d /= c  # k (1 - 2 s^2)^2 / c
+            s2 += d
+            f /= s2  # the step
+            s -= f
+            np.clip(s, 0.0, S_MAX, out=s)
+            np.abs(f, out=f)
+            if not np.any(f > 1e-8 * s):
+                break
+        return np.arcsin(s)
 
 
 def check_inputs(turns_abs, slack, L):
@@ -98,8 +163,12 @@ def solve_tilt(turns_abs, slack, r, L, B, C):
 def _solve_block(n, S, r, L, B, C):
     """The tilt of one block (1-D |N| and S), unchecked."""
     a_coef = B * L / (2.0 * C * r)
-    return bisect_from_estimate(_h, _h_df, (a_coef, S, n, r), np.zeros(n.shape),
-                                np.full(n.shape, sc.QUARTER_PI))
+    m = TWO_PI * n  # as _h forms it
+    # start: the small-tilt limit 4 a_coef a^3 + (S / r) a = 2 pi n of F
+    x0 = _tilt_estimate(4.0 * a_coef, S / r, m,
+                        small_tilt(S / (4.0 * a_coef * r), m / (4.0 * a_coef)))
+    return bisect_from_estimate(_h_signs, None, (a_coef, S, m, r), np.zeros(n.shape),
+                                np.full(n.shape, sc.QUARTER_PI), estimate=x0)
 
 
 def smooth_state(turns, slack, r, L, B, C, cos2a_min=sc.COS2A_MIN):

@@ -79,66 +79,139 @@ import numpy as np
 
 from supercoil.core.numerics import bisect_from_estimate
 from supercoil.core.rod import contact as sc
-from supercoil.core.rod.smooth import BLOCK
+from supercoil.core.rod.smooth import BLOCK, S_MAX, small_tilt
 from supercoil.exceptions import NoHelixError
 
 TWO_PI = 2.0 * np.pi
 
 
-def spinning_tilt(turns_abs, head_tension, r, L, B, C):
-    """Root alpha of [f4] (rad), broadcast over |N| and T' (N)."""
-    n, Tp = np.broadcast_arrays(np.asarray(turns_abs, float) / L, np.asarray(head_tension, float))
-    if np.any(~(n > 0)):
-        raise NoHelixError("turns N = 0: no twist, no helix (twist-spinning needs |N| > 0)")
+def _checked(turns, head_tension, L, signed=False):
+    """N and T' broadcast together (float arrays, views), after the checks of [f4].
+
+    ``signed``: N may carry a sign (its magnitude is checked, without a temporary of
+    the array's size); else it is |N|.
+    """
+    n = np.asarray(turns, float)
+    t, Tp = np.broadcast_arrays(n, np.asarray(head_tension, float))
+    # min(|N|) / L > 0 is all(|N| / L > 0): the division is monotone, a NaN propagates
+    if t.size:
+        flat = n.reshape(-1)
+        least = (np.min([np.min(np.abs(flat[i:i + BLOCK])) for i in range(0, flat.size, BLOCK)])
+                 if signed else np.min(flat))
+        if not least / L > 0:
+            raise NoHelixError("turns N = 0: no twist, no helix (twist-spinning needs |N| > 0)")
     if np.any(Tp < 0) or not np.all(np.isfinite(Tp)):
         raise NoHelixError("head tension T' must be finite and >= 0 (a push buckles the head)")
+    return t, Tp
 
-    out = np.empty(n.shape)
+
+def spinning_tilt(turns_abs, head_tension, r, L, B, C):
+    """Root alpha of [f4] (rad), broadcast over |N| and T' (N)."""
+    t, Tp = _checked(turns_abs, head_tension, L)
+    out = np.empty(t.shape)
     flat = out.reshape(-1)
-    for start in range(0, n.size, BLOCK):  # blocks: bounded temporaries
-        nb, Tb = n.flat[start:start + BLOCK], Tp.flat[start:start + BLOCK]
-        flat[start:start + BLOCK] = bisect_from_estimate(
-            _G, _G_df, (nb, Tb, r, B, C), np.zeros(nb.shape), np.full(nb.shape, sc.QUARTER_PI),
-            start=_small_tilt(Tb * r**2 / (4.0 * B), np.pi * C * nb * r / B))
+    for start in range(0, t.size, BLOCK):  # blocks: bounded temporaries
+        stop = start + BLOCK
+        flat[start:stop] = _tilt_block(t.flat[start:stop] / L, Tp.flat[start:stop], r, B, C)
     return out[()] if out.ndim == 0 else out
 
 
-def _small_tilt(p, q):
-    """Root of the small-tilt limit ``a^3 + p a = q`` of [f4] (p, q >= 0; Cardano), capped
-    below pi/4: a start for Newton (sin a ~ a, sin 2a ~ 2a, cos 2a ~ 1), nothing more."""
+def _tilt_block(n, Tp, r, B, C):
+    """The root of [f4] on one block (1-D n = |N| / L > 0 and T'), as the bisection finds it."""
+    k = TWO_PI * C * n  # the factors of _G, as it forms them
+    h = 0.5 * Tp
+    x0 = _tilt_estimate(2.0 * B / r**2, h, k / r,
+                        small_tilt(Tp * r**2 / (4.0 * B), np.pi * C * n * r / B))
+    return bisect_from_estimate(_G_signs, None, (k, h, B, r), np.zeros(n.shape),
+                                np.full(n.shape, sc.QUARTER_PI), estimate=x0)
+
+
+def _tilt_estimate(p, q, k, s):
+    """Estimate of the tilt where ``p s^3 c + q s - k (c^2 - s^2) = 0`` (s = sin, c = cos).
+
+    [f4] (p = 2 B / r^2, q = T'/2, k = 2 pi C n / r) and [eq ini] (p = 4, q = 0,
+    k = rhs) in the variable s = sin(alpha), with ``c = sqrt(1 - s^2)`` and
+    ``cos 2a = 1 - 2 s^2``: Newton's iteration then needs one square root and no
+    sine per step, and one arcsine at the end. ``s``: the start (the small-tilt
+    root). The bisection's cell check verifies the estimate, so it only saves work;
+    the iteration stops at steps below 1e-8 relative (the next error is of the
+    order of the rounding), or where a step is NaN (the cell check then fails and
+    the element gets the plain bisection).
+    """
+    s = np.minimum(s, 0.99 * S_MAX)
     with np.errstate(all="ignore"):
-        d = np.sqrt(0.25 * q * q + (p / 3.0) ** 3)
-        a = np.cbrt(0.5 * q + d) + np.cbrt(0.5 * q - d)
-    return np.where(np.isfinite(a), np.clip(a, 0.0, 0.99 * sc.QUARTER_PI), 0.5 * sc.QUARTER_PI)
+        for _ in range(40):
+            s2 = s * s
+            c = np.sqrt(1.0 - s2)
+            s2c = s2 * c
+            f = p * s2c
+            f += q
+            f *= s
+            df = 2.0 * s2
+            df -= 1.0
+            df *= k
+            f += df  # p s^3 c + q s - k (1 - 2 s^2)
+            df = s2 * s2
+            df /= c
+            np.multiply(3.0, s2c, out=s2c)
+            s2c -= df
+            s2c *= p
+            s2c += q
+            np.multiply(4.0 * s, k, out=df)
+            df += s2c  # p (3 s^2 c - s^4 / c) + q + 4 k s
+            f /= df  # the step
+            s -= f
+            np.clip(s, 0.0, S_MAX, out=s)
+            np.abs(f, out=f)
+            if not np.any(f > 1e-8 * s):
+                break
+        return np.arcsin(s)
 
 
 def _G(a, n, Tp, r, B, C):
-    """[f4] as G(alpha) of the module doc (n = |N| / L), as it is bisected."""
+    """[f4] as G(alpha) of the module doc (n = |N| / L): the bisected form (the solver
+    evaluates it as :func:`_G_signs`, the same floats)."""
     sa = np.sin(a)  # once: the same floats as two calls
     return B * sa**2 * np.sin(2 * a) / r**2 + 0.5 * Tp * sa - TWO_PI * C * n * np.cos(2 * a) / r
 
 
-def _G_df(a, n, Tp, r, B, C):
-    """:func:`_G` and its derivative in alpha (for the Newton estimate)."""
-    # two sines, the double angles from them: an estimate only (the signs come from _G)
-    sa, ca = np.sin(a), np.cos(a)
-    s2, c2 = 2.0 * sa * ca, (ca - sa) * (ca + sa)
-    f = B * sa**2 * s2 / r**2 + 0.5 * Tp * sa - TWO_PI * C * n * c2 / r
-    df = (B * (2.0 * sa * ca * s2 + 2.0 * sa**2 * c2) / r**2 + 0.5 * Tp * ca
-          + 2.0 * TWO_PI * C * n * s2 / r)
-    return f, df
+def _G_signs(a, k, h, B, r):
+    """:func:`_G` with ``k = TWO_PI * C * n`` and ``h = 0.5 * T'`` given: the same
+    operations in the same order (the same floats), in place."""
+    t = 2.0 * a
+    c2 = np.cos(t)
+    s2 = np.sin(t, out=t)
+    sa = np.sin(a)
+    g = np.square(sa)
+    g *= B
+    g *= s2
+    g /= r**2
+    sa *= h
+    g += sa
+    c2 *= k
+    c2 /= r
+    g -= c2
+    return g
 
 
 def _h0(a, rhs):
-    """[eq ini] as :func:`supercoil.core.rod.contact.initial_tilt` bisects it."""
+    """[eq ini] as :func:`supercoil.core.rod.contact.initial_tilt` bisects it (the solver
+    evaluates it as :func:`_h0_signs`, the same floats)."""
     return sc.y_of_alpha(a) * np.sin(2.0 * a) - rhs * np.cos(2.0 * a)
 
 
-def _h0_df(a, rhs):
-    """:func:`_h0` and its derivative (Newton estimate; double angles from sin a, cos a)."""
-    sa, ca = np.sin(a), np.cos(a)
-    s2, c2, y = 2.0 * sa * ca, (ca - sa) * (ca + sa), 2.0 * sa * sa
-    return y * s2 - rhs * c2, 2.0 * (s2 * s2 + y * c2 + rhs * s2)
+def _h0_signs(a, rhs):
+    """:func:`_h0` in place (the same operations in the same order: the same floats)."""
+    t = 2.0 * a
+    c2 = np.cos(t)
+    s2 = np.sin(t, out=t)
+    y = np.sin(a)
+    np.square(y, out=y)
+    y *= 2.0
+    y *= s2
+    c2 *= rhs
+    y -= c2
+    return y
 
 
 def slacking_tilt(turns_abs, r, L, B, C):
@@ -157,15 +230,23 @@ def slacking_tilt(turns_abs, r, L, B, C):
     out = np.empty(n.shape)
     flat = out.reshape(-1)
     for start in range(0, n.size, BLOCK):
-        rhs = (C / B) * 4.0 * np.pi * r * n.flat[start:start + BLOCK] / L
-        flat[start:start + BLOCK] = bisect_from_estimate(
-            _h0, _h0_df, (rhs,), np.zeros(rhs.shape), np.full(rhs.shape, sc.QUARTER_PI),
-            start=_small_tilt(0.0, 0.25 * rhs))
+        flat[start:start + BLOCK] = _slacking_block(n.flat[start:start + BLOCK], r, L, B, C)
     return out[()] if out.ndim == 0 else out
+
+
+def _slacking_block(t, r, L, B, C):
+    """alpha_0 of [eq ini] on one block of |N_0| > 0 (1-D)."""
+    rhs = (C / B) * 4.0 * np.pi * r * t / L
+    # start: the small-tilt root a^3 = rhs / 4 (small_tilt(0, rhs / 4) without its algebra)
+    x0 = _tilt_estimate(4.0, 0.0, rhs, np.cbrt(0.25 * rhs))
+    return bisect_from_estimate(_h0_signs, None, (rhs,), np.zeros(rhs.shape),
+                                np.full(rhs.shape, sc.QUARTER_PI), estimate=x0)
 
 
 def spinning_state(turns_abs, head_tension, r, L, B, C):
     """alpha, beta (rad), pitch (m), omega = 2 pi n (rad/m) and T_s (N); see module doc.
+
+    Computed in blocks of :data:`BLOCK` elements (temporaries bounded by the block).
 
     Raises
     ------
@@ -173,9 +254,56 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
         N = 0 or T' < 0. (``sec beta >= 1`` holds for every root, see the module
         doc; rounding below it is clamped, so no input closes the tails.)
     """
-    alpha = spinning_tilt(turns_abs, head_tension, r, L, B, C)
-    Tp = np.broadcast_to(np.asarray(head_tension, float), alpha.shape)
-    omega = TWO_PI * np.broadcast_to(np.asarray(turns_abs, float), alpha.shape) / L
+    return _in_blocks(turns_abs, head_tension, r, L, B, C, STATE_FIELDS, False)
+
+
+#: The fields of :func:`spinning_state`, in order.
+STATE_FIELDS = ("alpha", "beta", "pitch", "omega", "slacking_tension")
+
+#: The fields of :func:`spinning_scene`, in order.
+SCENE_FIELDS = ("alpha", "beta", "pitch", "omega", "alpha_slacking", "pitch_slacking",
+                "pitch_increase")
+
+
+def spinning_scene(turns, head_tension, r, L, B, C):
+    """The twist-spinning helix of signed N and the twist-slacking helix at the same N.
+
+    :data:`SCENE_FIELDS`: alpha, beta (rad), pitch (m) and omega = 2 pi N / L (rad/m,
+    signed like N) of :func:`spinning_state`, alpha_0 of :func:`slacking_tilt`
+    (rad), its pitch ``2 pi r / tan(alpha_0)`` (m) and ``pitch / pitch_0 - 1``;
+    computed together in blocks of :data:`BLOCK` elements (temporaries bounded by
+    the block, the values of the whole-array formulas bit for bit). A pitch beyond
+    the float range is inf (the caller checks).
+
+    Raises
+    ------
+    NoHelixError
+        N = 0 or T' < 0.
+    """
+    return _in_blocks(turns, head_tension, r, L, B, C, SCENE_FIELDS, True)
+
+
+def _in_blocks(turns, head_tension, r, L, B, C, fields, scene):
+    """The block loop of :func:`spinning_state` (|N|) and :func:`spinning_scene` (signed N)."""
+    n, Tp = _checked(turns, head_tension, L, signed=scene)
+    out = {k: np.empty(n.shape) for k in fields}
+    flat = {k: v.reshape(-1) for k, v in out.items()}
+    for start in range(0, n.size, BLOCK):
+        stop = start + BLOCK
+        nb = n.flat[start:stop]
+        t = np.abs(nb) if scene else nb
+        part = _state_block(t, Tp.flat[start:stop], r, L, B, C)
+        if scene:
+            _add_slacking(part, nb, t, r, L, B, C)
+        for k, v in flat.items():
+            v[start:stop] = part[k]
+    return {k: v[()] if v.ndim == 0 else v for k, v in out.items()}
+
+
+def _state_block(t, Tp, r, L, B, C):
+    """:func:`spinning_state` of one block (1-D |N| > 0 and T')."""
+    alpha = _tilt_block(t / L, Tp, r, B, C)
+    omega = TWO_PI * t / L
     sa = np.sin(alpha)  # once: the same floats as one call per use
     kappa = sa**2 / r
     tau = sa * np.cos(alpha) / r
@@ -193,13 +321,20 @@ def spinning_state(turns_abs, head_tension, r, L, B, C):
     with np.errstate(invalid="ignore", divide="ignore"):
         beta = np.where(np.isinf(x), 0.5 * np.pi,
                         2.0 * np.arcsin(np.sqrt(0.5 / (1.0 + 1.0 / x))))
-    return {
-        "alpha": alpha,
-        "beta": beta,
-        "pitch": TWO_PI * r / np.tan(alpha),
-        "omega": omega,
-        "slacking_tension": Ts,
-    }
+    with np.errstate(over="ignore", divide="ignore"):
+        pitch = TWO_PI * r / np.tan(alpha)
+    return {"alpha": alpha, "beta": beta, "pitch": pitch, "omega": omega,
+            "slacking_tension": Ts}
+
+
+def _add_slacking(part, n, t, r, L, B, C):
+    """Signed omega and the twist-slacking fields of one block (``part`` of |N| = t)."""
+    part["omega"] = np.sign(n) * part["omega"]
+    a0 = _slacking_block(t, r, L, B, C)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        p0 = 2 * np.pi * r / np.tan(a0)
+        part["pitch_increase"] = part["pitch"] / p0 - 1.0
+    part["alpha_slacking"], part["pitch_slacking"] = a0, p0
 
 
 def exact_energy(alpha, S_helix, turns_abs, head_tension, slack, r, L, B, C):

@@ -38,7 +38,9 @@ points at the last few parameter vectors (no repeated evaluation or unpacking
 at the same parameters), and the plectoneme
 equilibria keyed by :meth:`~supercoil.dna.interactions.base.Interaction.cache_key`
 and the force: the key leaves out the length and the twist rigidity C, on which only
-``omega = M/C`` and the twist energy depend (for every interaction: (GE2) contains no C).
+``omega = M/C`` and the twist energy depend (for every interaction: (GE2) contains no C);
+under the same key, a dict per molecule for the models' C-free results
+(:meth:`~supercoil.dna.interactions.base.Interaction.kernel_memo`).
 """
 
 from __future__ import annotations
@@ -77,9 +79,10 @@ def dna_si(base, values, xi_is_bending):
 class _CachedInteraction:
     """An interaction whose ``equilibrium`` is memoised within one fit."""
 
-    def __init__(self, interaction, store):
+    def __init__(self, interaction, store, memos):
         self._inter = interaction
         self._store = store
+        self._memos = memos
 
     def __getattr__(self, name):
         return getattr(self._inter, name)
@@ -92,6 +95,18 @@ class _CachedInteraction:
     def wrapped(self):
         """The interaction itself (without the memo)."""
         return self._inter
+
+    def kernel_memo(self, dna):
+        """The fit's dict of C-free kernel results for this molecule's :meth:`cache_key`."""
+        key = self._inter.cache_key(dna)
+        memo = self._memos.get(key)
+        if memo is None:
+            memo = self._memos[key] = {}
+            if len(self._memos) > _CACHE_SIZE:
+                self._memos.popitem(last=False)
+        else:
+            self._memos.move_to_end(key)
+        return memo
 
     def equilibrium(self, tension, dna):
         tension = np.asarray(tension, dtype=float)
@@ -138,6 +153,7 @@ class HatCurveModel:
         self.njev = 0
         self._points = OrderedDict()
         self._eq_store = OrderedDict()
+        self._memos = OrderedDict()
         self._unpacked = OrderedDict()
         self._jac = None
         # the kernel does not depend on the extension offsets nor on the torque scale: leave
@@ -233,7 +249,7 @@ class HatCurveModel:
         inter = self.interaction
         if groups["interaction"]:
             inter = inter.replace(**groups["interaction"])
-        return dna, model, _CachedInteraction(inter, self._eq_store), n0, z0
+        return dna, model, _CachedInteraction(inter, self._eq_store, self._memos), n0, z0
 
     def kernel(self, turns, force, dna, model, inter):
         self.n_kernel_calls += 1

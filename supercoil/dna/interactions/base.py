@@ -111,6 +111,15 @@ class Interaction(Parametrised, abc.ABC):
         """
         return self
 
+    def kernel_memo(self, dna):
+        """A dict where a model may keep C-free results for ``dna`` across calls, or None.
+
+        None here (each call solves afresh); a fit's memoised interaction returns one
+        dict per :meth:`cache_key` (the models keep the pull and the fully coiled branch
+        there: :mod:`supercoil.core.dna.branch_memo`).
+        """
+        return None
+
     @abc.abstractmethod
     def _partials(self, alpha, radius, dna):
         """``(w, dw/dalpha, dw/dR)`` (see the class docstring)."""

@@ -121,12 +121,14 @@ class FreeEnergy(DNAModel):
 
         The secant's trial tensions of fully coiled points go to
         ``interaction.unrecorded()`` (the public layer records only the final states for
-        its shared checks).
+        its shared checks). The interaction's :meth:`kernel_memo` (a fit's) keeps the
+        C-free pull and fully coiled branch across calls.
         """
         bare = interaction.unrecorded()
         trial = None if bare is interaction else _equilibrium(bare, dna)
         p = _fe.hat_points(turns, force, *_args(dna), _equilibrium(interaction, dna), thermal,
-                           short_tail_length, trial_equilibrium=trial, end_loop=self.end_loop)
+                           short_tail_length, trial_equilibrium=trial, end_loop=self.end_loop,
+                           memo=interaction.kernel_memo(dna))
         return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
                          p.zeta, p.free_energy)
 
