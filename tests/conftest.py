@@ -123,6 +123,11 @@ def pytest_configure(config):
         "markers", "background(*jobs): the test reads these jobs of tests/fresh_scripts.py's "
         "JOBS (queued at the start of the session, run in the background lane); the test "
         "runs after the tests that need none")
+    if not config.option.collectonly:
+        # the lane's script helper starts now: its imports (a few seconds of CPU) run on the
+        # second core while this process collects, not after (a selection without
+        # background jobs only pays them there, and the helper is ended with the session)
+        _lane(config).scripts()
 
 
 def _jobs(item):
