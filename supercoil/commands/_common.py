@@ -188,6 +188,11 @@ def warning_text(command: str, warning) -> str:
     return f"supercoil {command}: warning: {_flagged(warning)}"
 
 
+def flagged_error(exc) -> str:
+    """``Type: FLAG: message``: an exception of a failed comparison row in flag wording."""
+    return f"{type(exc).__name__}: {_flagged(exc)}"
+
+
 def _flagged(exc) -> str:
     """The message of ``exc`` with keyword hints as flags, the flags of its argument first."""
     text = flag_text(str(exc))

@@ -259,9 +259,9 @@ def _run_compare(args, models, dna, fixed, bounds, options, out):
         print(warning_text("fit", w.message), file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     csv = write_csv(table, out / "fit_comparison.csv")
-    from supercoil.commands._common import flag_text
+    from supercoil.commands._common import flagged_error
 
-    report = comparison.report(error_text=flag_text)
+    report = comparison.report(error_text=flagged_error)
     (out / "fit_report.txt").write_text(report + "\n")
     print(report)
     print(f"wrote {csv}, {out / 'fit_report.txt'}")

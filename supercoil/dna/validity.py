@@ -63,7 +63,8 @@ def check_dna(dna):
     below :data:`MIN_LENGTH`.
     """
     si = check_material(dna, DNA, "dna")
-    check_scale(si.length * 1e9, "the contour length (nm)", lo=MIN_LENGTH * 1e9,
+    check_scale(display.to_display(si.length, "length"), "the contour length (nm)",
+                lo=display.to_display(MIN_LENGTH, "length"),
                 why="a DNA shorter than one base pair has no double helix")
     check_scale(si.temperature, "the temperature (K)",
                 hi=MAX_TEMPERATURE, why="double-stranded DNA melts near 360 K; the elastic "

@@ -16,6 +16,8 @@ from importlib import resources
 
 import numpy as np
 
+from supercoil import display
+
 __all__ = ["DEFAULT_CONFIGS", "load_published", "plot_validation", "validate"]
 
 #: (model, parameter set, interaction): the paper's construction on the seed set,
@@ -79,16 +81,17 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
         return _radius(m, f, si, inter)
     b = m.buckling(f, si, True, inter)
     if quantity == "buckling_torque":
-        return float(b.torque[0]) * 1e21, ""
+        return display.to_display(float(b.torque[0]), "torque"), ""
     if quantity == "buckling_turns":
         return float(b.turns[0]), ""
     if quantity == "post_buckling_slope":
-        return abs(float(b.slope[0])) * 1e9, "magnitude of dz/dN"
+        return display.to_display(abs(float(b.slope[0])), "length"), "magnitude of dz/dN"
     if quantity == "effective_twist_persistence":
         n = np.array([_FRACTION_OF_BUCKLING * float(b.turns[0])])
         p = m.points(n, f, si, True, inter, None)
         c_eff = float(p.torque[0]) * si.length / (2 * np.pi * n[0])  # N m^2
-        value = c_eff * 1e30 if unit == "pN nm^2" else c_eff / kT * 1e9
+        value = (c_eff * display.spec("pN*nm**2")[1] if unit == "pN nm^2"
+                 else display.to_display(c_eff / kT, "length"))
         return value, f"stretched-phase torque at {_FRACTION_OF_BUCKLING:g} N_b"
     if quantity == "extension_jump_ratio":
         if "end_loop" not in m.options():
@@ -119,13 +122,13 @@ def _radius(m, f, si, inter):
     except SupercoilError as exc:
         salt = getattr(si, "salt", None)  # mol/m^3 = mM
         salt = f", {salt:g} mM" if salt is not None else ""
-        return np.nan, (f"no radius at {float(f[0]) * 1e12:g} pN{salt}: "
+        return np.nan, (f"no radius at {display.text(float(f[0]), 'force', 'g')}{salt}: "
                         f"{type(exc).__name__}: {exc}")[:300]
-    radius = float(inter.equilibrium(pull, si).radius[0]) * 1e9
+    radius = display.to_display(float(inter.equilibrium(pull, si).radius[0]), "radius")
     if np.array_equal(pull, f):
         return radius, "plectoneme at the force F"
     return radius, (f"plectoneme at the tail's effective tension T_eff = "
-                    f"{float(pull[0]) * 1e12:.4g} pN")
+                    f"{display.text(float(pull[0]), 'force', '.4g')}")
 
 
 def _conditions(row, set_name, model, interaction):

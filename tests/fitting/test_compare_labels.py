@@ -59,3 +59,34 @@ def test_one_row_and_one_result_per_model(data, dna):
     assert results["marko2007"].model.end_loop is False
     for label, chi2 in zip(table["model"], table["chi_square"], strict=True):
         assert results[label].chi_square == pytest.approx(chi2, rel=1e-12)
+
+
+def test_a_failed_row_keeps_its_error_and_the_argument_it_is_about():
+    """A model whose fit cannot start (a start value for a parameter it does not have) is a
+    failed row whose error keeps its type and ``argument`` (in ``errors``, the
+    ``error_argument`` column, through pickling, and as the flag in the CLI's report)."""
+    import pickle
+
+    from supercoil.commands._common import flagged_error
+    from supercoil.exceptions import FitError
+
+    dna = sc.load_parameters("dna")
+    data = sc.simulate_rotation_curves(dna, [0.5, 1.0] * u.pN, turns=np.linspace(-20, 20, 21),
+                                       noise=3 * u.nm, seed=1)
+    vary = {"li-zhao": ["twist_persistence"],
+            "marko2007": ["twist_persistence", "plectoneme_twist_persistence"]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        comp = sc.compare_models(data, dna, ["li-zhao", "marko2007"], vary=vary,
+                                 start={"plectoneme_twist_persistence": 20 * u.nm})
+    table = comp.table.set_index("model")
+    assert table.loc["marko2007", "success"] and not table.loc["li-zhao", "success"]
+    assert list(comp.errors) == ["li-zhao"] and list(comp.results) == ["marko2007"]
+    exc = comp.errors["li-zhao"]
+    assert isinstance(exc, FitError) and exc.argument == "start"
+    assert table.loc["li-zhao", "error_argument"] == "start"
+    assert table.loc["marko2007", "error_argument"] == ""
+    assert table.loc["li-zhao", "error"] == f"FitError: {exc}"
+    assert pickle.loads(pickle.dumps(comp)).errors["li-zhao"].argument == "start"
+    assert "FAILED: FitError: --start: unknown parameter" in comp.report(error_text=flagged_error)
+    assert f"FAILED: FitError: {exc}" in comp.report()

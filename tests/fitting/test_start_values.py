@@ -103,3 +103,40 @@ def test_length_check_allows_noise_and_a_fitted_offset():
     assert "800 nm" in length_excess(z, 750e-9, offset_fitted=False)
     assert length_excess(np.full(100, 760e-9), 750e-9) is None  # noise
     assert "1957" in length_excess(np.full(100, 1957e-9), 750e-9, offset_fitted=True)
+
+
+def _melted_left_side(dna, forces, plateau_from=-4.0):
+    """li-zhao curves whose negative side is replaced by a nearly flat plateau beyond
+    ``plateau_from`` turns (as melting makes it), which a model symmetric in N cannot fit."""
+    u = sc.ureg
+    d = sc.simulate_rotation_curves(dna, forces * u.pN, turns=np.linspace(-60, 60, 61),
+                                    noise=3 * u.nm, seed=3, model="li-zhao")
+    N, z, f = (d[c].to_numpy().copy() for c in ("turns", "extension", "force"))
+    for force in np.unique(f):
+        s = f == force
+        flat = np.interp(plateau_from, N[s], z[s]) + 0.3 * (N[s] - plateau_from)
+        z[s] = np.where(N[s] < plateau_from, flat, z[s])
+    d["extension"] = z
+    return d
+
+
+def test_a_turns_offset_run_away_from_every_channel_is_named(base):
+    """The symmetric model absorbs the asymmetric (melted) side by moving the turns offset
+    tens of turns from where the data locate the zero: the fit says so (the offset is
+    not bounded, so the fit itself is unchanged), and a clean fit does not warn."""
+    data = _melted_left_side(base, np.array([0.5, 1.0, 2.0]))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fit = sc.fit_hat_curves(data, base)
+    n0 = fit.params["turns_offset"].value
+    runaway = [str(w.message) for w in caught if issubclass(w.category, FitWarning)
+               and str(w.message).startswith("turns_offset = ")]
+    assert abs(n0) > 10 and len(runaway) == 1
+    assert "from every channel of the data that locates the zero (hat symmetry:" in runaway[0]
+    clean = sc.simulate_rotation_curves(base, np.array([0.5, 1.0]) * sc.ureg.pN,
+                                        turns=np.linspace(-30, 30, 41), noise=3 * sc.ureg.nm,
+                                        turns_offset=TRUE_N0, seed=5)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sc.fit_hat_curves(clean, base)
+    assert not [w for w in caught if str(w.message).startswith("turns_offset = ")]

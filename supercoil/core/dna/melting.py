@@ -94,7 +94,10 @@ def _langevin(u):
 
 def melted_stretch_gain(F, kT, ss_kuhn_length, ss_contour_per_base, ss_stretch_modulus,
                         rise_per_bp, strands=2.0):
-    """``g_m(F)`` (N) and ``x_m = dg_m/dF`` (1) of the melted state per B contour length."""
+    """``g_m(F)`` (N) and ``x_m = dg_m/dF`` (1) of the melted state per B contour length.
+
+    Implements docs/theory/melting.md (MT7).
+    """
     f = _tb.check_force(F, "melted-DNA stretching", allow_zero=True) / strands
     b, ell = ss_kuhn_length, ss_contour_per_base
     u = f * b / kT
@@ -112,6 +115,8 @@ def melted_gibbs(F, M, kT, melt_free_energy=DEFAULTS["melt_free_energy"],
                  ss_stretch_modulus=DEFAULTS["ss_stretch_modulus"],
                  rise_per_bp=DEFAULTS["rise_per_bp"], strands=DEFAULTS["strands"]):
     """Melted phase: ``phi_m = Delta - Omega_m M - M^2/(2 kT c_m) - g_m(F)`` (N).
+
+    Implements docs/theory/melting.md (MT6, MT7).
 
     Parameters
     ----------
@@ -155,6 +160,8 @@ def _check_twist_stiffness(c_m):
 def tail_melted_gibbs(F, M, par):
     """The melted phase of the ensemble's tail (docs/theory/melting.md#the-ensembles-melted-phase).
 
+    Implements docs/theory/melting.md (MT9).
+
     ``par``: :class:`supercoil.core.dna.ensemble.EnsembleParameters`. With
     ``melt_ss_elastic=False`` and ``melt_twist_stiffness=inf`` (the defaults) the linear
     phase ``e - x_m F - Omega_m M`` of :func:`~supercoil.core.dna.phases.simple_melted_gibbs`
@@ -176,6 +183,8 @@ def tail_melted_gibbs(F, M, par):
 
 def melting_torque(F, A, C, G, kT, writhe_factor=1.0, derivative=False, **melt):
     """Coexistence torque ``M_melt(F)`` (N m, negative) of stretched B-DNA with melted DNA.
+
+    Implements docs/theory/melting.md (MT8).
 
     ``phi_s(F, M) = phi_m(F, M)`` solved in closed form (module docstring)
     [melting.md#melting-torque]. ``melt`` takes the keywords of :func:`melted_gibbs`.
@@ -219,6 +228,8 @@ def melting_torque(F, A, C, G, kT, writhe_factor=1.0, derivative=False, **melt):
 
 def plectoneme_melted_gibbs(F, M, par):
     """Melted DNA inside a plectoneme: the tail's melted phase without the force terms.
+
+    Implements docs/theory/melting.md (MT10).
 
     The plectoneme has no extension, so its melted segments gain no work from the force:
     ``phi = e - Omega_m M - M^2/(2 kT c_m)`` (:func:`tail_melted_gibbs` at ``F = 0``) and

@@ -101,6 +101,8 @@ def wlc_extension(force, A, kT):
 def wlc_exact_free_energy_gain(force, A, kT, slope=False):
     """``g(F) = int_0^F x dF'`` (N) and ``x(F)`` of the exact worm-like chain.
 
+    Implements docs/theory/melting.md (MT2).
+
     ``x`` from :func:`wlc_extension` and ``g = F x - int_0^x F dx'`` (integration by
     parts), so ``dg/dF = x`` [ensemble.md#21-stretched]. ``slope``: also ``dx/dF`` (1/N).
     """

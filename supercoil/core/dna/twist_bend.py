@@ -90,6 +90,8 @@ def wlc_extension(force, A, kT):
 def wlc_gibbs_gain(force, A, kT):
     """``g(F) = F x - W(x)`` (N), ``dg/dF = x``, ``d2g/dF2 = dx/dF`` of the worm-like chain.
 
+    Implements docs/theory/melting.md (MT2).
+
     ``-g`` is the Gibbs free energy per contour length of a torsionless stretched chain
     relative to the relaxed one [melting.md#wlc].
     """
@@ -99,6 +101,8 @@ def wlc_gibbs_gain(force, A, kT):
 
 def twist_bend_renormalisation(A, C, G):
     """Intrinsic bending ``A_b`` and uniform twist stiffness ``C~`` (m) for coupling G (m).
+
+    Implements docs/theory/melting.md (MT3, MT4).
 
     ``A_b = ((A + u) + sqrt(A^2 + u^2)) / 2`` with ``u = G^2/C`` solves
     ``2/A = 1/A_b + 1/(A_b - u)``; ``C~ = C - G^2/A_b`` (> 0 for every G)
@@ -117,6 +121,8 @@ def twist_bend_renormalisation(A, C, G):
 def effective_twist_stiffness(force, A, C, G, kT, writhe_factor=1.0):
     """Twist persistence ``c(F)`` (m) of stretched DNA and ``dc/dF`` (m/N).
 
+    Implements docs/theory/melting.md (MT5).
+
     ``1/c = 1/C~ + w sqrt(kT/(A F)) / (4 A)`` [melting.md#twist-bend]; with G = 0 and
     w = 1 the Moroz-Nelson resummation. Raises :class:`ValidityError` naming the force
     where F <= 0.
@@ -132,6 +138,8 @@ def effective_twist_stiffness(force, A, C, G, kT, writhe_factor=1.0):
 
 def stretched_gibbs(F, M, A, C, G, kT, writhe_factor=1.0):
     """Stretched B-DNA: ``phi_s = -g(F) - M^2 / (2 kT c(F))`` and its derivatives.
+
+    Implements docs/theory/melting.md (MT1).
 
     Parameters
     ----------

@@ -68,7 +68,11 @@ def _fit_one(data, dna, model, vary, own, options):
 
 
 def _row(label, result, error):
-    row = {"model": label, "success": result is not None, "error": error}
+    text = "" if error is None else f"{type(error).__name__}: {error}"
+    argument = getattr(error, "argument", None)
+    argument = ", ".join(argument) if isinstance(argument, (tuple, list)) else argument or ""
+    row = {"model": label, "success": result is not None, "error": text,
+           "error_argument": argument}
     if result is None:
         return row, {}
     n, k = result.ndata, result.n_determined
@@ -88,7 +92,7 @@ def _row(label, result, error):
 
 
 def _assemble(rows, units):
-    stats = ["model", "success", "error", "nparams", "ndata", "chi_square",
+    stats = ["model", "success", "error", "error_argument", "nparams", "ndata", "chi_square",
              "reduced_chi_square", "aic", "bic", "delta_aic", "delta_bic", "cpu_seconds",
              "curve_cpu_seconds", "residual_rms", "goodness_p"]
     params = list(dict.fromkeys(k for r in rows for k in r if k not in stats
@@ -106,7 +110,8 @@ def _assemble(rows, units):
             elif key == "delta_bic":
                 col.append(b - best_b)
             else:
-                col.append(r.get(key, "" if key in ("error", "warnings") else np.nan))
+                col.append(r.get(key, "" if key in ("error", "error_argument", "warnings")
+                                 else np.nan))
         cols[key] = col
     cols["nparams"] = [int(v) if np.isfinite(v) else 0 for v in cols["nparams"]]
     cols["ndata"] = [int(v) if np.isfinite(v) else 0 for v in cols["ndata"]]
@@ -150,7 +155,8 @@ def compare_models(data, dna, models, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed,
     -------
     Comparison
         ``table``: one row per model, sorted by AIC (best first): ``model``,
-        ``success``, ``error`` (a failed fit), ``nparams`` (free parameters
+        ``success``, ``error`` (a failed fit), ``error_argument`` (the keyword
+        its error is about, or empty), ``nparams`` (free parameters
         the data determine, offsets included: those AIC and BIC count),
         ``ndata``, ``chi_square``, ``reduced_chi_square`` (dimensionless),
         ``aic``, ``bic``, ``delta_aic``, ``delta_bic`` (from the best model),
@@ -185,18 +191,18 @@ def compare_models(data, dna, models, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed,
     options = FitOptions(DEFAULTS.vary, fixed, bounds, start, sigma, fit_turns_offset,
                          fit_extension_offset, thermal, max_nfev, tol, DEFAULTS.model,
                          interaction)
-    rows, units, results = [], {}, {}
+    rows, units, results, errors = [], {}, {}, {}
     for spec, label in zip(models, model_labels(models), strict=True):
         name = get_model(spec).name
         names = (vary.get(label, vary.get(name, DEFAULT_VARY)) if isinstance(vary, dict)
                  else vary)
         names = [names] if isinstance(names, str) else list(names)
-        result, error = None, ""
+        result, error = None, None
         try:
             with warnings.catch_warnings(record=True):  # re-issued below with the model name
                 result = _fit_one(data, dna, spec, names, not isinstance(vary, dict), options)
         except SupercoilError as exc:
-            error = f"{type(exc).__name__}: {exc}"
+            error = errors[label] = exc
         if result is not None:
             results[label] = result
             emit([(_category(m, result), m) for m in result.warnings],
@@ -214,7 +220,7 @@ def compare_models(data, dna, models, vary=DEFAULTS.vary, fixed=DEFAULTS.fixed,
                       cost="time.process_time of each fit and of one hat-curve evaluation")
     comparison = Comparison(make_table(cols, all_units, prov),
                             {r["model"]: results[r["model"]] for r in rows
-                             if r["model"] in results})
+                             if r["model"] in results}, errors)
     if return_results is None:
         return comparison
     return (comparison.table, comparison.results) if return_results else comparison.table
@@ -236,6 +242,10 @@ class Comparison:
         ``attrs["units"]`` and ``attrs["provenance"]``.
     results : dict of str -> FitResult
         The fit of each model that converged, by row label, in the table's order.
+    errors : dict of str -> SupercoilError
+        The error of each model whose fit failed, by row label (its ``argument`` names
+        the keyword it is about; the table's ``error`` and ``error_argument`` columns
+        hold its text and that name).
 
     For old call sites the DataFrame's attributes and items (``comparison["aic"]``,
     ``comparison.iloc[0]``) still work, with a DeprecationWarning.
@@ -243,6 +253,7 @@ class Comparison:
 
     table: pd.DataFrame
     results: dict
+    errors: dict = dataclasses.field(default_factory=dict)
 
     @property
     def best(self) -> str | None:
@@ -250,11 +261,12 @@ class Comparison:
         ok = self.table[self.table["success"]]
         return None if ok.empty else str(ok["model"].iloc[0])
 
-    def report(self, error_text=str) -> str:
+    def report(self, error_text=None) -> str:
         """The ranked table as text (AIC, BIC, CPU cost), then each model's fit report.
 
-        ``error_text`` formats the error of a failed row (the command line passes its
-        keyword-to-flag wording).
+        ``error_text``: None writes a failed row's ``error`` text; a callable is given the
+        row's exception (:attr:`errors`) and returns its text (the command line passes its
+        wording, the flag of the exception's ``argument`` first).
         """
         lines = ["[[Model comparison]] ranked by AIC (lmfit's definitions: aic = N ln(chi2/N) "
                  "+ 2k, bic = N ln(chi2/N) + ln(N) k; lower is better; CPU seconds per fit "
@@ -263,7 +275,9 @@ class Comparison:
                  f"{'BIC':>12}{'dBIC':>10}{'fit CPU s':>11}{'curve CPU s':>13}"]
         for _, row in self.table.iterrows():
             if not row["success"]:
-                lines.append(f"    {row['model']:<16}  FAILED: {error_text(row['error'])}")
+                exc = self.errors.get(row["model"])
+                text = row["error"] if error_text is None or exc is None else error_text(exc)
+                lines.append(f"    {row['model']:<16}  FAILED: {text}")
                 continue
             lines.append(f"    {row['model']:<16}{row['nparams']:>4}{row['chi_square']:>14.6g}"
                          f"{row['aic']:>12.2f}{row['delta_aic']:>10.2f}{row['bic']:>12.2f}"

@@ -42,6 +42,7 @@ from supercoil.dna.fitting.prepare import (
 )
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.fitting.solution import FitSolution
+from supercoil.dna.fitting.spread import spread_nodes
 from supercoil.dna.validity import check_dna
 from supercoil.exceptions import (
     BoundWarning,
@@ -57,13 +58,14 @@ __all__ = ["DEFAULTS", "DEFAULT_VARY", "FitOptions", "FitSpec", "fit_hat_curves"
            "resolve_model", "run_fit"]
 
 
-def _start_offsets(spec, prob):
+def _start_offsets(spec, prob, located):
     """Start values not given, read from the data: the turns offsets and a varied length
-    (:func:`~supercoil.dna.fitting.start.start_from_data`), then the extension offsets
-    (median difference to the model). Returns the notes saying what was used."""
+    (:func:`~supercoil.dna.fitting.start.start_from_data`; the turns channels' values go
+    into ``located``), then the extension offsets (median difference to the model).
+    Returns the notes saying what was used."""
     data, params = spec.data, spec.params
     groups = data.groups()
-    notes = _start.start_from_data(data, params, spec.dna)
+    notes = _start.start_from_data(data, params, spec.dna, located)
     u = params.vector()
     try:
         z_start = np.asarray(prob.points(u)[0].extension, dtype=float)
@@ -136,7 +138,8 @@ def run_fit(spec: FitSpec, time_curve=False) -> FitSolution:
     prob = cls(spec.data, spec.params, spec.dna, spec.model, spec.interaction, spec.thermal,
                spec.xi_is_bending)
     pre = _start.length_records(spec)
-    start_notes = _start_offsets(spec, prob)
+    located = {}
+    start_notes = _start_offsets(spec, prob, located)
     u0 = _start_vector(spec.params)
     start = u0 * spec.params.scales
     res = _solve(spec, prob, u0)
@@ -166,6 +169,7 @@ def run_fit(spec: FitSpec, time_curve=False) -> FitSolution:
     stderr[undetermined] = np.inf
     spec.params.set_vector(u, stderr)
     records += _diag.bound_records(spec.params, u)
+    records += [("FitWarning", m) for m in _start.turns_runaway_messages(spec.params, located)]
     pts, z0_pts = prob.points(u)
     dna, model, inter = prob.fitted(u)
     n0, z0 = prob.unpack(u)[3:]
@@ -206,6 +210,10 @@ def _curve_cost(prob, u):
     dna, model, inter = prob.fitted(u)
     turns = prob.data.turns - prob.unpack(u)[3][prob.data.mol_index]
     force = prob.data.force * prob.scale("force_scale", u)
+    spread = prob.scale("force_spread", u)
+    if spread:  # the node points of the average (docs/theory/fitting.md)
+        turns, force, factor = spread_nodes(turns, force, spread)
+        force = force * factor
     n, c0 = 0, time.process_time()
     while n < 50 and (n == 0 or time.process_time() - c0 < 0.02):
         model.points(turns, force, dna, prob.thermal, inter, None)

@@ -24,9 +24,10 @@ from supercoil import display
 from supercoil.dna.fitting.model import dna_si, guess_turns_center
 from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 
-__all__ = ["TURNS_CHANNELS", "check_length", "drop_unused", "length_excess", "length_records",
-           "length_start", "marko_siggia_relative_extension", "start_from_data",
-           "turns_offset_start", "unused_parameters"]
+__all__ = ["TURNS_CHANNELS", "TURNS_WINDOW", "check_length", "drop_unused", "length_excess",
+           "length_records", "length_start", "marko_siggia_relative_extension",
+           "start_from_data", "turns_offset_start", "turns_runaway_messages",
+           "unused_parameters"]
 
 _KERNEL_ERRORS = (NoEquilibriumError, ValidityError, FloatingPointError, ZeroDivisionError)
 _SAMPLE = 48  # points at which the use of a parameter is tested
@@ -158,6 +159,34 @@ def _hat_centre(turns, z):
 
 #: the channels that locate the zero of the turns, in the order they are trusted
 TURNS_CHANNELS = ("torque zero crossing", "hat symmetry")
+
+#: distance (turns) from every data channel beyond which a fitted turns offset is named in a
+#: FitWarning: the channels locate the zero to a fraction of a turn (the torque zero
+#: crossing to the point spacing, the hat centre to the symmetric pair of slope points), so
+#: an offset that moves further fits a model's misfit, not the zero (a model without
+#: melting fitted to both sides of measured curves ran 15 turns away). Not a bound: bounds
+#: change the optimiser's path even where they are not reached.
+TURNS_WINDOW = 3.0
+
+
+def turns_runaway_messages(params, located):
+    """FitWarning texts for fitted turns offsets more than :data:`TURNS_WINDOW` turns from
+    every channel that located them (``located``: name -> {channel: value} of
+    :func:`start_from_data`)."""
+    out = []
+    for name, found in located.items():
+        p = params.get(name)
+        if p is None or not p.vary or not found:
+            continue
+        near = min(abs(p.value - v) for v in found.values())
+        if near > TURNS_WINDOW:
+            where = ", ".join(f"{k}: {v:.3g}" for k, v in found.items())
+            out.append(f"{name} = {p.value:.4g} turn is {near:.3g} turns from every channel "
+                       f"of the data that locates the zero ({where}): the fit moves the "
+                       "offset to absorb a misfit of the model, not to find the zero; try a "
+                       "model that describes both sides, or hold it with fixed="
+                       f"{{'{name}': ...}} or bounds={{'{name}': (lo, hi)}}")
+    return out
 
 
 def turns_offset_start(turns, z, force, torque=None):
@@ -317,8 +346,9 @@ def drop_unused(params, optional, rot, si, model, inter, thermal, xi_is_bending)
             "in vary explicitly to fit it anyway" for name in unused]
 
 
-def _turns_starts(data, params, groups):
-    """Start the turns offsets not given; ``(turns offset per molecule, notes)``."""
+def _turns_starts(data, params, groups, located):
+    """Start the turns offsets not given; ``(turns offset per molecule, notes)``; the
+    channels' values go into ``located`` (name -> {channel: value})."""
     notes, n0 = [], np.zeros(data.n_molecules)
     for p in params.values():
         if p.kind != "turns_offset" or p.molecule is None:
@@ -328,6 +358,7 @@ def _turns_starts(data, params, groups):
             tq = None if data.torque is None else data.torque[g]
             p.value, how, found = turns_offset_start(data.turns[g], data.extension[g],
                                                      data.force[g], tq)
+            located[p.name] = found
             others = ", ".join(f"{k}: {v:.3g}" for k, v in found.items() if k != how)
             notes.append(f"{p.name} starts at {p.value:.4g} turn from the {how}"
                          + (f" (other channels: {others})" if others else ""))
@@ -335,11 +366,13 @@ def _turns_starts(data, params, groups):
     return n0, notes
 
 
-def start_from_data(data, params, dna):
+def start_from_data(data, params, dna, located=None):
     """Start values not given, from the data: the turns offsets (:func:`turns_offset_start`),
-    then a varied length (:func:`length_start`). Returns the notes saying what was used."""
+    then a varied length (:func:`length_start`). Returns the notes saying what was used;
+    the turns channels' values go into the dict ``located`` if given (for
+    :func:`turns_runaway_messages` after the fit)."""
     groups = data.groups()
-    n0, notes = _turns_starts(data, params, groups)
+    n0, notes = _turns_starts(data, params, groups, {} if located is None else located)
     length = params.get("length")
     if length is None or not length.vary or length.given:
         return notes

@@ -17,6 +17,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil import display
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import marko2007 as _mk
 from supercoil.core.dna.interface import SHORT_TAIL_PERSISTENCE_LENGTHS
@@ -68,9 +69,9 @@ class Marko2007(DNAModel):
     OPTIONS: ClassVar[dict] = {"end_loop": False}
 
     def __repr__(self):
-        P = self.values["plectoneme_twist_persistence"] * 1e9
+        P = display.text(self.values["plectoneme_twist_persistence"], "length")
         w = self.values["end_loop_writhe"]
-        return (f"Marko2007(plectoneme_twist_persistence={P:.6g} nm, end_loop_writhe={w:g}, "
+        return (f"Marko2007(plectoneme_twist_persistence={P}, end_loop_writhe={w:g}, "
                 f"end_loop={self.end_loop})")
 
     def has_free_energy(self, thermal: bool) -> bool:
@@ -114,8 +115,9 @@ class Marko2007(DNAModel):
         limit = LOW_FORCE_FACTOR * dna.kT / dna.bending_persistence
         f = np.asarray(force, float)
         if np.any(f < limit):
-            return [f"marko2007: force {np.min(f) * 1e12:.4g} pN is below "
-                    f"{LOW_FORCE_FACTOR:g} kT/A = {limit * 1e12:.4g} pN, where the high-force "
+            return [f"marko2007: force {display.text(np.min(f), 'force', '.4g')} is below "
+                    f"{LOW_FORCE_FACTOR:g} kT/A = {display.text(limit, 'force', '.4g')}, where "
+                    "the high-force "
                     "expansions g(F) and c_s(F) err by more than 2 % (z/L) and 5 % (c_s)"]
         return []
 
