@@ -52,8 +52,9 @@ def test_bouchiat_inversion_and_g_prime():
     np.testing.assert_allclose(dg, x, rtol=1e-7)
 
 
-@pytest.mark.parametrize("phase", ["stretched", "stretched-marko", "plectoneme", "melted",
-                                   "tail", "loop", "loop-constant"])
+@pytest.mark.parametrize("phase", ["stretched", "stretched-marko", "stretched-tension",
+                                   "stretched-tension-marko", "plectoneme", "melted", "tail",
+                                   "tail-tension", "loop", "loop-constant"])
 def test_phase_derivatives_match_finite_differences(phase):
     F = np.array([0.3, 1.0, 2.0]) * PN
     M = np.array([-9.0, 4.0, 12.0]) * PNNM
@@ -64,10 +65,15 @@ def test_phase_derivatives_match_finite_differences(phase):
             return ph.stretched_gibbs(F, M, 45 * NM, 100 * NM, KT, 2.5)
         if phase == "stretched-marko":
             return ph.stretched_gibbs(F, M, 45 * NM, 100 * NM, KT, 1.0, False, False)
+        if phase.startswith("stretched-tension"):
+            return ph.stretched_gibbs(F, M, 45 * NM, 100 * NM, KT, 2.5, "marko" not in phase,
+                                      effective_tension=True)
         if phase == "plectoneme":
             return ph.plectoneme_gibbs(F, M, 13 * NM, 0.3, 10 * PNNM, KT)
         if phase == "melted":
             return ph.simple_melted_gibbs(F, M, 3e-12, 0.2, -1.76e9)
+        if phase == "tail-tension":
+            return en.tail_gibbs(F, M, par._replace(effective_tension=True))[0]
         t = en.tail_gibbs(F, M, par)[0]
         if phase == "tail":
             return t
@@ -116,10 +122,14 @@ CASES = {  # (turns, force): stretched, positive coexistence, negative (melting 
 
 
 @pytest.mark.parametrize("case", list(CASES))
-@pytest.mark.parametrize("finite_size", [True, False])
-def test_extension_torque_are_derivatives_of_G_and_maxwell_holds(case, finite_size):
+@pytest.mark.parametrize(("finite_size", "effective_tension"),
+                         [(True, False), (False, False), (True, True), (False, True)])
+def test_extension_torque_are_derivatives_of_G_and_maxwell_holds(case, finite_size,
+                                                                 effective_tension):
+    """Every phase and coexistence, with the stretched phase as shipped and at the
+    Moroz-Nelson effective tension (ensemble.md#211-effective-tension)."""
     N0, F0 = CASES[case]
-    par = _par(finite_size=finite_size)
+    par = _par(finite_size=finite_size, effective_tension=effective_tension)
     hN, hF = 1e-3, 1e-4 * F0 * PN
     # one call for the point and the eight stencil points of the two differences
     steps = np.array([0.0, 1.0, -1.0, 2.0, -2.0])

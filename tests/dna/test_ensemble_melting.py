@@ -112,11 +112,13 @@ def test_non_positive_melted_twist_stiffness_is_named():
         ml.tail_melted_gibbs(1 * PN, -10 * PNNM, _par(melt_twist_stiffness=-1 * NM))
 
 
+@pytest.mark.parametrize("effective_tension", [False, True])
 @pytest.mark.parametrize("case", [(-20.0, 2.0), (-24.0, 0.75)])
-def test_ensemble_maxwell_with_the_melted_phase(case):
-    """<M> = dG/dN / 2 pi and <z> = -dG/dF (so Maxwell holds) with every new term on."""
+def test_ensemble_maxwell_with_the_melted_phase(case, effective_tension):
+    """<M> = dG/dN / 2 pi and <z> = -dG/dF (so Maxwell holds) with every new term on, the
+    stretched phase as shipped or at the effective tension."""
     N0, F0 = case
-    par = _par(nodes=12, **VARIANTS["all"])
+    par = _par(nodes=12, effective_tension=effective_tension, **VARIANTS["all"])
     hN, hF = 1e-3, 1e-4 * F0 * PN
     k = np.array([1, -1, 2, -2])
     # one vectorised call: the point, four steps in N, four in F

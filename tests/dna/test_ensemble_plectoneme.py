@@ -75,9 +75,11 @@ def test_table_is_the_screened_equilibrium_at_fixed_tension():
     np.testing.assert_allclose(dT[sel], tk[sel], rtol=2e-3)
 
 
+@pytest.mark.parametrize("effective_tension", [False, True])
 @pytest.mark.parametrize(("N0", "F0"), [(14.0, 1.0), (-24.0, 0.75)])
-def test_ensemble_with_derived_plectoneme_obeys_maxwell(N0, F0):
-    m = get_model("ensemble").replace(screened_plectoneme=True)
+def test_ensemble_with_derived_plectoneme_obeys_maxwell(N0, F0, effective_tension):
+    m = get_model("ensemble").replace(screened_plectoneme=True,
+                                      effective_tension=effective_tension)
     par = m.kernel_parameters(_dna().si)._replace(nodes=16, max_domains=1)
     N, F = np.array([N0]), np.array([F0 * PN])
 

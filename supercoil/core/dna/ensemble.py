@@ -77,6 +77,8 @@ class EnsembleParameters(NamedTuple):
     #: (M_k, T_k, tau_k) of a superhelix at fixed torque (phases.tabulated_plectoneme_gibbs)
     #: in place of the power law P(M); None: the power law
     plectoneme_table: tuple | None = None
+    #: the stretched phase at the Moroz-Nelson effective tension (phases.effective_tension_gibbs)
+    effective_tension: bool = False
 
 
 class EnsemblePoints(NamedTuple):
@@ -98,7 +100,7 @@ def tail_gibbs(F, M, par, wlc=None):
     Returns ``(PhaseGibbs, theta)`` (theta the melted fraction).
     """
     s = _ph.stretched_gibbs(F, M, par.A, par.C, par.kT, par.softening, par.exact_wlc,
-                            par.resummed, wlc)
+                            par.resummed, wlc, par.effective_tension)
     if not np.isfinite(par.melt_energy):
         return s, np.zeros(np.shape(s.phi))
     m = _melt.tail_melted_gibbs(F, M, par)  # the melted phase (melting.py)

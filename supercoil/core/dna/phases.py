@@ -9,7 +9,8 @@ B-DNA contour length ``phi(F, M)`` (J/m) with
 * ``d2phi/dM2 = -dOmega/dM`` (negative: the phase is torsionally stable).
 
 Phases here: the stretched worm-like chain with the exact Bouchiat force-extension
-and the resummed Moroz-Nelson twist stiffness (:func:`stretched_gibbs`), a
+and the resummed Moroz-Nelson twist stiffness (:func:`stretched_gibbs`; or at the
+Moroz-Nelson effective tension, :func:`effective_tension_gibbs`), a
 plectoneme whose effective twist stiffness grows with torque
 (:func:`plectoneme_gibbs`), the plectoneme of a superhelix tabulated at fixed torque
 (:func:`tabulated_plectoneme_gibbs`), a simple torque-melted phase
@@ -28,7 +29,11 @@ from scipy.optimize import elementwise
 
 __all__ = [
     "BOUCHIAT_COEFFICIENTS",
+    "EFFECTIVE_TENSION_FLOOR",
+    "MARKO_TENSION_FLOOR",
     "PhaseGibbs",
+    "effective_tension",
+    "effective_tension_gibbs",
     "end_loop_gibbs",
     "plectoneme_gibbs",
     "simple_melted_gibbs",
@@ -108,7 +113,7 @@ def wlc_exact_free_energy_gain(force, A, kT, slope=False):
 
 
 def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed=True,
-                    wlc=None):
+                    wlc=None, effective_tension=False):
     """Stretched, twisted worm-like chain ``phi_s = -g(F) - M^2 / (2 kT c_s(F))``.
 
     Implements docs/theory/ensemble.md (E1).
@@ -119,7 +124,11 @@ def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed
     ``exact``: Bouchiat's g(F); else Marko's ``g = F - sqrt(kT F / A)``
     [ensemble.md#21-stretched]. ``wlc``: ``(g, x)`` precomputed by
     :func:`wlc_exact_free_energy_gain` at these forces (saves its root solve).
+    ``effective_tension``: the chain at the Moroz-Nelson effective tension instead
+    (:func:`effective_tension_gibbs`; ``resummed`` and ``wlc`` unused).
     """
+    if effective_tension:
+        return effective_tension_gibbs(force, torque, A, C, kT, softening, exact)
     F, M = np.broadcast_arrays(np.asarray(force, float), np.asarray(torque, float))
     root = np.sqrt(kT / (A * F))
     if exact and wlc is not None:
@@ -139,6 +148,97 @@ def stretched_gibbs(force, torque, A, C, kT, softening=1.0, exact=True, resummed
     q = 1.0 / kT
     return PhaseGibbs(-g - 0.5 * q * inv_c * M**2, -x - 0.5 * q * dinv_dF * M**2,
                       -q * inv_c * M, -q * inv_c + 0.0 * M)
+
+
+#: the continuation of the effective-tension phase starts below this reduced tension
+#: ``F_eff A / kT``: with the exact WLC the ensemble model's lowest force (0.25, where
+#: x = 0.16); with Marko's g 1 (x = 1/2; his x is 0 at 0.25)
+EFFECTIVE_TENSION_FLOOR = 0.25
+MARKO_TENSION_FLOOR = 1.0
+
+
+_TABLE_LOG_F = np.linspace(np.log(EFFECTIVE_TENSION_FLOOR), np.log(1e12), 2400)
+
+
+def _table_x():
+    x = np.linspace(0.0, 1.0 - 1e-7, 200001)
+    return np.interp(_TABLE_LOG_F, np.log(np.maximum(_bouchiat_reduced_force(x), 1e-300)), x)
+
+
+_TABLE_X = _table_x()
+
+
+_A = BOUCHIAT_COEFFICIENTS
+
+
+def _h_and_slope(x):
+    """``h(x) = F A / kT`` of the Bouchiat interpolation and ``h'(x)``, by Horner (the
+    same polynomial as :func:`_bouchiat_reduced_force`, faster)."""
+    u = 1.0 / (1.0 - x)
+    p = _A[5]
+    dp = 7.0 * _A[5]
+    for i in range(4, -1, -1):  # p = sum a_i x^(i-2) for i = 2..7; dp = sum i a_i x^(i-2)
+        p = p * x + _A[i]
+        dp = dp * x + (i + 2) * _A[i]
+    return x + 0.25 * (u * u - 1.0) + p * x * x, 1.0 + 0.5 * u**3 + dp * x
+
+
+def _wlc_newton(f):
+    """``x`` with ``h(x) = f`` of the Bouchiat interpolation for ``f >= 0.25``: a start
+    interpolated in ``ln f`` (beyond 1e12 the high-force ``1 - 1/(2 sqrt f)``), then
+    Newton steps on ``h(x)^(-1/2) = f^(-1/2)`` (h monotone on ``0 <= x < 1``) to round-off."""
+    lf = np.log(f)
+    x = np.where(lf < _TABLE_LOG_F[-1], np.interp(lf, _TABLE_LOG_F, _TABLE_X),
+                 1.0 - 0.5 / np.sqrt(f))
+    r = 1.0 / np.sqrt(f)
+    for _ in range(3):  # on h^(-1/2) - f^(-1/2), nearly linear in x where x -> 1
+        h, dh = _h_and_slope(x)
+        sh = np.sqrt(h)
+        x = np.clip(x + (1.0 / sh - r) * 2.0 * h * sh / dh, 0.0, 1.0 - 1e-13)
+    return x, _h_and_slope(x)[1]
+
+
+def effective_tension(force, torque, A, kT, softening=1.0):
+    """Moroz-Nelson effective tension ``F_eff = F - k M^2 / (4 kT A)`` (N)."""
+    return np.asarray(force, float) - softening * np.asarray(torque, float) ** 2 / (4.0 * kT * A)
+
+
+def effective_tension_gibbs(force, torque, A, C, kT, softening=1.0, exact=True):
+    """Stretched chain at the effective tension ``phi_s = -F + W(F_eff) - M^2/(2 kT C)``.
+
+    Implements docs/theory/ensemble.md (E1').
+
+    ``W(F) = F - g(F)`` is the chain's bending-fluctuation free energy (Bouchiat's g, or
+    Marko's ``W = sqrt(kT F / A)`` for ``exact=False``, which is Moroz & Nelson's
+    closed form); ``F_eff`` from :func:`effective_tension` with ``k`` = ``softening``,
+    so ``x = -dphi/dF = x_WLC(F_eff)``. Below the floor ``F_c``
+    (:data:`EFFECTIVE_TENSION_FLOOR` or :data:`MARKO_TENSION_FLOOR` times kT/A; the
+    torque-induced instability is at ``F_eff = 0``) the extension is continued as
+    ``x = x_c exp((F_eff - F_c) x'_c / x_c)``, with ``x`` and ``x'`` continuous: it
+    stays in ``[0, x_c]``, ``W' = 1 - x > 0`` and ``W'' = -x' < 0``, so phi is finite
+    and concave in M (``d2phi/dM2 < 0``) for every torque [ensemble.md#211-effective-tension].
+    """
+    F, M = np.broadcast_arrays(np.asarray(force, float), np.asarray(torque, float))
+    Fc = (EFFECTIVE_TENSION_FLOOR if exact else MARKO_TENSION_FLOOR) * kT / A
+    Fe = effective_tension(F, M, A, kT, softening)
+    Fk = np.maximum(Fe, Fc)
+    if exact:  # the exact WLC at Fk (as wlc_exact_free_energy_gain, Newton's inversion)
+        f = Fk * A / kT
+        x, dh = _wlc_newton(f)
+        W = Fk - (f * x - _bouchiat_reduced_work(x)) * kT / A
+        dx = A / (kT * dh)
+    else:
+        root = np.sqrt(kT / (A * Fk))
+        W, x, dx = Fk * root, 1.0 - 0.5 * root, 0.25 * root / Fk
+    d = np.minimum(Fe - Fc, 0.0)  # 0 above the floor: the chain itself
+    lam = x / dx
+    e = np.exp(d / lam)
+    W = W + d - lam * x * (e - 1.0)  # int_Fc^Fe (1 - x) dF' of the continued x
+    x, dx = x * e, dx * e
+    s = softening / (2.0 * kT * A)  # -dF_eff/dM = s M
+    q = 1.0 / (kT * C)
+    return PhaseGibbs(-F + W - 0.5 * q * M**2, -x, -(1.0 - x) * s * M - q * M,
+                      -dx * (s * M) ** 2 - (1.0 - x) * s - q)
 
 
 def plectoneme_gibbs(force, torque, P0, exponent, M0, kT):

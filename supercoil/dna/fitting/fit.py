@@ -42,6 +42,7 @@ from supercoil.dna.fitting.prepare import (
 )
 from supercoil.dna.fitting.result import FitResult
 from supercoil.dna.fitting.solution import FitSolution
+from supercoil.dna.fitting.spread import spread_nodes
 from supercoil.dna.validity import check_dna
 from supercoil.exceptions import (
     BoundWarning,
@@ -209,6 +210,10 @@ def _curve_cost(prob, u):
     dna, model, inter = prob.fitted(u)
     turns = prob.data.turns - prob.unpack(u)[3][prob.data.mol_index]
     force = prob.data.force * prob.scale("force_scale", u)
+    spread = prob.scale("force_spread", u)
+    if spread:  # the node points of the average (docs/theory/fitting.md)
+        turns, force, factor = spread_nodes(turns, force, spread)
+        force = force * factor
     n, c0 = 0, time.process_time()
     while n < 50 and (n == 0 or time.process_time() - c0 < 0.02):
         model.points(turns, force, dna, prob.thermal, inter, None)

@@ -14,8 +14,9 @@ A parameter is one of
 * a nuisance offset of one molecule (``turns_offset[<molecule>]``,
   ``extension_offset[<molecule>]``; ``owner="offset"``, ``shared="per-molecule"``);
 * a calibration nuisance parameter (:data:`CALIBRATION`: ``torque_scale``,
-  ``force_scale``; ``owner="calibration"``), shared by all points, fixed at 1
-  unless varied (docs/theory/fitting.md#calibration-nuisance-parameters).
+  ``force_scale``, ``force_spread``; ``owner="calibration"``), shared by all points,
+  held at its off value (:data:`CALIBRATION_OFF`: 1, 1, 0) unless varied
+  (docs/theory/fitting.md#calibration-nuisance-parameters).
 
 Plausible limits
 ----------------
@@ -37,9 +38,10 @@ import numpy as np
 import pandas as pd
 
 from supercoil import display
+from supercoil.dna.fitting.spread import FORCE_SPREAD_MAX, FORCE_SPREAD_START
 from supercoil.units import ureg
 
-__all__ = ["CALIBRATION", "DNA_FIELDS", "PLAUSIBLE", "SHARING", "FitParameter",
+__all__ = ["CALIBRATION", "CALIBRATION_OFF", "DNA_FIELDS", "PLAUSIBLE", "SHARING", "FitParameter",
            "FitParameters", "calibration_parameter", "display_factor"]
 
 #: DNA fields that can be fitted (shared by all forces and molecules).
@@ -66,8 +68,8 @@ PLAUSIBLE = {
     "extension_offset": (-_INF, _INF, "no limit"),
 }
 
-#: Calibration nuisance parameters (dimensionless, default 1 = off): name -> (the channels
-#: it acts on, plausible low, plausible high, definition);
+#: Calibration nuisance parameters (dimensionless, off at :data:`CALIBRATION_OFF`): name ->
+#: (the channels it acts on, plausible low, plausible high, definition);
 #: docs/theory/fitting.md#calibration-nuisance-parameters. The measured channel and its
 #: sigmas are never rescaled: the model's prediction of the measurement is.
 CALIBRATION = {
@@ -77,20 +79,42 @@ CALIBRATION = {
     "force_scale": ("extension and torque", 0.5, 2.0,
                     "true force = force_scale x nominal force: the model is evaluated at "
                     "force_scale x the data's force"),
+    "force_spread": ("extension and torque", -_INF, FORCE_SPREAD_MAX,
+                     "relative standard deviation of the true force between the molecules "
+                     "whose curves were averaged: the model is the Gauss-Hermite average over "
+                     "true force = force_scale x nominal force x (1 + force_spread x xi), xi "
+                     "standard normal (supercoil.dna.fitting.spread)"),
 }
-_CALIBRATION_SOURCE = ("choice: a calibration off by more than a factor 2 is not a "
-                       "calibration error")
+#: the value at which each calibration parameter changes nothing (the default)
+CALIBRATION_OFF = {"torque_scale": 1.0, "force_scale": 1.0, "force_spread": 0.0}
+_CALIBRATION_SOURCE = {
+    "torque_scale": "choice: a calibration off by more than a factor 2 is not a calibration "
+                    "error",
+    "force_scale": "choice: a calibration off by more than a factor 2 is not a calibration "
+                   "error",
+    "force_spread": "the upper bound: the lowest Gauss-Hermite node force at 10 % of the "
+                    "nominal force",
+}
 
 
-def calibration_parameter(name, value=1.0, vary=True) -> FitParameter:
+def calibration_parameter(name, value=None, vary=True) -> FitParameter:
     """The :class:`FitParameter` of the calibration parameter ``name`` (see :data:`CALIBRATION`).
 
-    Bounded below by 0 (exclusive), plausible within a factor 2 of 1.
+    The scales are bounded below by 0 (exclusive) and plausible within a factor 2
+    of 1. ``force_spread`` is bounded to ``[0, FORCE_SPREAD_MAX]``; varied from
+    its off value 0 it starts at ``FORCE_SPREAD_START`` (the model is even in the
+    spread, so its derivative vanishes at 0). ``value`` defaults to the off value.
     """
     lo, hi = CALIBRATION[name][1:3]
-    return FitParameter(name, float(value), "", vary=vary, min=0.0, max=_INF, kind=name,
+    value = CALIBRATION_OFF[name] if value is None else float(value)
+    upper = _INF
+    if name == "force_spread":
+        upper = FORCE_SPREAD_MAX
+        if vary and value == 0.0:
+            value = FORCE_SPREAD_START
+    return FitParameter(name, value, "", vary=vary, min=0.0, max=upper, kind=name,
                         owner="calibration", plausible=(lo, hi),
-                        plausible_source=_CALIBRATION_SOURCE, scale=1.0)
+                        plausible_source=_CALIBRATION_SOURCE[name], scale=1.0)
 
 
 @functools.lru_cache(maxsize=256)

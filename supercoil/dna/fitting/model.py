@@ -17,10 +17,13 @@ residual vector is ``[(z_model - z) / sigma_z, (tau_model - tau) / sigma_tau]``
 channels, the extension offsets on the extensions only.
 
 Calibration nuisance parameters (docs/theory/fitting.md#calibration-nuisance-parameters,
-:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`; both 1 unless given):
+:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`; off unless given):
 the kernel is evaluated at ``force_scale x`` the data's (nominal) force, and the
 measured torque is predicted as ``tau_model / torque_scale`` (model torque =
 torque_scale x measured torque); the data and their sigmas are never rescaled.
+With a ``force_spread`` s > 0 the kernel points are the Gauss-Hermite average over
+the true forces ``force_scale x F x (1 + s xi)`` (:mod:`supercoil.dna.fitting.spread`:
+one kernel call at all nodes); at s = 0 the kernel is called exactly as without it.
 
 Numerics
 --------
@@ -50,6 +53,8 @@ from collections import OrderedDict
 
 import numpy as np
 
+from supercoil.dna.fitting.fit_parameters import CALIBRATION_OFF
+from supercoil.dna.fitting.spread import spread_average, spread_nodes
 from supercoil.dna.models.base import HatPoints
 from supercoil.exceptions import FitError, NoEquilibriumError, ValidityError
 from supercoil.units import BOLTZMANN
@@ -184,8 +189,9 @@ class HatCurveModel:
         self._jac = None
 
     def scale(self, name, u):
-        """The calibration parameter ``name`` (``"force_scale"``, ``"torque_scale"``) at ``u``."""
-        j, value = self._calibration.get(name, (None, 1.0))
+        """The calibration parameter ``name`` (``"force_scale"``, ``"torque_scale"``,
+        ``"force_spread"``) at ``u`` (its off value when not in the fit)."""
+        j, value = self._calibration.get(name, (None, CALIBRATION_OFF[name]))
         return value if j is None else float(u[j] * self.free[j].scale)
 
     def channels(self, pts, torque_scale=1.0):
@@ -258,16 +264,28 @@ class HatCurveModel:
     def kernel_at(self, turns, force, u):
         """Kernel points at ``u``: one call, or one per force with per-force parameters.
 
-        ``force`` is the data's nominal force: the kernel sees ``force_scale x force``.
+        ``force`` is the data's nominal force: the kernel sees ``force_scale x force``,
+        with a force spread the node forces ``force_scale x force x (1 + s xi_k)`` and the
+        points are their average.
         """
         fs = self.scale("force_scale", u)
+        spread = self.scale("force_spread", u)
+        if spread == 0.0:
+            return self._kernel_at(turns, force, fs, u)
+        turns_k, force_k, factor = spread_nodes(turns, force, spread)
+        return spread_average(self._kernel_at(turns_k, force_k, fs * factor, u), len(turns))
+
+    def _kernel_at(self, turns, force, fs, u):
+        """Kernel points at ``force x fs`` (``fs`` scalar or per point), grouped by the
+        nominal ``force`` for per-force parameters."""
         if not self._per_force:
             dna, model, inter = self.unpack(u)[:3]
             return self.kernel(turns, force * fs, dna, model, inter)
         out = None
         for f in np.unique(force):
             sel = force == f
-            pts = self.kernel(turns[sel], force[sel] * fs, *self.unpack(u, f)[:3])
+            pts = self.kernel(turns[sel], force[sel] * (fs[sel] if np.ndim(fs) else fs),
+                              *self.unpack(u, f)[:3])
             if out is None:  # arrays only (a kernel's summary, a tuple, covers its own call)
                 out = [None if a is None or isinstance(a, tuple)
                        else np.empty(len(turns), np.asarray(a).dtype) for a in pts]

@@ -6,6 +6,7 @@ import numpy as np
 
 from supercoil import display
 from supercoil.dna.fitting.result import fmt_pm
+from supercoil.dna.fitting.spread import spread_average, spread_nodes
 from supercoil.exceptions import SupercoilError
 
 __all__ = ["plot_comparison", "plot_fit", "save_figure"]
@@ -35,8 +36,14 @@ def _curve(result, force, grid, field="extension"):
     if c.states:  # per-force parameters: the molecule and model at this force
         dna, model, inter = c.states[float(force)]
     scale = c.calibration  # docs/theory/fitting.md#calibration-nuisance-parameters
-    pts = model.points(grid, np.full_like(grid, force * scale.get("force_scale", 1.0)), dna,
-                       result.thermal, inter, None)
+    spread = scale.get("force_spread", 0.0)
+    f = np.full_like(grid, force * scale.get("force_scale", 1.0))
+    if spread:  # the average over the molecules' true forces
+        turns, f, factor = spread_nodes(grid, f, spread)
+        pts = spread_average(model.points(turns, f * factor, dna, result.thermal, inter, None),
+                             len(grid))
+    else:
+        pts = model.points(grid, f, dna, result.thermal, inter, None)
     if field == "extension":
         return _nm(pts.extension)
     return _pn_nm(getattr(pts, field)) / scale.get("torque_scale", 1.0)

@@ -9,7 +9,8 @@ in ``fixed``), the parameters the DNA model and the interaction declare
 ``turns_offset`` / ``extension_offset`` (all molecules) or
 ``turns_offset[<molecule>]`` (one molecule), and the calibration scales
 (:data:`~supercoil.dna.fitting.fit_parameters.CALIBRATION`: ``torque_scale``,
-``force_scale``; held at 1 unless varied or fixed).
+``force_scale``, ``force_spread``; held at their off values 1, 1, 0 unless varied or
+fixed).
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from supercoil.dna.fitting import start as _start
 from supercoil.dna.fitting.data import RotationData
 from supercoil.dna.fitting.fit_parameters import (
     CALIBRATION,
+    CALIBRATION_OFF,
     DNA_FIELDS,
     PLAUSIBLE,
     FitParameter,
@@ -34,6 +36,7 @@ from supercoil.dna.fitting.fit_parameters import (
 )
 from supercoil.dna.fitting.model import dna_si
 from supercoil.dna.fitting.options import DEFAULT_VARY, DEFAULTS, FitOptions, FitSpec
+from supercoil.dna.fitting.spread import check_force_spread
 from supercoil.dna.fitting.weights import check_sigma_scale, checked_sigma
 from supercoil.dna.interactions import DEFAULT_INTERACTION, get_interaction
 from supercoil.dna.models import get_model
@@ -176,7 +179,9 @@ def _apply_fixed(fixed, names, vary, values, n0, z0):
                                f"{plain(value)}", argument="fixed")
             values[("dna", base)] = v
         elif owner in ("model", "interaction", "calibration"):
-            if owner == "calibration" and not (np.isfinite(v) and v > 0):
+            if base == "force_spread":
+                check_force_spread(v)
+            elif owner == "calibration" and not (np.isfinite(v) and v > 0):
                 raise FitError(f"the fixed value of {name} must be finite and positive, got "
                                f"{plain(value)}", argument="fixed")
             values[(owner, base)] = v
@@ -194,6 +199,8 @@ def _apply_start(start, names, vary, values, n0, z0):
             if base not in vary:
                 raise FitError(f"a start value is given for {name!r}, which is not varied",
                                argument="start")
+            if base == "force_spread":
+                check_force_spread(v)
             values[(owner, base)] = v
             continue
         table = n0 if base == "turns_offset" else z0
@@ -254,10 +261,10 @@ def _add_per_force_offsets(params, data, i, label, entry, source):
 
 
 def _fixed_calibration(params, vary, values, data):
-    """A fixed calibration scale other than 1 as a fixed parameter; FitError for a torque
-    scale without torque data."""
+    """A fixed calibration parameter other than its off value as a fixed parameter;
+    FitError for a torque scale without torque data."""
     for base in CALIBRATION:
-        if base not in vary and values[("calibration", base)] != 1.0:
+        if base not in vary and values[("calibration", base)] != CALIBRATION_OFF[base]:
             params.add(calibration_parameter(base, values[("calibration", base)], vary=False))
     if "torque_scale" in params and not data.has_torque:
         raise FitError("torque_scale scales the torque channel, but the data have no "
@@ -281,7 +288,7 @@ def build_parameters(data, dna, model, interaction, vary, fixed=None, bounds=Non
     values = {("dna", k): getattr(si, k) for k in (*DNA_FIELDS, "temperature")}
     values.update({("model", k): v for k, v in model.values.items()})
     values.update({("interaction", k): v for k, v in interaction.values.items()})
-    values.update({("calibration", k): 1.0 for k in CALIBRATION})
+    values.update({("calibration", k): CALIBRATION_OFF[k] for k in CALIBRATION})
     n_mol = len(data.labels)
     # per molecule: (value, given, free)
     n0 = [(0.0, False, bool(fit_turns_offset))] * n_mol

@@ -18,6 +18,7 @@ import numpy as np
 
 from supercoil.core.dna import ensemble as _en
 from supercoil.core.dna import equilibrium as _eq
+from supercoil.core.dna import phases as _ph
 from supercoil.dna.model_parameters import ModelParameter
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.exceptions import ModelError, ValidityError
@@ -136,7 +137,10 @@ class Ensemble(DNAModel):
     with the present defaults, docs/theory/ensemble.md#51-the-packages-public-fit), and
     ``screened_plectoneme`` (the plectoneme
     phase derived from the screened superhelix at the DNA's salt; default False: the
-    power law ``P(M)``).
+    power law ``P(M)``), and ``effective_tension`` (the stretched phase at the
+    Moroz-Nelson effective tension ``F - k M^2/(4 kT A)``,
+    docs/theory/ensemble.md#211-effective-tension; default False: the torque to second
+    order in ``c_s(F)``).
     """
 
     name: ClassVar[str] = "ensemble"
@@ -146,7 +150,7 @@ class Ensemble(DNAModel):
     OPTIONS: ClassVar[dict] = {"finite_size": True, "physical_loop": False, "exact_wlc": True,
                                "resummed": True, "melting": True, "multi_domain": False,
                                "ss_melted": False, "plectoneme_melting": False,
-                               "screened_plectoneme": False}
+                               "screened_plectoneme": False, "effective_tension": False}
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
             "twist_bend_softening", "", 2.25, 0.5, 8.0,
@@ -233,7 +237,8 @@ class Ensemble(DNAModel):
             plectoneme_melting=self.plectoneme_melting,
             plectoneme_table=superhelix_table(dna, v["plectoneme_charge_fraction"],
                                               v["plectoneme_confinement"])
-            if self.screened_plectoneme else None)
+            if self.screened_plectoneme else None,
+            effective_tension=self.effective_tension)
 
     def _buckling(self, force, dna, thermal, interaction):
         """Thermodynamic-limit buckling: turns, coexistence torque, slope (ensemble.md#4)."""
@@ -274,6 +279,27 @@ class Ensemble(DNAModel):
             zeta = np.where(tail > 0.0, pt.extension / tail, 0.0)
         return HatPoints(pt.extension, pt.torque, pt.plectoneme_length, phase,
                          tail < short_tail_length, zeta, pt.free_energy)
+
+    def _validity(self, turns, force, points, dna, thermal):
+        """With ``effective_tension``: where the reported torque puts the stretched phase
+        below the floor of its effective tension (its continuation, ensemble.md#211)."""
+        if not self.effective_tension or not thermal:
+            return []
+        k = self.values["twist_bend_softening"]
+        A, kT = dna.bending_persistence, dna.kT
+        torque = np.asarray(points.torque, float)
+        fe = _ph.effective_tension(force, torque, A, kT, k)
+        reduced = _ph.EFFECTIVE_TENSION_FLOOR if self.exact_wlc else _ph.MARKO_TENSION_FLOOR
+        floor = reduced * kT / A
+        bad = fe < floor
+        if not np.any(bad):
+            return []
+        i = int(np.flatnonzero(bad)[0])
+        return [f"ensemble model (effective_tension) at force {force[i] * 1e12:.6g} pN, turns "
+                f"{turns[i]:.6g}: torque {torque[i] * 1e21:.4g} pN nm leaves the stretched "
+                f"phase an effective tension F - k M^2/(4 kT A) = {fe[i] * 1e12:.4g} pN below "
+                f"its floor {floor * 1e12:.4g} pN (near the chain's torque-induced "
+                "instability at 0); there the phase is a continuation, not the worm-like chain"]
 
     def _free_energy(self, turns, force, dna, thermal, interaction):
         """G(N, F) = -kT ln Z in J (ensemble.md#32-fixed-turns)."""
