@@ -1,8 +1,9 @@
 """Force spread between averaged molecules: the Gauss-Hermite average of a model's points.
 
 A published rotation curve is often the average of the curves of several
-molecules, each under its own bead. The beads' magnetic moments differ, so at
-one nominal force the molecules feel different true forces. The calibration
+molecules, each held by its own bead or trapped particle. Their calibrations
+differ (a magnetic bead's moment, a trapped particle's size), so at one nominal
+force the molecules feel different true forces. The calibration
 nuisance parameter ``force_spread`` (``s``, dimensionless) is the relative
 standard deviation of that true force: with ``xi`` a standard normal variable,
 the model of the averaged curve is (docs/theory/fitting.md#force-spread-of-averaged-curves)::
