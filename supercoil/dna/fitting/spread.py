@@ -73,7 +73,7 @@ def check_force_spread(value):
         raise FitError(f"force_spread = {value!r} is outside [0, {FORCE_SPREAD_MAX:.4g}]: the "
                        f"{NODE_COUNT}-node Gauss-Hermite average needs every node force "
                        f"F (1 + force_spread x xi), xi down to {NODES.min():.4g}, at 10 % of "
-                       "F or more", argument="force_spread")
+                       "F or more")
     return s
 
 
