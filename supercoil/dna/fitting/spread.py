@@ -1,8 +1,9 @@
 """Force spread between averaged molecules: the Gauss-Hermite average of a model's points.
 
 A published rotation curve is often the average of the curves of several
-molecules, each under its own bead. The beads' magnetic moments differ, so at
-one nominal force the molecules feel different true forces. The calibration
+molecules, each held by its own bead or trapped particle. Their calibrations
+differ (a magnetic bead's moment, a trapped particle's size), so at one nominal
+force the molecules feel different true forces. The calibration
 nuisance parameter ``force_spread`` (``s``, dimensionless) is the relative
 standard deviation of that true force: with ``xi`` a standard normal variable,
 the model of the averaged curve is (docs/theory/fitting.md#force-spread-of-averaged-curves)::
@@ -72,7 +73,7 @@ def check_force_spread(value):
         raise FitError(f"force_spread = {value!r} is outside [0, {FORCE_SPREAD_MAX:.4g}]: the "
                        f"{NODE_COUNT}-node Gauss-Hermite average needs every node force "
                        f"F (1 + force_spread x xi), xi down to {NODES.min():.4g}, at 10 % of "
-                       "F or more", argument="force_spread")
+                       "F or more")
     return s
 
 
