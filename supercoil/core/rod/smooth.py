@@ -110,12 +110,18 @@ def _tilt_estimate(a4, k, m, s):
             d /= c  # k (1 - 2 s^2)^2 / c
             s2 += d
             f /= s2  # the step
-            s -= f
-            np.clip(s, 0.0, S_MAX, out=s)
-            np.abs(f, out=f)
-            if not np.any(f > 1e-8 * s):
+            if sine_step_converged(s, f):
                 break
         return np.arcsin(s)
+
+
+def sine_step_converged(s, step):
+    """One Newton step on ``s = sin(alpha)`` in place (``s -= step``, clipped to
+    ``[0, S_MAX]``); True once every step is below ``1e-8 s`` (``step`` is overwritten)."""
+    s -= step
+    np.clip(s, 0.0, S_MAX, out=s)
+    np.abs(step, out=step)
+    return not np.any(step > 1e-8 * s)
 
 
 def check_inputs(turns_abs, slack, L):

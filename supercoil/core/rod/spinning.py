@@ -79,7 +79,7 @@ import numpy as np
 
 from supercoil.core.numerics import bisect_from_estimate
 from supercoil.core.rod import contact as sc
-from supercoil.core.rod.smooth import BLOCK, S_MAX, small_tilt
+from supercoil.core.rod.smooth import BLOCK, S_MAX, sine_step_converged, small_tilt
 from supercoil.exceptions import NoHelixError
 
 TWO_PI = 2.0 * np.pi
@@ -160,10 +160,7 @@ def _tilt_estimate(p, q, k, s):
             np.multiply(4.0 * s, k, out=df)
             df += s2c  # p (3 s^2 c - s^4 / c) + q + 4 k s
             f /= df  # the step
-            s -= f
-            np.clip(s, 0.0, S_MAX, out=s)
-            np.abs(f, out=f)
-            if not np.any(f > 1e-8 * s):
+            if sine_step_converged(s, f):
                 break
         return np.arcsin(s)
 
