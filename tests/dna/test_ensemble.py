@@ -11,6 +11,7 @@ import pickle
 import numpy as np
 import pytest
 from scipy.optimize import least_squares
+from seed_kernels import KT, NM, PN, PNNM, ensemble_parameters
 
 import supercoil
 from supercoil.core.dna import end_loop as el
@@ -21,17 +22,11 @@ from supercoil.dna.models import get_model
 from supercoil.dna.models.ensemble import Ensemble
 from supercoil.exceptions import ModelError
 
-KT = 4.09e-21
-PN, NM, PNNM = 1e-12, 1e-9, 1e-21
 TWO_PI = 2 * np.pi
 
 
 def _par(**kw):
-    base = dict(length=1500 * NM, A=45 * NM, C=100 * NM, kT=KT, softening=2.0, P0=13 * NM,
-                exponent=0.25, M0=10 * PNNM, nucleation=3 * KT, writhe=1.0,
-                melt_energy=1.0 * KT / 0.34e-9, melt_cooperativity=12 * KT, nodes=40)
-    base.update(kw)
-    return en.EnsembleParameters(**base)
+    return ensemble_parameters(**kw)
 
 
 def _fd(f, x, h):

@@ -7,6 +7,7 @@ Gibbs free energies and of the ensemble's G(N, F); the Langevin function written
 
 import numpy as np
 import pytest
+from seed_kernels import KT, NM, PN, PNNM, ensemble_parameters
 
 import supercoil
 from supercoil.core.dna import ensemble as en
@@ -14,18 +15,13 @@ from supercoil.core.dna import melting as ml
 from supercoil.core.dna import phases as ph
 from supercoil.exceptions import ValidityError
 
-KT = 4.09e-21
-PN, NM, PNNM = 1e-12, 1e-9, 1e-21
 TWO_PI = 2 * np.pi
 
 
 def _par(**kw):
-    base = dict(length=1500 * NM, A=45 * NM, C=100 * NM, kT=KT, softening=2.0, P0=13 * NM,
-                exponent=0.25, M0=10 * PNNM, nucleation=3 * KT, writhe=1.0,
-                melt_energy=1.0 * KT / 0.34e-9, melt_cooperativity=12 * KT,
-                melt_extension=0.07, nodes=30, physical_loop=False)
-    base.update(kw)
-    return en.EnsembleParameters(**base)
+    """The melting tests' set: the linear melted phase at x_m = 0.07, 30 nodes, loop off."""
+    return ensemble_parameters(**{"melt_extension": 0.07, "nodes": 30, "physical_loop": False,
+                                  **kw})
 
 
 def _fd(f, x, h):

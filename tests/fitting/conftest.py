@@ -14,6 +14,19 @@ def base():
 
 
 @pytest.fixture(scope="module")
+def dna(base):
+    """The seed set under the name the result-convention and label tests use."""
+    return base
+
+
+@pytest.fixture(scope="module")
+def one_force_data(base):
+    """li-zhao curves at 1.2 pN, -20..20 turns (41 points), seed 1: no noise options."""
+    return sc.simulate_rotation_curves(base, [1.2] * sc.ureg.pN, np.linspace(-20, 20, 41),
+                                       seed=1)
+
+
+@pytest.fixture(scope="module")
 def true_dna(base):
     u = sc.ureg
     # not the defaults (86 nm, 1.75 nm): the fit has to move

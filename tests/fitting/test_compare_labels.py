@@ -16,16 +16,6 @@ from supercoil.dna.models import Marko2007
 u = sc.ureg
 
 
-@pytest.fixture(scope="module")
-def dna():
-    return sc.load_parameters("dna")
-
-
-@pytest.fixture(scope="module")
-def data(dna):
-    return sc.simulate_rotation_curves(dna, [1.2] * u.pN, np.linspace(-20, 20, 41), seed=1)
-
-
 def test_labels_carry_the_non_default_options_and_parameters():
     plain, looped = Marko2007(), Marko2007(end_loop=True)
     assert model_labels(["marko2007", looped]) == ["marko2007", "marko2007(end_loop=True)"]
@@ -43,15 +33,16 @@ def test_labels_carry_the_non_default_options_and_parameters():
 
 @pytest.mark.parametrize("models", [["marko2007", "marko2007"], ["marko2007", Marko2007()],
                                     [Marko2007(end_loop=True), Marko2007(end_loop=True)]])
-def test_the_same_model_twice_is_a_value_error(data, dna, models):
+def test_the_same_model_twice_is_a_value_error(one_force_data, dna, models):
     with pytest.raises(ValueError, match=r"models\[0\] and models\[1\] are the same model"):
-        sc.compare_models(data, dna, models)
+        sc.compare_models(one_force_data, dna, models)
 
 
-def test_one_row_and_one_result_per_model(data, dna):
+def test_one_row_and_one_result_per_model(one_force_data, dna):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", sc.SupercoilWarning)  # the fits' own diagnostics
-        comparison = sc.compare_models(data, dna, ["marko2007", Marko2007(end_loop=True)])
+        comparison = sc.compare_models(one_force_data, dna,
+                                       ["marko2007", Marko2007(end_loop=True)])
     table, results = comparison.table, comparison.results
     assert sorted(table["model"]) == ["marko2007", "marko2007(end_loop=True)"]
     assert sorted(results) == sorted(table["model"])

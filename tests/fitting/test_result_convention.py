@@ -19,24 +19,14 @@ u = sc.ureg
 
 
 @pytest.fixture(scope="module")
-def dna():
-    return sc.load_parameters("dna")
-
-
-@pytest.fixture(scope="module")
-def data(dna):
-    return sc.simulate_rotation_curves(dna, [1.2] * u.pN, np.linspace(-20, 20, 41), seed=1)
-
-
-@pytest.fixture(scope="module")
-def comparison(data, dna):
+def comparison(one_force_data, dna):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", sc.SupercoilWarning)  # the fits' own diagnostics
-        return sc.compare_models(data, dna, ["li-zhao", "marko2007"])
+        return sc.compare_models(one_force_data, dna, ["li-zhao", "marko2007"])
 
 
-def test_the_engine_returns_a_picklable_typed_solution(data, dna):
-    spec = prepare(data, dna)
+def test_the_engine_returns_a_picklable_typed_solution(one_force_data, dna):
+    spec = prepare(one_force_data, dna)
     solution = run_fit(spec)
     assert isinstance(solution, FitSolution)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -68,7 +58,7 @@ def test_compare_models_returns_one_comparison_with_the_cost_of_each_model(compa
 
 
 def test_old_call_sites_of_compare_models_still_work_with_a_deprecation_warning(
-        comparison, data, dna):
+        comparison, one_force_data, dna):
     with pytest.warns(DeprecationWarning, match=r"\.table"):
         assert list(comparison["model"]) == list(comparison.table["model"])
     with pytest.warns(DeprecationWarning, match=r"\.iloc"):
@@ -76,7 +66,7 @@ def test_old_call_sites_of_compare_models_still_work_with_a_deprecation_warning(
     assert len(comparison) == 2
     with pytest.warns(DeprecationWarning, match="return_results"), warnings.catch_warnings():
         warnings.simplefilter("ignore", sc.SupercoilWarning)
-        table, results = sc.compare_models(data, dna, ["li-zhao"], return_results=True)
+        table, results = sc.compare_models(one_force_data, dna, ["li-zhao"], return_results=True)
     assert list(results) == ["li-zhao"] and table["success"].all()
 
 
