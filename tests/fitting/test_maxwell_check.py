@@ -90,9 +90,57 @@ def test_the_fit_report_prints_it(marko):
     r = sc.fit_hat_curves(part, dna, vary=["twist_persistence"], model="marko2007",
                           fit_extension_offset=False)
     assert "Maxwell check +" in r.report()
+    assert "twist stiffness: C_eff" in r.report()  # with the fitted DNA's length
     r2 = sc.fit_hat_curves(part.drop(columns=["torque"]), dna, vary=["twist_persistence"],
                            model="marko2007", fit_extension_offset=False)
     assert "Maxwell" not in r2.report()
+
+
+def test_twist_stiffness_is_the_stretched_phases(marko):
+    """Before buckling marko2007's torque is exactly 2 pi kT c_s N / L with
+    c_s = C (1 - (C/4A) sqrt(kT/(AF))) (marko2007.md, M2): the check's C_eff, from the
+    data's torque channel alone, is that c_s at every force, within the noise."""
+    from supercoil.core.dna.marko2007 import stretched_twist_stiffness
+
+    dna = sc.load_parameters("dna").replace(length=2190 * sc.ureg.nm)
+    si = dna.si
+    t = sc.maxwell_check(marko, dna=dna).to_table()
+    assert t.attrs["units"]["twist_stiffness"] == "nm"
+    assert t.attrs["units"]["twist_slope"] == "pN nm/turn"
+    plus = t[t["side"] == "+"]
+    cs, _ = stretched_twist_stiffness(plus["force"].to_numpy() * 1e-12,
+                                      si.bending_persistence, si.twist_persistence, si.kT)
+    err = plus["twist_stiffness_error"].to_numpy()
+    assert np.all(err > 0) and np.all(err < 5)
+    np.testing.assert_allclose(plus["twist_stiffness"], cs * 1e9, atol=0, rtol=0.05)
+    assert np.all(np.abs(plus["twist_stiffness"] - cs * 1e9) < 4 * err + 0.5)
+    # the slope is the same number without a DNA: C_eff = L slope / (2 pi kT)
+    bare = sc.maxwell_check(marko).to_table()
+    assert bare["twist_stiffness"].isna().all()
+    np.testing.assert_allclose(
+        bare["twist_slope"] * 2190 / (2 * np.pi * si.kT * 1e21), t["twist_stiffness"],
+        rtol=1e-12)
+    # twice the torque: twice the stiffness; the length scales it, the noise does not
+    df = marko.copy()
+    df["torque"] *= 2.0
+    t2 = sc.maxwell_check(df, dna=dna.replace(length=4380 * sc.ureg.nm)).to_table()
+    np.testing.assert_allclose(t2["twist_stiffness"], 4 * t["twist_stiffness"], rtol=1e-9)
+
+
+def test_twist_stiffness_in_the_report_and_without_buckling(marko):
+    dna = sc.load_parameters("dna").replace(length=2190 * sc.ureg.nm)
+    check = sc.maxwell_check(marko, dna=dna)
+    (line,) = check.twist_lines()
+    assert line.count(" / ") == 2 * (len(FORCES) - 1) and "C_eff" in line
+    (scaled,) = check.twist_lines(torque_scale=0.5)
+    first = check.to_table()["twist_stiffness"].iloc[0]
+    assert f"C_eff {first:.1f} / " in line
+    assert f"x torque scale 0.5: {first * 0.5:.1f} / " in scaled
+    (bare,) = sc.maxwell_check(marko).twist_lines()
+    assert "pN nm/turn" in bare and "C_eff" not in bare
+    flat = marko[np.abs(marko["turns"]) < 3].reset_index(drop=True)  # no plateau: no window
+    t = sc.maxwell_check(flat, dna=dna).to_table()
+    assert t["twist_slope"].isna().all() and not sc.maxwell_check(flat).twist_lines()
 
 
 def test_real_curves_are_inconsistent_by_the_issues_factor(qian_s5):
@@ -103,3 +151,12 @@ def test_real_curves_are_inconsistent_by_the_issues_factor(qian_s5):
     assert 1.25 < s["ratio"] < 1.40  # measured: 1.34 (13.5 against 10.1 pN nm)
     assert s["torque_rise"] == pytest.approx(13.5, abs=0.5)
     assert s["slope_rise"] == pytest.approx(10.1, abs=0.3)
+    # before buckling the torque channel alone gives C_eff 69.6-90.0 nm at 0.3-2 pN with the
+    # fitted length (dna_qian2024_fit: L = 2249 nm, 298.15 K), rising with the force as
+    # Moroz-Nelson's with A = 41, C = 100 nm (74-88 nm); the fits' torque scale of about 0.7
+    # asks their stretched phase for 0.7 of it (docs/theory/ensemble.md#5-fit)
+    dna = sc.load_parameters("dna_qian2024_fit")
+    t = sc.maxwell_check(read_published_curves(qian_s5, points_per_force=30),
+                         dna=dna).to_table()
+    c = t[t["side"] == "+"]["twist_stiffness"].to_numpy()
+    assert np.all((c > 65) & (c < 95)) and c[-1] > c[0] + 10

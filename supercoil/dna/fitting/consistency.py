@@ -10,7 +10,11 @@ plateau torque ``tau_b(F)`` at every N, so the post-buckling slope is
 From the data alone, per force and side: the plateau torque and the buckling
 turns from a hinge fit of the torque (linear rise, then a plateau), the slope
 from a straight-line fit of the extension past buckling, in the same window
-the mean torque as ``tau_b``. The summary ratio is the rise of the plateau
+the mean torque as ``tau_b``. Per force also the twist stiffness of the stretched
+DNA from the same torque channel: the slope ``dtau/dN`` of a straight line
+through the torques before buckling on both sides, and, with a DNA of known
+length and temperature, ``C_eff = L (dtau/dN) / (2 pi kT)`` (the pre-buckling
+torque ``tau = 2 pi kT C_eff N / L``). The summary ratio is the rise of the plateau
 torque between the lowest and the highest force over the rise the slopes allow,
 ``[tau_b(F_max) - tau_b(F_min)] / [-(1/2 pi) integral slope dF]`` (trapezoid
 rule): 1 for consistent channels, ``k`` when the torque is k times the torque
@@ -37,7 +41,9 @@ _COLUMNS = {"force": "pN", "side": "", "centre": "turn", "buckling_turns": "turn
             "window_start": "turn", "window_end": "turn", "n_points": "", "slope": "nm/turn",
             "slope_error": "nm/turn",
             "plateau_torque": "pN nm", "plateau_torque_error": "pN nm",
-            "maxwell_slope": "nm/turn", "maxwell_slope_error": "nm/turn", "note": ""}
+            "maxwell_slope": "nm/turn", "maxwell_slope_error": "nm/turn",
+            "twist_slope": "pN nm/turn", "twist_slope_error": "pN nm/turn",
+            "twist_stiffness": "nm", "twist_stiffness_error": "nm", "note": ""}
 
 
 def _centre(turns, tau):
@@ -90,6 +96,21 @@ def _one_side(x, z, tau, margin, floor):
     t = tau[sel]
     return (xb, start, float(x[sel].max()), int(sel.sum()), slope, slope_err, float(t.mean()),
             float(t.std(ddof=1) / math.sqrt(len(t)))), ""
+
+
+def _twist(nn, tt, c, buckling, margin):
+    """``(dtau/dN, its standard error)`` before buckling, or NaNs with no plateau.
+
+    The straight line through the torques within ``(1 - margin)`` of the nearer
+    buckling turns on both sides of the centre ``c`` (at least 4 points).
+    """
+    xb = [b for b in buckling if np.isfinite(b)]
+    if c is None or not xb:
+        return np.nan, np.nan
+    sel = np.abs(nn - c) <= (1.0 - margin) * min(xb)
+    if sel.sum() < 4 or np.ptp(nn[sel]) <= 0:
+        return np.nan, np.nan
+    return _line(nn[sel], tt[sel])
 
 
 def _derivative(f, y, e):
@@ -152,8 +173,38 @@ class MaxwellCheck:
         return make_table(cols, {k: units[k] for k in cols},
                           provenance(check="maxwell", summary=self.summary))
 
-    def lines(self) -> list[str]:
-        """Report lines: the ratio per side with its error and the rises."""
+    def lines(self, torque_scale=None) -> list[str]:
+        """Report lines: the ratio per side with its error and the rises, then the
+        twist stiffness per force (:meth:`twist_lines`)."""
+        return [*self._ratio_lines(), *self.twist_lines(torque_scale)]
+
+    def twist_lines(self, torque_scale=None) -> list[str]:
+        """The pre-buckling twist stiffness per force (molecule): ``C_eff`` in nm
+        with a DNA, else the torque slope in pN nm/turn; with ``torque_scale``
+        (a fit's, model torque = scale x measured) also ``C_eff`` times it, the
+        stretched phase's stiffness that fit's model has to give."""
+        out = []
+        for label in dict.fromkeys(r.get("molecule") for r in self.rows):
+            part = [r for r in self.rows if r.get("molecule") == label and r["side"] == "+"
+                    and np.isfinite(r["twist_slope"])]
+            if not part:
+                continue
+            forces = " / ".join(f"{r['force']:g}" for r in part)
+            who = "" if label is None else f" ({label})"
+            if np.isfinite(part[0]["twist_stiffness"]):
+                vals = [r["twist_stiffness"] for r in part]
+                text = f"C_eff {' / '.join(f'{v:.1f}' for v in vals)} nm"
+                if torque_scale is not None and torque_scale != 1:
+                    text += (f"; x torque scale {torque_scale:.3g}: "
+                             f"{' / '.join(f'{v * torque_scale:.1f}' for v in vals)} nm")
+            else:
+                text = ("torque slope " + " / ".join(f"{r['twist_slope']:.3g}" for r in part)
+                        + " pN nm/turn")
+            out.append(f"    twist stiffness{who}: {text} at {forces} pN (the torque before "
+                       "buckling; docs/theory/fitting.md#maxwell-check)")
+        return out
+
+    def _ratio_lines(self) -> list[str]:
         out = []
         for key, s in self.summary.items():
             if not np.isfinite(s["ratio"]):
@@ -226,6 +277,9 @@ def _curves(rot, idx, margin, floor, label):
                 row["plateau_torque"] *= sgn
             row["note"] = note_side
             rows.append(row)
+        slope, err = _twist(nn, tt, c, [r["buckling_turns"] for r in rows[-2:]], margin)
+        for r in rows[-2:]:
+            r["twist_slope"], r["twist_slope_error"] = slope, err
     for side in ("+", "-"):
         part = [r for r in rows if r["side"] == side]
         ok = [r for r in part if not r["note"]]
@@ -239,7 +293,7 @@ def _curves(rot, idx, margin, floor, label):
     return rows
 
 
-def maxwell_check(data, *, margin=0.1, floor=0.2) -> MaxwellCheck:
+def maxwell_check(data, *, margin=0.1, floor=0.2, dna=None) -> MaxwellCheck:
     """How consistent the extension and torque channels of rotation curves are (data alone).
 
     Per force and side: the plateau torque ``tau_b`` and the post-buckling
@@ -259,6 +313,11 @@ def maxwell_check(data, *, margin=0.1, floor=0.2) -> MaxwellCheck:
     floor : float
         The window ends where the extension falls below this fraction of the
         extension at buckling.
+    dna : DNA, optional
+        The molecule's parameter set: its contour length and temperature turn
+        the pre-buckling torque slope into the twist stiffness ``C_eff`` (nm;
+        without it the ``twist_stiffness`` column is NaN and only the slope is
+        given).
 
     Returns
     -------
@@ -276,10 +335,19 @@ def maxwell_check(data, *, margin=0.1, floor=0.2) -> MaxwellCheck:
         raise DataError("maxwell_check needs a 'torque' column (pN nm) besides the extension")
     if not (0 <= float(margin) < 1 and 0 <= float(floor) < 1):
         raise DataError(f"margin and floor must lie in [0, 1), got {margin!r}, {floor!r}")
+    kt_length = None
+    if dna is not None:
+        si = dna.si
+        kt_length = (display.to_display(si.kT, "torque"),
+                     display.to_display(si.length, "extension"))
     rows, summary = [], {}
     for i, idx in enumerate(rot.groups()):
         label = rot.labels[i] if rot.has_molecule else None
         part = _curves(rot, idx, float(margin), float(floor), label)
+        for r in part:  # C_eff = L (dtau/dN) / (2 pi kT), nm
+            f = np.nan if kt_length is None else kt_length[1] / (_TWO_PI * kt_length[0])
+            r["twist_stiffness"] = f * r["twist_slope"]
+            r["twist_stiffness_error"] = f * r["twist_slope_error"]
         rows += part
         for side in ("+", "-"):
             key = side if label is None else f"{label} {side}"
@@ -291,7 +359,8 @@ def report_lines(result) -> list[str]:
     """The Maxwell-check lines of a fit report (none without torque data)."""
     if not result.spec.data.has_torque:
         return []
+    scale = result.solution.calibration.get("torque_scale", 1.0)
     try:
-        return maxwell_check(result.data).lines()
+        return maxwell_check(result.data, dna=result.dna).lines(torque_scale=scale)
     except DataError as exc:
         return [f"    Maxwell check      : not measurable ({exc})"]
