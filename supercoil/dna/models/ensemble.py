@@ -154,12 +154,11 @@ class Ensemble(DNAModel):
     parameters: ClassVar[dict[str, ModelParameter]] = {
         "twist_bend_softening": _p(
             "twist_bend_softening", "", 2.25, 1.0, 8.0,
-            "factor k on the Moroz-Nelson term of 1/c_s (1: Moroz-Nelson; >1 stands for "
-            "twist-bend coupling; lower bound 1: the writhe softening of the thermal "
-            "bending fluctuations themselves, which the exact worm-like chain only "
-            "raises, docs/theory/ensemble.md#211-effective-tension)",
-            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff; default 2.25: "
-            + _FIT),
+            "factor k on the Moroz-Nelson term of 1/c_s (1: Moroz-Nelson, the lower bound; "
+            ">1 stands for twist-bend coupling)",
+            "1: Moroz & Nelson, PNAS 94, 14418 (1997), resummed C_eff (the lower bound: the "
+            "writhe softening of the chain's own bending fluctuations, docs/theory/"
+            "ensemble.md#5-fit); default 2.25: " + _FIT),
         "plectoneme_twist_persistence_ref": _p(
             "plectoneme_twist_persistence_ref", "nm", 13.61e-9, 3e-9, 60e-9,
             "P0: the plectoneme's effective twist stiffness at the reference torque", _FIT),
