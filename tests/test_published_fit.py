@@ -48,3 +48,30 @@ def test_ensemble_fits_the_real_curves_with_its_fitted_defaults(curves):
                  sc.load_parameters("dna_150mM_nacl").replace(length=2190 * sc.ureg.nm))
     # the full fits differ by 857 (AIC) and 834 (BIC) at these 30 points per force
     assert ens.aic < marko.aic - 500 and ens.bic < marko.bic - 500
+
+
+def test_force_spread_at_the_moroz_nelson_floor_meets_every_target_but_c(curves):
+    """The force-spread fit from the default start at the default tolerance
+    (docs/theory/ensemble.md#5-fit, "The Moroz-Nelson floor": measured extension RMS
+    13.83 nm, torque 0.702 pN nm, A 40.6 nm, C 79.0 nm, k on its lower bound 1, turns
+    offset +0.04): the issue's targets except C (85-120 nm), which the extension channel
+    sets below the range once the spread rounds the transitions."""
+    dna = sc.load_parameters("dna_qian2024_fit")
+    vary = ["length", "bending_persistence", "twist_persistence", "twist_bend_softening",
+            "plectoneme_twist_persistence_ref", "plectoneme_stiffness_exponent",
+            "domain_nucleation", "melting_free_energy", "melting_cooperativity",
+            "melted_extension", "force_spread", "torque_scale"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.SupercoilWarning)
+        r = sc.fit_hat_curves(curves, dna, vary=vary, model="ensemble",
+                              interaction="hard-core", fit_extension_offset=False,
+                              start={"force_spread": 0.15})
+    assert r.success
+    assert r.channels["extension"]["residual_rms"].m_as("nm") <= 15.0
+    assert r.channels["torque"]["residual_rms"].m_as("pN*nm") <= 1.0
+    assert 40.0 <= r.parameters["bending_persistence"].m_as("nm") <= 55.0
+    assert r.parameters["twist_bend_softening"].magnitude == pytest.approx(1.0, abs=1e-6)
+    assert 70.0 < r.parameters["twist_persistence"].m_as("nm") < 85.0  # measured 79.0
+    centre = float(np.nanmedian(sc.maxwell_check(curves).to_table()["centre"]))
+    assert abs(r.parameters["turns_offset"].magnitude - centre) <= 1.0
+    assert r.aic < 1927.1 - 500 and r.bic < 1950.4 - 500  # marko2007, P free (section 5.1)
