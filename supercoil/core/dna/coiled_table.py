@@ -374,26 +374,43 @@ def hermite(y, dy, h):
     return np.stack([y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1, 2.0 * (y0 - y1) + m0 + m1])
 
 
-def evaluate_inverse(inverse, x):
+def evaluate_inverse(inverse, x, out=None, work=None):
     """``(M, T)`` at the linkings x (rad/m, within ``[x_lo, x_hi]``) of :func:`inverse_table`.
 
     Per point: the piece index, the position in it and two cubics by Horner's rule
-    (eight gathers from coefficient rows that stay in cache).
+    (eight gathers from coefficient rows that stay in cache). ``out = (M, T)`` and
+    ``work = (z, j, c)`` (float, index and float buffers of x's size): the same
+    operations in them, no temporaries (fresh temporaries of a block's size cost page
+    faults: :mod:`supercoil.core.dna.free_energy_fill`).
     """
-    z = np.asarray(x, float) - inverse.x_lo
+    x = np.asarray(x, float)
+    if work is None:
+        z = x - inverse.x_lo
+    else:
+        z, j, gathered = work
+        np.subtract(x, inverse.x_lo, out=z)
     z *= inverse.scale
-    j = z.astype(np.intp)
+    if work is None:
+        j = z.astype(np.intp)
+    else:
+        j[...] = z  # the truncation of astype
     np.maximum(j, 0, out=j)  # np.clip, without its wrapper
     np.minimum(j, inverse.torque.shape[1] - 1, out=j)
     z -= j  # the position in the piece
-    out = []
-    for c in (inverse.torque, inverse.tension):
-        v = c[3].take(j)
-        for k in (2, 1, 0):
-            v *= z
-            v += c[k].take(j)
-        out.append(v)
-    return out[0], out[1]
+    res = []
+    for q, c in enumerate((inverse.torque, inverse.tension)):
+        if out is None:
+            v = c[3].take(j)
+            for k in (2, 1, 0):
+                v *= z
+                v += c[k].take(j)
+        else:
+            v = c[3].take(j, out=out[q], mode="clip")  # j is clipped: unbuffered
+            for k in (2, 1, 0):
+                v *= z
+                v += c[k].take(j, out=gathered, mode="clip")
+        res.append(v)
+    return res[0], res[1]
 
 
 def secant(x, pull, helix_linking, C, equilibrium, loop, upper=None):

@@ -63,6 +63,7 @@ from supercoil.core.dna import branch_memo as _memo
 from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
+from supercoil.core.dna import free_energy_fill as _fill
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import (
     FULLY_COILED,
@@ -400,15 +401,30 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     size = t_all.size
     out = FreeEnergyPoints(*(np.empty(size, t) for t in (float,) * 3 + (np.int8, bool)
                              + (float,) * 2))
+    work = _fill.Work(min(size, BLOCK)) if loop is None else None
     for lo in range(0, size, BLOCK):  # each block writes its slice of the result (no copies)
         sl = slice(lo, lo + BLOCK)
         t, f = t_all[sl], f_all[sl]
+        block = FreeEnergyPoints(*(a[sl] for a in out))
+        i = 0 if one else _one_force(uf, f)
+        if work is not None and i is not None and _fill.fill(
+                t, f, i, co, length, B, C, kT, thermal, short_tail_length, equilibrium,
+                trial_equilibrium, branch, one, block, work):
+            continue  # one force, each phase contiguous: filled run by run
         _assemble(np.abs(t), t, f, None if one else np.searchsorted(uf, f), co, loop, length,
                   B, C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
-                  branch, FreeEnergyPoints(*(a[sl] for a in out)))
+                  branch, block)
     if turns.ndim == 1:  # the arrays themselves (owned: the public layer scales them in place)
         return out
     return FreeEnergyPoints(*(a.reshape(turns.shape) for a in out))
+
+
+def _one_force(uf, f):
+    """The index in ``uf`` of the block's one force, or None (several forces)."""
+    lo = f.min()
+    if lo != f.max():
+        return None
+    return int(np.searchsorted(uf, lo))
 
 
 #: points per block of :func:`hat_points` (the per-point constants and phases are
