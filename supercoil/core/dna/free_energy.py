@@ -397,34 +397,12 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     branch = _points.call_branch(turns.reshape(-1), force.reshape(-1), uf, co, loop, length,
                                  B, C, trial_equilibrium or equilibrium, BLOCK, memo)
 
-    t_all, f_all = turns.reshape(-1), force.reshape(-1)
-    size = t_all.size
-    out = FreeEnergyPoints(*(np.empty(size, t) for t in (float,) * 3 + (np.int8, bool)
-                             + (float,) * 2))
-    work = _fill.Work(min(size, BLOCK)) if loop is None else None
-    for lo in range(0, size, BLOCK):  # each block writes its slice of the result (no copies)
-        sl = slice(lo, lo + BLOCK)
-        t, f = t_all[sl], f_all[sl]
-        block = FreeEnergyPoints(*(a[sl] for a in out))
-        i = 0 if one else _one_force(uf, f)
-        if work is not None and i is not None and _fill.fill(
-                t, f, i, co, length, B, C, kT, thermal, short_tail_length, equilibrium,
-                trial_equilibrium, branch, one, block, work):
-            continue  # one force, each phase contiguous: filled run by run
-        _assemble(np.abs(t), t, f, None if one else np.searchsorted(uf, f), co, loop, length,
-                  B, C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
-                  branch, block)
+    out = _fill.fill_blocks(turns.reshape(-1), force.reshape(-1), uf, one, co, loop, length, B,
+                            C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
+                            branch, BLOCK, _assemble)
     if turns.ndim == 1:  # the arrays themselves (owned: the public layer scales them in place)
         return out
     return FreeEnergyPoints(*(a.reshape(turns.shape) for a in out))
-
-
-def _one_force(uf, f):
-    """The index in ``uf`` of the block's one force, or None (several forces)."""
-    lo = f.min()
-    if lo != f.max():
-        return None
-    return int(np.searchsorted(uf, lo))
 
 
 #: points per block of :func:`hat_points` (the per-point constants and phases are

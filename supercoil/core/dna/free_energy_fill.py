@@ -14,11 +14,11 @@ contiguous :func:`fill` returns False and the general path fills the block.
 Measured (1.2 pN, seed set, hard-core, blocks of 32768 points): the general path's
 temporaries of the block's size are fresh memory for every operation (the allocator
 returns freed blocks of this size to the system), so that a page fault per 512 points
-costs more than the arithmetic: the fully coiled table lookup took 21 ns per point with
-fresh temporaries against 7 ns with reused ones, the stretched tail's Newton 42 against
-17 ns, its free energy 29 against 5 ns. Each phase's formulas on its own run, instead of
-the plectoneme's constants on every point overwritten where the phase differs, also
-drop the gathers and scatters of the selections.
+costs more than the arithmetic: with fresh temporaries the fully coiled table lookup
+cost 3 times as much CPU as with reused ones, the stretched tail's Newton 2.5 times, its
+free energy 6 times. Each phase's formulas on its own run, instead of the plectoneme's
+constants on every point overwritten where the phase differs, also drop the gathers and
+scatters of the selections.
 """
 
 from __future__ import annotations
@@ -27,9 +27,10 @@ import numpy as np
 
 from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
+from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
-__all__ = ["Work", "fill", "runs"]
+__all__ = ["Work", "fill", "fill_blocks", "one_force", "runs"]
 
 _TWO_PI = 2.0 * np.pi
 _TAIL_MAXITER = 60
@@ -42,6 +43,43 @@ class Work:
         self.f = [np.empty(size) for _ in range(7)]
         self.b = [np.empty(size, bool) for _ in range(3)]
         self.j = np.empty(size, np.intp)
+
+
+def fill_blocks(t_all, f_all, uf, one, co, loop, length, B, C, kT, equilibrium, thermal,
+                short_tail_length, trial_equilibrium, branch, block, assemble):
+    """The points of :func:`supercoil.core.dna.free_energy.hat_points`, block by block.
+
+    A one-force block without the end loop run by run (:func:`fill`); the others, and
+    those whose phases are not contiguous, by the general path ``assemble``
+    (``supercoil.core.dna.free_energy._assemble``, its signature).
+    """
+    from supercoil.core.dna.free_energy import FreeEnergyPoints
+
+    size = t_all.size
+    out = FreeEnergyPoints(*(np.empty(size, t) for t in (float,) * 3 + (np.int8, bool)
+                             + (float,) * 2))
+    work = Work(min(size, block)) if loop is None else None
+    for lo in range(0, size, block):  # each block writes its slice of the result (no copies)
+        sl = slice(lo, lo + block)
+        t, f = t_all[sl], f_all[sl]
+        part = FreeEnergyPoints(*(a[sl] for a in out))
+        i = 0 if one else one_force(uf, f)
+        if work is not None and i is not None and fill(
+                t, f, i, co, length, B, C, kT, thermal, short_tail_length, equilibrium,
+                trial_equilibrium, branch, one, part, work):
+            continue
+        assemble(np.abs(t), t, f, None if one else np.searchsorted(uf, f), co, loop, length,
+                 B, C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
+                 branch, part)
+    return out
+
+
+def one_force(uf, f):
+    """The index in ``uf`` of the block's one force, or None (several forces)."""
+    lo = f.min()
+    if lo != f.max():
+        return None
+    return int(np.searchsorted(uf, lo))
 
 
 def runs(mask):
@@ -158,7 +196,8 @@ def tail_torque(x, force, B, C, kT, out, work, done):
     from supercoil.core.dna import free_energy as _fe
 
     Q0 = B * force / (kT * kT) - 1.0 / 32.0
-    _fe._check_bracket(Q0, force, 0.0)
+    if not Q0 > 0.0:
+        _mn.check_bracket(Q0, force, 0.0, what="Moroz-Nelson tail free energy")
     r0 = np.sqrt(Q0)
     MQ = 2.0 * kT * r0
     a = 1.0 / C
@@ -233,7 +272,7 @@ def _coiled(parts, n, turns, i, co, length, B, C, short_tail_length, equilibrium
     if isinstance(branch, _table.Inverse):
         x_lo, x_hi = branch.x_lo, branch.x_hi
         if x.max() <= x_hi and x.min() >= x_lo - 1e-9 * (x_hi - x_lo):
-            _table.evaluate_inverse(branch, x, out=(Mb, T), work=(z, work.j[:m], c))
+            _table.evaluate_inverse(branch, x, (Mb, T), (z, work.j[:m], c))
             got = True
             if trial_equilibrium is not None:
                 Mb[...] = np.asarray(equilibrium(T).torque, float)
