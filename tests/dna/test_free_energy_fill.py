@@ -129,3 +129,17 @@ def test_tail_torque_in_place_is_the_newton(si):
     work = [np.empty(x.size) for _ in range(4)]
     got = ff.tail_torque(x, 1.2e-12, B, C, kT, np.empty(x.size), work, np.empty(x.size, bool))
     assert np.array_equal(got, fe.tail_torque(x, 1.2e-12, B, C, kT))
+
+
+def test_stacked_series_evaluate_bit_for_bit():
+    """Two series in one Clenshaw recurrence (coiled_table.stacked), of unequal degrees,
+    give each series' chebval exactly."""
+    from numpy.polynomial import chebyshev as ch
+
+    rng = np.random.default_rng(5)
+    t = np.concatenate([np.linspace(-1, 1, 2001), [-1.0, 0.0, 1.0]])
+    for na, nb in ((33, 32), (17, 17), (2, 1), (1, 5), (65, 3)):
+        a, b = rng.normal(size=na), rng.normal(size=nb)
+        got = ch.chebval(t, ct.stacked(a, b))
+        assert np.array_equal(got[0], ch.chebval(t, a))
+        assert np.array_equal(got[1], ch.chebval(t, b))

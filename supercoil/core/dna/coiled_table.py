@@ -78,6 +78,7 @@ __all__ = [
     "lobatto",
     "secant",
     "solve_series",
+    "stacked",
     "torque_at_linking",
 ]
 
@@ -257,8 +258,9 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     if t is None:
         t = np.interp(x, lp_nodes[::-1], lobatto(cl.size - 1)[::-1])
     last = None
+    both = stacked(cl, dcl)
     for _ in range(_NEWTON_MAXITER):
-        lp, dlp = _ch.chebval(t, cl), _ch.chebval(t, dcl)
+        lp, dlp = _ch.chebval(t, both)
         step = np.abs((lp - x) / dlp)
         t = t - (lp - x) / dlp
         # converged: the step, or the next one predicted from quadratic convergence
@@ -275,6 +277,19 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     if np.any(np.abs(t) > 1.0 + 1e-9):  # a root of the polynomial outside the domain
         return None
     return t
+
+
+def stacked(*series):
+    """Chebyshev coefficient columns of several series, zero-padded to one length.
+
+    ``chebval(t, stacked(a, b))`` is ``(chebval(t, a), chebval(t, b))`` bit for bit (a
+    leading zero coefficient leaves Clenshaw's recurrence exactly as it was: ``c - 0``
+    and ``c + 0 x`` are c) in one recurrence over both, half the calls.
+    """
+    out = np.zeros((max(c.size for c in series), len(series)))
+    for k, c in enumerate(series):
+        out[:c.size, k] = c
+    return out
 
 
 class Inverse(NamedTuple):
@@ -332,6 +347,7 @@ def inverse_of(series):
     """The :class:`Inverse` of a :class:`Series` (see :func:`inverse_table`), or None."""
     u_lo, half, cl, dcl, cM, lp_nodes = series
     dcM = _ch.chebder(cM)
+    three = stacked(cM, dcl)
     x_lo, x_hi = lp_nodes[-1], lp_nodes[0]
 
     def level(pieces, guess=None):
@@ -347,7 +363,7 @@ def inverse_of(series):
         if t is None:
             return None, np.inf
         T = np.exp(u_lo + half * (t + 1.0))
-        M, dl = _ch.chebval(t, cM), _ch.chebval(t, dcl)  # dl_p/dt; dT/dt = half T
+        M, dl = _ch.chebval(t, three)[:2]  # dl_p/dt; dT/dt = half T
         h = (x_hi - x_lo) / pieces  # from the width itself: a node spacing would add rounding
         cT = hermite(T[0::2], half * T[0::2] / dl[0::2], h)
         cM_ = hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
@@ -378,39 +394,25 @@ def evaluate_inverse(inverse, x, out=None, work=None):
     """``(M, T)`` at the linkings x (rad/m, within ``[x_lo, x_hi]``) of :func:`inverse_table`.
 
     Per point: the piece index, the position in it and two cubics by Horner's rule
-    (eight gathers from coefficient rows that stay in cache). ``out = (M, T)`` and
-    ``work = (z, j, c)`` (float, index and float buffers of x's size): the same
-    operations in them, no temporaries (fresh temporaries of a block's size cost page
-    faults: :mod:`supercoil.core.dna.free_energy_fill`).
+    (eight gathers from coefficient rows that stay in cache), into ``out = (M, T)`` and the
+    buffers ``work = (z, j, c)`` (float, index, float) if given (a block's fresh
+    temporaries cost page faults: :mod:`supercoil.core.dna.free_energy_fill`).
     """
     x = np.asarray(x, float)
-    if work is None:
-        z = x - inverse.x_lo
-    else:
-        z, j, gathered = work
-        np.subtract(x, inverse.x_lo, out=z)
+    M, T = out or (np.empty(x.shape), np.empty(x.shape))
+    z, j, gathered = work or (np.empty(x.shape), np.empty(x.shape, np.intp), np.empty(x.shape))
+    np.subtract(x, inverse.x_lo, out=z)
     z *= inverse.scale
-    if work is None:
-        j = z.astype(np.intp)
-    else:
-        j[...] = z  # the truncation of astype
+    j[...] = z  # truncation toward zero
     np.maximum(j, 0, out=j)  # np.clip, without its wrapper
     np.minimum(j, inverse.torque.shape[1] - 1, out=j)
     z -= j  # the position in the piece
-    res = []
-    for q, c in enumerate((inverse.torque, inverse.tension)):
-        if out is None:
-            v = c[3].take(j)
-            for k in (2, 1, 0):
-                v *= z
-                v += c[k].take(j)
-        else:
-            v = c[3].take(j, out=out[q], mode="clip")  # j is clipped: unbuffered
-            for k in (2, 1, 0):
-                v *= z
-                v += c[k].take(j, out=gathered, mode="clip")
-        res.append(v)
-    return res[0], res[1]
+    for v, c in ((M, inverse.torque), (T, inverse.tension)):
+        c[3].take(j, out=v, mode="clip")  # j is in range: mode "clip" is unbuffered
+        for k in (2, 1, 0):
+            v *= z
+            v += c[k].take(j, out=gathered, mode="clip")
+    return M, T
 
 
 def secant(x, pull, helix_linking, C, equilibrium, loop, upper=None):

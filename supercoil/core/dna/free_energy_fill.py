@@ -23,6 +23,8 @@ scatters of the selections.
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 
 from supercoil.core.dna import coiled_points as _points
@@ -30,19 +32,46 @@ from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
-__all__ = ["Work", "fill", "fill_blocks", "one_force", "runs"]
+__all__ = ["Work", "borrow", "fill", "fill_blocks", "give_back", "one_force", "runs"]
 
 _TWO_PI = 2.0 * np.pi
 _TAIL_MAXITER = 60
 
 
 class Work:
-    """Workspace of one call: float, bool and index buffers of ``size`` points, reused."""
+    """Workspace: float, bool and index buffers of ``size`` points, reused block by block.
+
+    One per thread is kept between calls (:func:`borrow`): a workspace allocated per
+    call is fresh memory each time (the allocator returns it to the system when the
+    call frees it), and its first use costs a page fault per 512 points (measured at
+    2e5 points, 1.2 pN, to 40 turns: a third of the page faults of a call and a sixth of
+    its CPU time). It holds about 2 MB.
+    """
 
     def __init__(self, size):
         self.f = [np.empty(size) for _ in range(7)]
         self.b = [np.empty(size, bool) for _ in range(3)]
         self.j = np.empty(size, np.intp)
+
+
+_KEPT = threading.local()
+
+
+def borrow(size):
+    """This thread's kept :class:`Work` if it holds ``size`` points, else a new one; hand
+    it back with :func:`give_back` (a nested call meanwhile allocates its own)."""
+    work = getattr(_KEPT, "work", None)
+    _KEPT.work = None
+    if work is None or work.j.size < size:
+        work = Work(size)
+    return work
+
+
+def give_back(work):
+    """Keep ``work`` for this thread's next call (the larger of it and the one kept)."""
+    kept = getattr(_KEPT, "work", None)
+    if kept is None or kept.j.size < work.j.size:
+        _KEPT.work = work
 
 
 def fill_blocks(t_all, f_all, uf, one, co, loop, length, B, C, kT, equilibrium, thermal,
@@ -58,7 +87,7 @@ def fill_blocks(t_all, f_all, uf, one, co, loop, length, B, C, kT, equilibrium, 
     size = t_all.size
     out = FreeEnergyPoints(*(np.empty(size, t) for t in (float,) * 3 + (np.int8, bool)
                              + (float,) * 2))
-    work = Work(min(size, block)) if loop is None else None
+    work = borrow(block) if loop is None else None
     for lo in range(0, size, block):  # each block writes its slice of the result (no copies)
         sl = slice(lo, lo + block)
         t, f = t_all[sl], f_all[sl]
@@ -71,6 +100,8 @@ def fill_blocks(t_all, f_all, uf, one, co, loop, length, B, C, kT, equilibrium, 
         assemble(np.abs(t), t, f, None if one else np.searchsorted(uf, f), co, loop, length,
                  B, C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
                  branch, part)
+    if work is not None:  # not on an exception: the next call allocates its own
+        give_back(work)
     return out
 
 
