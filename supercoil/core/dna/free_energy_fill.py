@@ -146,15 +146,13 @@ def fill(turns, force, i, co, length, B, C, kT, thermal, short_tail_length, equi
     size = turns.size
     n = np.abs(turns, out=work.f[0][:size])
     Nb = co.buckling_turns[i]
-    S = out.plectoneme_length  # the general path's S, max and min: every phase's S
-    np.subtract(n, Nb, out=S)
-    np.maximum(S, 0.0, out=S)
-    S *= _TWO_PI / co.linking_rate[i]
+    S = out.plectoneme_length  # (|N| - N_b) 2 pi / D: the plectoneme's S (the general
+    np.subtract(n, Nb, out=S)  # path's max(., 0) and min(., L) are the stretched runs' 0
+    S *= _TWO_PI / co.linking_rate[i]  # and the fully coiled runs' L, filled there)
     stretched = runs(np.less_equal(n, Nb, out=work.b[0][:size]))
     coiled = runs(np.greater_equal(S, length, out=work.b[1][:size]))
     if stretched is False or coiled is False or len(stretched) > 1:
         return False
-    np.minimum(S, length, out=S)
     start = 0
     for r in [*sorted(stretched + coiled, key=lambda r: r.start), slice(size, size)]:
         if r.start > start:
@@ -212,7 +210,8 @@ def _stretched(sl, n, turns, force, length, B, C, kT, thermal, short_tail_length
         np.subtract(-force, t1, out=g)
         zeta.fill(1.0)
     np.multiply(zeta, length, out=out.extension[sl])
-    _products(g, nv, M, length, t1)  # S is 0 already (max(|N| - N_b, 0) = 0)
+    _products(g, nv, M, length, t1)
+    out.plectoneme_length[sl].fill(0.0)
     out.phase[sl].fill(STRETCHED)
     np.copysign(M, turns[sl], out=M)
     out.short_tail[sl].fill(length < short_tail_length)
@@ -325,6 +324,7 @@ def _coiled(parts, n, turns, i, co, length, B, C, short_tail_length, equilibrium
         _products(g, n[r], M, length, t)
         out.zeta[r].fill(0.0)
         out.extension[r].fill(0.0)
+        out.plectoneme_length[r].fill(length)
         out.phase[r].fill(FULLY_COILED)
         np.copysign(M, turns[r], out=M)
         out.short_tail[r].fill(0.0 < short_tail_length)
