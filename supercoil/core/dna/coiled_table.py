@@ -50,6 +50,7 @@ import numpy as np
 from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import end_loop as _loop
+from supercoil.core.numerics import stacked
 from supercoil.exceptions import ValidityError
 
 __all__ = [
@@ -78,7 +79,6 @@ __all__ = [
     "lobatto",
     "secant",
     "solve_series",
-    "stacked",
     "torque_at_linking",
 ]
 
@@ -279,19 +279,6 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     return t
 
 
-def stacked(*series):
-    """Chebyshev coefficient columns of several series, zero-padded to one length.
-
-    ``chebval(t, stacked(a, b))`` is ``(chebval(t, a), chebval(t, b))`` bit for bit (a
-    leading zero coefficient leaves Clenshaw's recurrence exactly as it was: ``c - 0``
-    and ``c + 0 x`` are c) in one recurrence over both, half the calls.
-    """
-    out = np.zeros((max(c.size for c in series), len(series)))
-    for k, c in enumerate(series):
-        out[:c.size, k] = c
-    return out
-
-
 class Inverse(NamedTuple):
     """Piecewise cubic ``M(x)`` and ``T(x)`` of the fully coiled branch (:func:`inverse_table`).
 
@@ -363,7 +350,7 @@ def inverse_of(series):
         if t is None:
             return None, np.inf
         T = np.exp(u_lo + half * (t + 1.0))
-        M, dl = _ch.chebval(t, three)[:2]  # dl_p/dt; dT/dt = half T
+        M, dl = _ch.chebval(t, three)  # dl_p/dt; dT/dt = half T
         h = (x_hi - x_lo) / pieces  # from the width itself: a node spacing would add rounding
         cT = hermite(T[0::2], half * T[0::2] / dl[0::2], h)
         cM_ = hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
