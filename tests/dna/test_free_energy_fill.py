@@ -145,3 +145,29 @@ def test_stacked_series_evaluate_bit_for_bit():
         got = ch.chebval(t, stacked(a, b))
         assert np.array_equal(got[0], ch.chebval(t, a))
         assert np.array_equal(got[1], ch.chebval(t, b))
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+def test_few_coiled_points_solved_once_bit_for_bit(monkeypatch, si, thermal):
+    """A one-force call with a few fully coiled points in several blocks: their secant
+    runs once for the call (coiled_points.Few), with the states the secant of each block
+    gives (the reference: Few switched off)."""
+    from supercoil.core.dna import coiled_points as cp
+
+    L, B, C, kT, _ = si
+    eq = equilibrium_of(si)
+    co = fe.coexistence(np.array([1.2e-12]), L, B, C, kT, eq, thermal)
+    top = 1.00003 * float(co.buckling_turns[0] + L * co.linking_rate[0] / (2 * np.pi))
+    turns = np.linspace(-top, top, 2 * fe.BLOCK + 5)
+    force = np.full(turns.size, 1.2e-12)
+    secant, calls = ct.secant, []
+    monkeypatch.setattr(ct, "secant", lambda *a, **k: calls.append(1) or secant(*a, **k))
+    new = fe.hat_points(turns, force, L, B, C, kT, eq, thermal)
+    once = len(calls)
+    with monkeypatch.context() as m:
+        m.setattr(cp, "_few", lambda *a: None)
+        old = fe.hat_points(turns, force, L, B, C, kT, eq, thermal)
+    coiled = np.count_nonzero(new.phase == FULLY_COILED)
+    assert 2 <= coiled < ct.MIN_POINTS
+    assert once == 1 and len(calls) == 3  # once for the call; the two end blocks' own
+    _assert_identical(new, old)

@@ -6,8 +6,8 @@ table) and without the end loop to :func:`fill`. Its points are classified by th
 operations of the general path (:func:`supercoil.core.dna.free_energy._assemble`); where
 each phase's points are contiguous (turns in order: a hat curve, a table) the block is
 a few runs of one phase each, and every run is filled by its phase's formulas alone,
-with the force's constants as scalars, into the result's slices and a workspace
-allocated once per call (:class:`Work`). The operations are those of the general path,
+with the force's constants as scalars, into the result's slices and a workspace that
+each thread keeps between calls (:class:`Work`). The operations are those of the general path,
 in the same order, so the points are bit-identical (tested); where a phase is not
 contiguous :func:`fill` returns False and the general path fills the block.
 
