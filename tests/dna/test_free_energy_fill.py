@@ -127,8 +127,13 @@ def test_tail_torque_in_place_is_the_newton(si):
     L, B, C, kT, _ = si
     x = np.linspace(0.0, 0.99, 5001) * 2 * np.pi * 8 / L
     work = [np.empty(x.size) for _ in range(4)]
+    ref = fe.tail_torque(x, 1.2e-12, B, C, kT)
     got = ff.tail_torque(x, 1.2e-12, B, C, kT, np.empty(x.size), work, np.empty(x.size, bool))
-    assert np.array_equal(got, fe.tail_torque(x, 1.2e-12, B, C, kT))
+    assert np.array_equal(got, ref)
+    bounds = tuple(a[:x.size] for a in ff.Work(x.size).bounds)
+    got = ff.tail_torque(x, 1.2e-12, B, C, kT, np.empty(x.size), work, np.empty(x.size, bool),
+                         bounds)
+    assert np.array_equal(got, ref)
 
 
 def test_stacked_series_evaluate_bit_for_bit():
