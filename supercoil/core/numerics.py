@@ -39,7 +39,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 __all__ = ["bisect_from_estimate", "bisect_increasing", "cumulative_integrals",
-           "find_root", "finite_difference", "first_crossing", "safe_newton"]
+           "find_root", "finite_difference", "first_crossing", "safe_newton", "stacked"]
 
 
 def bisect_increasing(fun, lo, hi, n_iter=1100, xtol=0.0):
@@ -379,3 +379,16 @@ def finite_difference(fun, x, h, lo, hi):
             d[sel] = (-25 * fun(xs) + 48 * fun(xs + hh) - 36 * fun(xs + 2 * hh)
                       + 16 * fun(xs + 3 * hh) - 3 * fun(xs + 4 * hh)) / (12 * hh)
     return d
+
+
+def stacked(*series):
+    """Chebyshev coefficient columns of several series, zero-padded to one length.
+
+    ``chebval(t, stacked(a, b))`` is ``(chebval(t, a), chebval(t, b))`` bit for bit (a
+    leading zero coefficient leaves Clenshaw's recurrence exactly as it was: ``c - 0``
+    and ``c + 0 x`` are c) in one recurrence over both, half the calls.
+    """
+    out = np.zeros((max(c.size for c in series), len(series)))
+    for k, c in enumerate(series):
+        out[:c.size, k] = c
+    return out

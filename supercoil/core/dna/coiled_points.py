@@ -21,7 +21,7 @@ from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.exceptions import NoEquilibriumError, ValidityError
 
-__all__ = ["call_branch", "coiled_turns", "solve"]
+__all__ = ["Few", "call_branch", "coiled_turns", "solve"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -65,6 +65,9 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, me
     With a caller's ``memo`` (no end loop): the memo's C-free table of the branch
     (:func:`supercoil.core.dna.branch_memo.table_for`) where it has or builds one, for
     any number of fully coiled points.
+
+    One force, no loop and fewer than ``MIN_POINTS`` fully coiled points: their states,
+    solved once for the call (:class:`Few`) instead of once in each block that has some.
     """
     thr = coiled_turns(co, loop, length)
     count, top = 0, -np.inf
@@ -79,6 +82,8 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, me
                 count += np.count_nonzero(hit)
                 top = max(top, a[hit].max())
     if count == 0 or (count < _table.MIN_POINTS and (memo is None or loop is not None)):
+        if count and uf.size == 1 and loop is None:
+            return _few(turns, thr[0], co, length, B, C, equilibrium)
         return None
     i = int(np.argmin(co.pull))
     x_of, start, ends = _start(np.array([i]), co, loop, length, B, C)
@@ -108,6 +113,37 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, me
     if count < _table.INVERSE_MIN_POINTS:
         return series
     return _table.inverse_of(series) or series
+
+
+class Few(NamedTuple):
+    """The fully coiled states of a call's few points (one force, no loop), by linking.
+
+    Solved by the secant of :func:`solve` on the call's distinct ``|N|`` at once: each
+    point's secant steps are its own (the equilibrium solves each tension by itself), so
+    its state is the one a block's secant gives, bit for bit.
+    """
+
+    linking: np.ndarray  # x = 2 pi |N| / L, ascending, rad/m
+    torque: np.ndarray  # N m
+    tension: np.ndarray  # N
+
+
+def _few(turns, thr, co, length, B, C, equilibrium):
+    """:class:`Few` of the fully coiled points among ``turns`` (one force), or None where
+    the secant fails (each block's secant then raises, naming its turns)."""
+    n = np.abs(turns[(turns >= thr) | (turns <= -thr)])
+    S = np.maximum(n - co.buckling_turns[0], 0.0) * (_TWO_PI / co.linking_rate[0])
+    n = np.unique(n[S >= length])  # the test of the points' phase (free_energy._assemble)
+    if n.size == 0:
+        return None
+    x = _TWO_PI * n / length
+    ci = np.zeros(n.size, np.intp)
+    try:
+        M, T = _table.secant(x, co.pull[ci], _start(ci, co, None, length, B, C)[1], C,
+                             equilibrium, None)
+    except (NoEquilibriumError, ValidityError):
+        return None
+    return Few(x, M, T)
 
 
 #: exponents e of the ladder ``T_eff (x / l_p(T_eff))^e`` probed in one equilibrium call
@@ -191,7 +227,11 @@ def solve(n, inv, coiled, co, loop, length, B, C, equilibrium, trial_equilibrium
     ends = None if loop is None else (B, length)
     x = _TWO_PI * (n if loop is None else n - _loop.LOOP_WRITHE) / length
     got = None
-    if branch:
+    if isinstance(branch, Few):
+        j = np.minimum(np.searchsorted(branch.linking, x), branch.linking.size - 1)
+        if np.array_equal(branch.linking[j], x):
+            got = branch.torque[j], branch.tension[j]
+    elif branch:
         x_lo, x_hi = _domain(branch)
         if x.max() <= x_hi and x.min() >= x_lo - 1e-9 * (x_hi - x_lo):
             if isinstance(branch, _AtC):

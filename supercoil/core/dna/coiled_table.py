@@ -50,6 +50,7 @@ import numpy as np
 from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import end_loop as _loop
+from supercoil.core.numerics import stacked
 from supercoil.exceptions import ValidityError
 
 __all__ = [
@@ -257,8 +258,9 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     if t is None:
         t = np.interp(x, lp_nodes[::-1], lobatto(cl.size - 1)[::-1])
     last = None
+    both = stacked(cl, dcl)
     for _ in range(_NEWTON_MAXITER):
-        lp, dlp = _ch.chebval(t, cl), _ch.chebval(t, dcl)
+        lp, dlp = _ch.chebval(t, both)
         step = np.abs((lp - x) / dlp)
         t = t - (lp - x) / dlp
         # converged: the step, or the next one predicted from quadratic convergence
@@ -332,6 +334,7 @@ def inverse_of(series):
     """The :class:`Inverse` of a :class:`Series` (see :func:`inverse_table`), or None."""
     u_lo, half, cl, dcl, cM, lp_nodes = series
     dcM = _ch.chebder(cM)
+    three = stacked(cM, dcl)
     x_lo, x_hi = lp_nodes[-1], lp_nodes[0]
 
     def level(pieces, guess=None):
@@ -347,7 +350,7 @@ def inverse_of(series):
         if t is None:
             return None, np.inf
         T = np.exp(u_lo + half * (t + 1.0))
-        M, dl = _ch.chebval(t, cM), _ch.chebval(t, dcl)  # dl_p/dt; dT/dt = half T
+        M, dl = _ch.chebval(t, three)  # dl_p/dt; dT/dt = half T
         h = (x_hi - x_lo) / pieces  # from the width itself: a node spacing would add rounding
         cT = hermite(T[0::2], half * T[0::2] / dl[0::2], h)
         cM_ = hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
@@ -374,26 +377,29 @@ def hermite(y, dy, h):
     return np.stack([y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1, 2.0 * (y0 - y1) + m0 + m1])
 
 
-def evaluate_inverse(inverse, x):
+def evaluate_inverse(inverse, x, out=None, work=None):
     """``(M, T)`` at the linkings x (rad/m, within ``[x_lo, x_hi]``) of :func:`inverse_table`.
 
     Per point: the piece index, the position in it and two cubics by Horner's rule
-    (eight gathers from coefficient rows that stay in cache).
+    (eight gathers from coefficient rows that stay in cache), into ``out = (M, T)`` and the
+    buffers ``work = (z, j, c)`` (float, index, float) if given (a block's fresh
+    temporaries cost page faults: :mod:`supercoil.core.dna.free_energy_fill`).
     """
-    z = np.asarray(x, float) - inverse.x_lo
+    x = np.asarray(x, float)
+    M, T = out or (np.empty(x.shape), np.empty(x.shape))
+    z, j, gathered = work or (np.empty(x.shape), np.empty(x.shape, np.intp), np.empty(x.shape))
+    np.subtract(x, inverse.x_lo, out=z)
     z *= inverse.scale
-    j = z.astype(np.intp)
+    j[...] = z  # truncation toward zero
     np.maximum(j, 0, out=j)  # np.clip, without its wrapper
     np.minimum(j, inverse.torque.shape[1] - 1, out=j)
     z -= j  # the position in the piece
-    out = []
-    for c in (inverse.torque, inverse.tension):
-        v = c[3].take(j)
+    for v, c in ((M, inverse.torque), (T, inverse.tension)):
+        c[3].take(j, out=v, mode="clip")  # j is in range: mode "clip" is unbuffered
         for k in (2, 1, 0):
             v *= z
-            v += c[k].take(j)
-        out.append(v)
-    return out[0], out[1]
+            v += c[k].take(j, out=gathered, mode="clip")
+    return M, T
 
 
 def secant(x, pull, helix_linking, C, equilibrium, loop, upper=None):

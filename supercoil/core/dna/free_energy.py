@@ -63,6 +63,7 @@ from supercoil.core.dna import branch_memo as _memo
 from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
+from supercoil.core.dna import free_energy_fill as _fill
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import (
     FULLY_COILED,
@@ -396,16 +397,9 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     branch = _points.call_branch(turns.reshape(-1), force.reshape(-1), uf, co, loop, length,
                                  B, C, trial_equilibrium or equilibrium, BLOCK, memo)
 
-    t_all, f_all = turns.reshape(-1), force.reshape(-1)
-    size = t_all.size
-    out = FreeEnergyPoints(*(np.empty(size, t) for t in (float,) * 3 + (np.int8, bool)
-                             + (float,) * 2))
-    for lo in range(0, size, BLOCK):  # each block writes its slice of the result (no copies)
-        sl = slice(lo, lo + BLOCK)
-        t, f = t_all[sl], f_all[sl]
-        _assemble(np.abs(t), t, f, None if one else np.searchsorted(uf, f), co, loop, length,
-                  B, C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
-                  branch, FreeEnergyPoints(*(a[sl] for a in out)))
+    out = _fill.fill_blocks(turns.reshape(-1), force.reshape(-1), uf, one, co, loop, length, B,
+                            C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
+                            branch, BLOCK, _assemble)
     if turns.ndim == 1:  # the arrays themselves (owned: the public layer scales them in place)
         return out
     return FreeEnergyPoints(*(a.reshape(turns.shape) for a in out))
