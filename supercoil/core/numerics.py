@@ -22,7 +22,7 @@ k = 0 rough tilt, Newton in y  2000 arclengths (find_root)       12.8x          
 s(y) inversion, Newton         2000 points, k = 0 / -20 rad/m    2.8x / 5.5x     own
 (core/rod/rough_solution)           (find_root)
 WLC inversion, safe_newton     1, 20, 1000 forces 0-100 pN       7-19x           own
-(core/dna/phases.wlc_extension)  (find_root)
+(core/dna/phases)                   (find_root)
 :func:`cumulative_integrals`   Tw, Wr of the k = 0 helix on      177x            own
                                860 panels (tanhsinh)
 :func:`finite_difference`      designed pitch P(s), 2001 points  17x             own
