@@ -38,7 +38,6 @@ root depends only on the sign of the function (see :func:`bisect_increasing`).
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 __all__ = ["bisect_from_estimate", "bisect_increasing", "cumulative_integrals",
            "find_root", "finite_difference", "first_crossing", "safe_newton"]
@@ -348,6 +347,8 @@ def first_crossing(s, g, g_at, xtol=1e-15, rtol=1e-13):
         return float(s[0])
     a, b = float(s[i - 1]), float(s[i])
     try:
+        from scipy.optimize import brentq
+
         return float(brentq(g_at, a, b, xtol=xtol, rtol=rtol))
     except (ValueError, RuntimeError):  # sign change not reproduced, or no convergence
         return b

@@ -39,7 +39,6 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from scipy.integrate import solve_ivp
 from scipy.special import k0e, k1e
 
 from supercoil.exceptions import ValidityError
@@ -148,6 +147,8 @@ def _surface_field(nu, a, kappa, lB, r_far):
     ``y``: ``s'' + s'/r = kappa^2 cosh(y) s``, starting as ``y`` since the far field is
     linear in ``nu``). Returns ``(inf, nan)`` if the potential blows up before reaching
     a (too much far charge)."""
+    from scipy.integrate import solve_ivp  # on first use: only the screened model needs it
+
     x = kappa * r_far
     k0 = k0e(x) * math.exp(-x)
     k1 = k1e(x) * math.exp(-x)
