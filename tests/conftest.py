@@ -111,11 +111,15 @@ def example_run(background):
 # (fresh_scripts.in_background). One background lane runs those processes, one after
 # another, on the second core while the in-process tests run on the first: every job that
 # a selected test names in its ``background`` marker is queued when collection ends (a
-# file or a -k selection queues only its own jobs), the tests that wait for a job run last
-# (in their order), and each checks its job's result. A job that fails or outlives its
-# timeout fails the tests that read it, with its output, never the session; the lane is
-# closed (jobs not started cancelled, running processes killed) when pytest ends.
+# file or a -k selection queues only its own jobs; a session that runs every test it
+# collects queues each file's jobs as soon as that file is collected), the tests that
+# wait for a job run last (in their order), and each checks its job's result. A job that
+# fails or outlives its timeout fails the tests that read it, with its output, never the
+# session; the lane is closed (jobs not started cancelled, running processes killed) when
+# pytest ends.
 LANE = pytest.StashKey()
+#: the session's config, for :func:`pytest_collectreport` (a report does not carry it)
+_CONFIG = {}
 
 
 def pytest_configure(config):
@@ -123,6 +127,7 @@ def pytest_configure(config):
         "markers", "background(*jobs): the test reads these jobs of tests/fresh_scripts.py's "
         "JOBS (queued at the start of the session, run in the background lane); the test "
         "runs after the tests that need none")
+    _CONFIG["config"] = config
     if not config.option.collectonly:
         # the lane's script helper starts now: its imports (a few seconds of CPU) run on the
         # second core while this process collects, not after (a selection without
@@ -140,8 +145,33 @@ def pytest_collection_modifyitems(config, items):
                 + [item for item in items if _jobs(item)])
 
 
+def _selects_every_collected_test(config):
+    """Whether the session runs every test of every file it collects: no ``-k``, ``-m``,
+    ``--deselect``, ``--lf`` or ``--sw``, and no node ids (``file::test``) among the
+    arguments (a file's collection report lists all its tests)."""
+    return not (config.option.collectonly or config.option.keyword or config.option.markexpr
+                or config.getoption("deselect", None) or config.getoption("lf", False)
+                or config.getoption("stepwise", False)
+                or any("::" in str(arg) for arg in config.args))
+
+
+def pytest_collectreport(report):
+    """When every collected test runs, queue the background jobs of a file's tests as soon
+    as the file is collected: the lane starts while the rest of the suite is collected,
+    in the order of collection (:func:`pytest_collection_finish` then queues nothing new)."""
+    config = _CONFIG.get("config")
+    if config is None or not report.passed or not _selects_every_collected_test(config):
+        return
+    lane = _lane(config)
+    for node in report.result:
+        if isinstance(node, pytest.Item):
+            for name in _jobs(node):
+                lane.submit(name)
+
+
 def pytest_collection_finish(session):
-    """Queue the background jobs of the selected tests, in the order the tests run."""
+    """Queue the background jobs of the selected tests, in the order the tests run (those
+    queued while collecting keep their place)."""
     if session.config.option.collectonly:
         return
     lane = _lane(session.config)

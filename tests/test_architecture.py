@@ -42,12 +42,23 @@ def _parse(path):
     return ast.parse(path.read_text())
 
 
+_WALKS = {}
+
+
+def _walk(tree):
+    """``list(ast.walk(tree))``, made once per tree: every rule walks the same package
+    trees (the tree is kept with its nodes, so that its id stays its own)."""
+    if id(tree) not in _WALKS:
+        _WALKS[id(tree)] = (tree, list(ast.walk(tree)))
+    return _WALKS[id(tree)][1]
+
+
 def _imports(path):
     """(absolute module, imported names) of every import in ``path``."""
     tree = _parse(path)
     mod = _module_name(path)
     pkg = mod.split(".") if path.name == "__init__.py" else mod.split(".")[:-1]
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if isinstance(node, ast.Import):
             for a in node.names:
                 yield a.name, ()
@@ -117,7 +128,7 @@ def _defined_names(tree):
     """Every name a module binds: defs, classes, assignments (also to attributes),
     imports, arguments and keywords."""
     out = set()
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
             out.add(node.name)
         elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
@@ -141,7 +152,7 @@ def private_attribute_reads(source, allowed=FOREIGN_PRIVATE_API):
     tree = _tree(source)
     own = _defined_names(tree) | set(allowed)
     found = []
-    for node in ast.walk(tree):
+    for node in _walk(tree):
         name = None
         if isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Load):
             v = node.value
@@ -251,7 +262,7 @@ def test_no_function_over_80_lines_without_a_reason():
     for path in _package_files():
         src = path.read_text()
         lines = src.splitlines()
-        for node in ast.walk(_parse(path)):
+        for node in _walk(_parse(path)):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
                     _code_lines(node) > 80:
                 text = "\n".join(lines[node.lineno - 1:node.end_lineno])
@@ -286,7 +297,7 @@ def test_no_function_more_complex_than_radon_grade_c():
     """Cyclomatic complexity <= 20 (radon grade C) for every function."""
     offenders = []
     for path in _package_files():
-        for node in ast.walk(_parse(path)):
+        for node in _walk(_parse(path)):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
                     (cc := _complexity(node)) > 20:
                 offenders.append(f"{path.relative_to(ROOT)}:{node.name} ({cc})")
@@ -480,7 +491,7 @@ def type_switches(source, module, concrete):
     """``type(x) is C`` / ``isinstance(x, C)`` / ``issubclass(x, C)`` on a concrete model
     or interaction class C outside C's own module: ``[(line, text)]``."""
     out = []
-    for node in ast.walk(_tree(source)):
+    for node in _walk(_tree(source)):
         named = []
         if isinstance(node, ast.Compare):
             sides = [node.left, *node.comparators]
@@ -512,7 +523,7 @@ def hidden_hooks(source, module, members):
     interaction (or for one of their members), and reads of the ``OPTIONS`` table outside
     the parameters module: ``[(line, text)]``."""
     out = []
-    for node in ast.walk(_tree(source)):
+    for node in _walk(_tree(source)):
         if isinstance(node, ast.Attribute) and node.attr == "OPTIONS" and \
                 module != "supercoil.dna.model_parameters":
             out.append((node.lineno, ast.unparse(node)))

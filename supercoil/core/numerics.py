@@ -21,6 +21,8 @@ k = 0 rough tilt, Newton in y  2000 arclengths (find_root)       12.8x          
 (core/rod/rough.k0_y_of_s)
 s(y) inversion, Newton         2000 points, k = 0 / -20 rad/m    2.8x / 5.5x     own
 (core/rod/rough_solution)           (find_root)
+WLC inversion, safe_newton     1, 20, 1000 forces 0-100 pN       7-19x           own
+(core/dna/phases)                   (find_root)
 :func:`cumulative_integrals`   Tw, Wr of the k = 0 helix on      177x            own
                                860 panels (tanhsinh)
 :func:`finite_difference`      designed pitch P(s), 2001 points  17x             own
@@ -36,7 +38,6 @@ root depends only on the sign of the function (see :func:`bisect_increasing`).
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 __all__ = ["bisect_from_estimate", "bisect_increasing", "cumulative_integrals",
            "find_root", "finite_difference", "first_crossing", "safe_newton", "stacked"]
@@ -346,6 +347,8 @@ def first_crossing(s, g, g_at, xtol=1e-15, rtol=1e-13):
         return float(s[0])
     a, b = float(s[i - 1]), float(s[i])
     try:
+        from scipy.optimize import brentq
+
         return float(brentq(g_at, a, b, xtol=xtol, rtol=rtol))
     except (ValueError, RuntimeError):  # sign change not reproduced, or no convergence
         return b

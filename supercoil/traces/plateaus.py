@@ -44,7 +44,7 @@ def _frames(trace):
     frames = first[cols].reset_index(drop=True)
     z = trace.pivot_table(index="time", columns="bead", values="z", aggfunc="first",
                           sort=True)
-    labels = list(dict.fromkeys(trace["bead"]))  # the recording's order, not string order
+    labels = list(pd.unique(trace["bead"]))  # the recording's order, not string order
     return frames, z.reindex(index=frames["time"].to_numpy(), columns=labels)
 
 

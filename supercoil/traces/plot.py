@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 
 __all__ = ["plot_plateaus"]
 
@@ -25,7 +26,7 @@ def plot_plateaus(trace, plateaus, beads=None, path=None, max_points=20000):
     """
     import matplotlib.pyplot as plt
 
-    labels = list(dict.fromkeys(trace["bead"]))
+    labels = list(pd.unique(trace["bead"]))  # the recording's order
     refs = list(trace.attrs.get("reference_beads", []))
     if beads is None:
         beads = [b for b in labels if b not in refs][:3] + refs[:1]

@@ -32,27 +32,35 @@ def bench_process(out):
     Then, for tests/benchmark/test_stability.py, the run's stability map (the whole quick
     map of the default materials, which the run computed and ``stability.run`` keeps per
     process) pickled with its attrs as ``stability_map.pickle``, and what the figure that
-    the run drew from it shows (``stability.plot`` again without saving; the run saved it
-    as ``stability_map.png``): ``stability_plot.json``, the title and axis labels of every
-    panel and the number of solvers in the table.
+    the run drew from it and saved as ``stability_map.png`` shows (read from that figure
+    as ``stability.plot`` returned it): ``stability_plot.json``, the title and axis labels
+    of every panel and the number of solvers in the table.
     """
     import json
     import pickle
     from pathlib import Path
 
-    import matplotlib.pyplot as plt
-
     from supercoil.benchmark import stability
 
-    status = main(["bench", "--smoke", "--out", out])
+    drawn = []
+    plot = stability.plot
+
+    def recording_plot(table, path=None):
+        fig = plot(table, path)
+        drawn.append([[ax.get_title(), ax.get_xlabel(), ax.get_ylabel()] for ax in fig.axes])
+        return fig
+
+    stability.plot = recording_plot
+    try:
+        status = main(["bench", "--smoke", "--out", out])
+    finally:
+        stability.plot = plot
+    assert len(drawn) == 1, f"supercoil bench drew the stability map {len(drawn)} times"
     table = stability.run(quick=True)
     with open(Path(out) / "stability_map.pickle", "wb") as f:
         pickle.dump(table, f)
-    fig = stability.plot(table)
-    panels = [[ax.get_title(), ax.get_xlabel(), ax.get_ylabel()] for ax in fig.axes]
-    plt.close(fig)
     (Path(out) / "stability_plot.json").write_text(json.dumps(
-        {"panels": panels, "solvers": int(table["solver"].nunique())}))
+        {"panels": drawn[0], "solvers": int(table["solver"].nunique())}))
     return status
 
 

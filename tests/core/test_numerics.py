@@ -165,6 +165,16 @@ def measure(repeat=7):
     fr = best(lambda: find_root(lambda y, d: d - rh.phi_diff(y, y0),
                                 (np.zeros_like(s), np.full_like(s, y0)), args=(drop,)))
     print("k = 0 Newton / find_root", fr / own)
+    from supercoil.core.dna import phases as ph
+
+    A, kT = 50e-9, 1.380649e-23 * 298.15
+    for n in (1, 20, 1000):
+        f = np.linspace(0.0, 100e-12, n) * A / kT if n > 1 else np.array([2e-12 * A / kT])
+        own = best(lambda f=f: ph.wlc_extension(f * kT / A, A, kT))
+        fr = best(lambda f=f: find_root(lambda x, t: ph._bouchiat_reduced_force(x) - t,
+                                        (np.zeros_like(f), np.full_like(f, 1.0 - 1e-13)),
+                                        args=(f,)))
+        print(f"WLC inversion ({n} forces) safe_newton / find_root", fr / own)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,6 @@ import tracemalloc
 
 import numpy as np
 import pytest
-from fresh_scripts import in_background
 
 import supercoil as sc
 from supercoil.core.rod import contact as sco
@@ -27,7 +26,6 @@ def _si(rod):
 # --- every ODE run ends in bounded time -------------------------------------------------
 
 
-@in_background  # costly and self-contained: run on the second core
 def test_absurd_twist_rate_ends_in_a_named_error_within_the_budget():
     """Used to sit in LSODA for more than 10 minutes; now the default budget
     (100 000 right-side evaluations, ~2 s) ends it with the rate named."""

@@ -5,7 +5,6 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
-from fresh_scripts import in_background
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -113,7 +112,6 @@ def test_sigma_is_the_scatter_of_plateau_means():
         assert lower < p.std() < upper, mode
 
 
-@in_background  # costly and self-contained: run on the second core
 def test_fitted_parameters_error_bars_match_their_scatter():
     """Issue 22 item 7: per-bead fits of rotation curves from recordings (80 beads, 21 plateaus
     of 5 s at 0.3, 0.5, 0.7 pN, 60 Hz, Brownian correlation time 20 ms, drift corrected by a

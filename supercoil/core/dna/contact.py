@@ -26,7 +26,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize.elementwise import find_root
 
 __all__ = ["ContactBranch", "contact_table", "normal_reaction", "solve_contact"]
 
@@ -79,6 +78,8 @@ def contact_table(B, partials, a, points=_TABLE_POINTS):
     k = j + int(np.sum(holds[j:]))
     alpha, M, T = alpha[j:k].copy(), M[j:k].copy(), T[j:k].copy()
     if j > 0:  # refine the start: N(alpha*) = 0, the free branch at R = a
+        from scipy.optimize.elementwise import find_root
+
         res = find_root(lambda x: _state(x, a, B, partials)[2],
                         (np.float64(alpha[0] - (alpha[1] - alpha[0])), np.float64(alpha[0])),
                         tolerances=dict(xatol=1e-15, xrtol=0.0))
@@ -103,6 +104,8 @@ def solve_contact(force, B, partials, branch):
 
     def g(x, target):
         return _state(x, branch.radius, B, partials)[1] - target
+
+    from scipy.optimize.elementwise import find_root
 
     res = find_root(g, (lo, hi), args=(force,), tolerances=dict(xatol=1e-16, xrtol=1e-15),
                     maxiter=200)

@@ -39,8 +39,6 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 from scipy.special import k0e, k1e
 
 from supercoil.exceptions import ValidityError
@@ -69,6 +67,9 @@ BARE_LINE_CHARGE = 2.0 / 0.34e-9
 _KELVIN_0C = 273.15
 # reduced potential at which the far-field start is placed (sinh y = y to 1e-12)
 _Y_FAR = 2e-6
+# steps of the matching in log nu below which the shooting's rounding (rtol 1e-11)
+# stops Newton's steps from shrinking
+_NOISE = 1e-10
 
 
 def water_permittivity(temperature):
@@ -141,26 +142,76 @@ def linear_line_charge(nu0, radius, debye):
 
 def _surface_field(nu, a, kappa, lB, r_far):
     """Reduced surface field ``-y'(a) a / (2 l_B)`` (charges/m) of the far-field
-    solution ``y = 2 l_B nu K0(kappa r)`` at ``r_far``, integrated inwards to ``a``.
-    Returns ``inf`` if the potential blows up before reaching a (too much far charge)."""
+    solution ``y = 2 l_B nu K0(kappa r)`` at ``r_far``, integrated inwards to ``a``, and
+    its derivative in ``log nu`` (the sensitivity ``s = dy/dlog nu`` integrated beside
+    ``y``: ``s'' + s'/r = kappa^2 cosh(y) s``, starting as ``y`` since the far field is
+    linear in ``nu``). Returns ``(inf, nan)`` if the potential blows up before reaching
+    a (too much far charge)."""
+    from scipy.integrate import solve_ivp  # on first use: only the screened model needs it
+
     x = kappa * r_far
     k0 = k0e(x) * math.exp(-x)
     k1 = k1e(x) * math.exp(-x)
     y0 = 2.0 * lB * nu * k0
     dy0 = -2.0 * lB * nu * kappa * k1
+    k2 = kappa * kappa
 
     def rhs(r, u):
-        return [u[1], kappa * kappa * math.sinh(u[0]) - u[1] / r]
+        return [u[1], k2 * math.sinh(u[0]) - u[1] / r,
+                u[3], k2 * math.cosh(u[0]) * u[2] - u[3] / r]
 
     def blow(r, u):
         return u[0] - 60.0
 
     blow.terminal = True
-    sol = solve_ivp(rhs, (r_far, a), [y0, dy0], method="DOP853", rtol=1e-11, atol=1e-14,
-                    events=blow)
+    sol = solve_ivp(rhs, (r_far, a), [y0, dy0, y0, dy0], method="DOP853", rtol=1e-11,
+                    atol=1e-14, events=blow)
     if sol.status == 1:  # the event fired: the field diverges before r = a
-        return math.inf
-    return -sol.y[1, -1] * a / (2.0 * lB)
+        return math.inf, math.nan
+    scale = -a / (2.0 * lB)
+    return sol.y[1, -1] * scale, sol.y[3, -1] * scale
+
+
+def _matching_root(g, hi, at_hi, tol=1e-13):
+    """The root in ``log nu`` of the matching ``g(x) -> (value, slope)``, increasing,
+    with ``at_hi = g(hi)`` (its value ``>= 0``; ``inf`` allowed: no slope there).
+
+    Newton's steps on the slope of the sensitivity, kept inside the bracket known so
+    far: where a step leaves it (or there is no slope) the bracket is bisected, or, with
+    no point below the root yet, the point 1 below the lowest one above it is tried (as
+    far as ``hi - 60``). Stops when a step is below ``tol * (1 + |x|)`` (brentq's
+    ``xtol = rtol = 1e-13`` before), or when the steps stop shrinking below
+    ``_NOISE * (1 + |x|)`` (the shooting's rounding).
+
+    Measured against the former brentq on the value alone (same bracket, same
+    tolerance) over 1 mM-3 M salt at 25 degC, 0.1-2 times the bare charge and radii
+    0.5-2 nm: 3 to 13 shootings instead of 8 to 22 (each with the two sensitivity
+    equations), 0.4 to 1.0 times its CPU, the roots equal to 2.3e-12 relative (the
+    shooting's rtol is 1e-11).
+    """
+    lo_x, hi_x = -math.inf, hi
+    x, (value, slope), last = hi, at_hi, math.inf
+    for _ in range(200):
+        if value < 0.0:
+            lo_x = x
+        else:
+            hi_x = x
+        step = -value / slope if math.isfinite(value) and slope > 0.0 else math.nan
+        new = x + step
+        if abs(step) < tol * (1.0 + abs(x)):
+            return new
+        if lo_x < new < hi_x and abs(step) > 0.5 * last and last < _NOISE * (1.0 + abs(x)):
+            return new  # the steps stopped shrinking at the integration's rounding
+        if not lo_x < new < hi_x:  # no slope, or the step leaves the bracket: bisect
+            new = hi_x - 1.0 if lo_x == -math.inf else 0.5 * (lo_x + hi_x)
+            if new < hi - 60.0:  # pragma: no cover - guarded by the bracket argument
+                raise ValidityError("effective line charge: no bracket in the PB shooting")
+            step = new - x
+            if hi_x - lo_x < tol * (1.0 + abs(x)):
+                return new
+        x, (value, slope), last = new, g(new), abs(step)
+    raise ValidityError("effective line charge: the PB shooting did not converge "
+                        "in 200 steps")  # pragma: no cover
 
 
 @lru_cache(maxsize=256)
@@ -177,17 +228,14 @@ def _effective_cached(salt, temperature, radius, nu0):
     r_far = x / kappa
 
     def g(log_nu):
-        return _surface_field(math.exp(log_nu), radius, kappa, lB, r_far) - nu0
+        field, slope = _surface_field(math.exp(log_nu), radius, kappa, lB, r_far)
+        return field - nu0, slope
 
     hi = math.log(nu_lin) + 1e-9  # the nonlinear far charge is below the linear one
-    lo = hi - 1.0
-    while g(lo) > 0.0:
-        lo -= 1.0
-        if lo < hi - 60.0:  # pragma: no cover - guarded by the bracket argument
-            raise ValidityError("effective line charge: no bracket in the PB shooting")
-    if g(hi) < 0.0:
+    at_hi = g(hi)
+    if at_hi[0] < 0.0:
         return nu_lin  # linear regime to rounding
-    return math.exp(brentq(g, lo, hi, xtol=1e-13, rtol=1e-13))
+    return math.exp(_matching_root(g, hi, at_hi))
 
 
 def effective_line_charge(salt, temperature, radius, nu0=BARE_LINE_CHARGE):

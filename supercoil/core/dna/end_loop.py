@@ -34,7 +34,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise
 
 from supercoil.exceptions import ValidityError
 
@@ -249,6 +248,8 @@ def looped_coexistence(co, length, B, C, tail, writhe=LOOP_WRITHE, upper_torque=
         def excess(m, f, m0, g0, e):
             g, _, lk = tail(f, m)
             return L * (g - g0 + lk * (m - m0)) - e
+
+        from scipy.optimize import elementwise
 
         res = elementwise.find_root(excess, (M, upper_torque),
                                     args=(co.force, M, co.free_energy_density, eps))

@@ -63,7 +63,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize.elementwise import find_minimum, find_root
 
 from supercoil.exceptions import NoEquilibriumError
 
@@ -157,6 +156,8 @@ def solve_tilt(R, B, partials, strict=True):
             f"no plectoneme tilt in (0, 45 deg) solves (GE2) at R = {r * 1e9:.6g} nm "
             "(the interaction is not repulsive there)"
         )
+    from scipy.optimize.elementwise import find_root
+
     res = find_root(lambda a, r: tilt_residual(a, r, B, partials), (lo, hi), args=(R,),
                     tolerances=dict(xatol=1e-16, xrtol=1e-15), maxiter=200)
     return np.where(bad, np.nan, res.x)
@@ -190,6 +191,8 @@ def _peak(B, partials, u, alpha0=None):
         a = solve_tilt(R, B, partials) if alpha0 is None else _tilt_near(R, alpha0, B,
                                                                           partials)
         return -tension(a, R, B, partials)
+
+    from scipy.optimize.elementwise import find_minimum
 
     res = find_minimum(neg_t, (u[0], u[1], u[2]), tolerances=dict(xatol=1e-12, xrtol=0.0))
     R = float(np.exp(res.x))
@@ -293,6 +296,8 @@ def _solve_free_direct(flat, B, partials, branch, xatol):
     inside = (g_lo >= 0.0) & (g_hi <= 0.0)
     u = np.where(np.abs(g_lo) <= np.abs(g_hi), u_lo, u_hi)
     if np.any(inside):
+        from scipy.optimize.elementwise import find_root
+
         res = find_root(g, (u_lo[inside], u_hi[inside]), args=(flat[inside],),
                         tolerances=dict(xatol=xatol, xrtol=0.0), maxiter=200)
         if not np.all(res.success):  # pragma: no cover - bracketed, cannot fail

@@ -25,7 +25,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise
+
+from supercoil.core.numerics import safe_newton
 
 __all__ = [
     "BOUCHIAT_COEFFICIENTS",
@@ -90,11 +91,20 @@ def wlc_extension(force, A, kT):
     The one inversion of the Bouchiat interpolation in the package (bracketing root in
     ``0 <= x < 1``, where ``F A / kT`` increases with x); ``dx/dF`` is
     ``A / (kT h'(x))``. ``force`` (N) non-negative; the callers validate it.
+
+    Solved by :func:`~supercoil.core.numerics.safe_newton` on the analytic stiffness
+    ``h'(x)`` from ``min(f / 1.5, 1 - 1 / (2 sqrt(f + 1/4)))`` (the small- and
+    large-force limits of ``x(f)``, ``f = F A / kT``), in the bracket
+    ``[0, 1 - 1e-13]``. Kept hand-written by measurement: for 1, 20 and 1000 forces of
+    0-100 pN (A = 50 nm, kT at 25 degC) scipy.optimize.elementwise.find_root in the same
+    bracket takes 7-19x its time, for the same roots (2.5e-16 apart; 6e-13 below
+    1e-15 N, where the rounding of ``h`` near ``x = 0`` limits both).
     """
     f = np.asarray(force, dtype=float) * A / kT
-    res = elementwise.find_root(lambda x, t: _bouchiat_reduced_force(x) - t,
-                                (np.zeros_like(f), np.full_like(f, 1.0 - 1e-13)), args=(f,))
-    x = res.x
+    start = np.minimum(f / 1.5, 1.0 - 0.5 / np.sqrt(f + 0.25))
+    x = safe_newton(lambda x: (_bouchiat_reduced_force(x) - f, _bouchiat_reduced_stiffness(x)),
+                    start, np.zeros_like(f), np.full_like(f, 1.0 - 1e-13), xtol=1e-15)
+    x = np.where(np.isnan(f), np.nan, x)[()]  # a NaN force stays NaN, as in find_root
     return x, A / (kT * _bouchiat_reduced_stiffness(x))
 
 
