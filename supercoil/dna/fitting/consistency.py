@@ -335,19 +335,18 @@ def maxwell_check(data, *, margin=0.1, floor=0.2, dna=None) -> MaxwellCheck:
         raise DataError("maxwell_check needs a 'torque' column (pN nm) besides the extension")
     if not (0 <= float(margin) < 1 and 0 <= float(floor) < 1):
         raise DataError(f"margin and floor must lie in [0, 1), got {margin!r}, {floor!r}")
-    kt_length = None
+    per_slope = np.nan  # C_eff / (dtau/dN) = L / (2 pi kT), nm per (pN nm/turn)
     if dna is not None:
         si = dna.si
-        kt_length = (display.to_display(si.kT, "torque"),
-                     display.to_display(si.length, "extension"))
+        per_slope = display.to_display(si.length, "extension") / (
+            _TWO_PI * display.to_display(si.kT, "torque"))
     rows, summary = [], {}
     for i, idx in enumerate(rot.groups()):
         label = rot.labels[i] if rot.has_molecule else None
         part = _curves(rot, idx, float(margin), float(floor), label)
-        for r in part:  # C_eff = L (dtau/dN) / (2 pi kT), nm
-            f = np.nan if kt_length is None else kt_length[1] / (_TWO_PI * kt_length[0])
-            r["twist_stiffness"] = f * r["twist_slope"]
-            r["twist_stiffness_error"] = f * r["twist_slope_error"]
+        for r in part:
+            r["twist_stiffness"] = per_slope * r["twist_slope"]
+            r["twist_stiffness_error"] = per_slope * r["twist_slope_error"]
         rows += part
         for side in ("+", "-"):
             key = side if label is None else f"{label} {side}"
