@@ -51,6 +51,17 @@ def test_high_force_limit_of_the_wlc():
     np.testing.assert_allclose(1 - x, 0.5 * np.sqrt(KT / (A * f)), rtol=0.02)
 
 
+def test_wlc_inversion_at_reduced_forces_beyond_the_bracket():
+    # f = F A / kT > 1e25: the large-force start 1 - 1/(2 sqrt f) rounds to 1.0, outside
+    # the bracket [0, 1 - 1e-13] (a divide by zero before the start was clipped); the
+    # root is then the bracket's top, whose h(x) = 2.5e25 < f
+    f = np.array([1e24, 1e26, 1e300])
+    with np.errstate(all="raise", under="ignore"):
+        x, dx = ph.wlc_extension(f * KT / A, A, KT)
+    np.testing.assert_allclose(1 - x[0], 0.5 / np.sqrt(1e24), rtol=1e-3)
+    assert np.all(x[1:] == 1.0 - 1e-13) and np.all(np.isfinite(dx) & (dx > 0))
+
+
 @pytest.mark.parametrize("G", [0.0, 25e-9, 40e-9])
 def test_derivatives_against_finite_differences(G):
     p = tb.stretched_gibbs(F, M, A, C, G, KT)

@@ -101,9 +101,11 @@ def wlc_extension(force, A, kT):
     1e-15 N, where the rounding of ``h`` near ``x = 0`` limits both).
     """
     f = np.asarray(force, dtype=float) * A / kT
-    start = np.minimum(f / 1.5, 1.0 - 0.5 / np.sqrt(f + 0.25))
+    top = 1.0 - 1e-13
+    # the start inside the bracket: at f > 1e25 the large-force limit rounds to 1.0
+    start = np.clip(np.minimum(f / 1.5, 1.0 - 0.5 / np.sqrt(f + 0.25)), 0.0, top)
     x = safe_newton(lambda x: (_bouchiat_reduced_force(x) - f, _bouchiat_reduced_stiffness(x)),
-                    start, np.zeros_like(f), np.full_like(f, 1.0 - 1e-13), xtol=1e-15)
+                    start, np.zeros_like(f), np.full_like(f, top), xtol=1e-15)
     x = np.where(np.isnan(f), np.nan, x)[()]  # a NaN force stays NaN, as in find_root
     return x, A / (kT * _bouchiat_reduced_stiffness(x))
 
