@@ -37,6 +37,9 @@ MODELS = ("li-zhao", "free-energy")
 #: units of the :func:`model_cost` columns, for ``make_table(rows, UNITS, ...)``
 UNITS = {"measurement": "", "model": "", "points": "", "time": "s", "per_item": "s",
          "rate": "1/s", "ratio_to_li_zhao": ""}
+#: the units of :func:`supercoil.benchmark.process.model_cost_regimes`' rows (its
+#: ``regime`` column: the allocator's)
+REGIME_UNITS = {**UNITS, "regime": ""}
 
 
 def _calls(d, names):

@@ -27,14 +27,15 @@ FULL = {"hat_n": 10**6, "hat_mem": (10**6, 10**7), "eq_n": 1000, "eq_mem": 10**7
         "loader_rows": 10**5, "fit_samples": 9, "pooled": 200, "replayed": (200, 2000),
         "pool_repeats": 3,
         "import_repeat": 5, "cli_repeat": 3, "model_forces": 1000,
-        "model_sizes": (1_000, 100_000), "samples": 9, "physical": 200, "fit_samples_models": 3,
+        "model_sizes": (1_000, 100_000), "samples": 9, "physical": 200, "physical_repeats": 5,
+        "fit_samples_models": 9,
         "coiled_points": 200_000}
 #: sizes of ``supercoil bench --quick`` (seconds; the names of the rows give the sizes)
 QUICK = {"hat_n": 10**5, "hat_mem": (10**4, 10**5), "eq_n": 1000, "eq_mem": 10**5,
          "loader_rows": 5_000, "fit_samples": 2, "pooled": 4, "replayed": (4, 20),
          "pool_repeats": 1,
          "import_repeat": 0, "cli_repeat": 0, "model_forces": 100, "model_sizes": (1_000,),
-         "samples": 2, "physical": 40, "fit_samples_models": 1,
+         "samples": 2, "physical": 40, "physical_repeats": 1, "fit_samples_models": 1,
          "coiled_points": 20_000}
 #: sizes of ``supercoil bench --smoke``: every row measured once at the smallest sizes
 #: that still exercise it (the hat curve above glibc's 1 MB mmap threshold, two molecules
@@ -43,7 +44,8 @@ SMOKE = {"hat_n": 2 * 10**5, "hat_mem": (10**4, 2 * 10**5), "eq_n": 100, "eq_mem
          "loader_rows": 1_000, "fit_samples": 1, "pooled": 2, "replayed": (2, 4),
          "pool_repeats": 1,
          "import_repeat": 0, "cli_repeat": 0, "model_forces": 20, "model_sizes": (100,),
-         "samples": 1, "physical": 10, "fit_samples_models": 1, "coiled_points": 20_000}
+         "samples": 1, "physical": 10, "physical_repeats": 1, "fit_samples_models": 1,
+         "coiled_points": 20_000}
 MODELS = ("li-zhao", "free-energy", "marko2007")
 
 
@@ -52,7 +54,7 @@ def measure(quick=False, log=print, size=None):
 
     ``size`` ("full", "quick" or "smoke") overrides ``quick``.
     """
-    from supercoil.benchmark import dna_models, fit_models, process, targets_dna, targets_fit
+    from supercoil.benchmark import fit_models, process, targets_dna, targets_fit
 
     size = size or ("quick" if quick else "full")
     quick = size != "full"
@@ -80,7 +82,7 @@ def measure(quick=False, log=print, size=None):
                                             s["pool_repeats"])
     r["many"].update(pooled=s["pooled"], replayed=s["replayed"], read_back=min(s["replayed"]))
     log("headline: fit_many with the physical model, serial and on a pool ...")
-    r["physical"] = process.physical_throughput_child(s["physical"])
+    r["physical"] = process.physical_throughput_child(s["physical"], s["physical_repeats"])
     log("headline: fits of the physical models against the paper's ...")
     r["fit_models"] = fit_models.fit_model_cost(samples=s["fit_samples_models"])
     log("headline: import time and the CLI main job (fresh interpreters) ...")
@@ -91,9 +93,10 @@ def measure(quick=False, log=print, size=None):
         r["import"] = {"import": r["cli"]["import"], "import_cpu": float("nan"),
                        "startup": float("nan")}
     log("headline: DNA models side by side ...")
-    r["models"] = dna_models.model_cost(n_forces=s["model_forces"], sizes=s["model_sizes"],
-                                        repeat=s["samples"], models=MODELS,
-                                        coiled=(40.0, s["coiled_points"]))
+    r["models"] = process.model_cost_regimes(n_forces=s["model_forces"],
+                                             sizes=list(s["model_sizes"]), repeat=s["samples"],
+                                             models=list(MODELS),
+                                             coiled=[40.0, s["coiled_points"]])
     r["load_end"] = os.getloadavg()[0]
     return r
 
@@ -260,7 +263,8 @@ def _physical_rows(r):
              "parent) / serial", p["cpu_ratio"], "x", "<= 1.11x (per-core throughput "
              "within 10 %)", p["cpu_ratio"] <= 1.0 / 0.9,
              f"serial {p['serial_cpu'] * 1e3:.3g} ms, pool {p['pool_cpu'] * 1e3:.3g} ms per "
-             "molecule; chunks of molecules per submit (sc.fit_many)"),
+             f"molecule (medians of {p.get('repeats', 1)} alternated runs); chunks of "
+             "molecules per submit (sc.fit_many)"),
         _row(f"public sc.fit_many, {p['molecules']} molecules, model free-energy / hard-core: "
              f"molecules per second per core, ProcessPoolExecutor({p['workers']}) (wall / "
              f"{p['workers']} cores) / serial (wall)", p["per_core_ratio"], "x", ">= 0.9x",
@@ -308,8 +312,10 @@ def _model_rows(r):
             continue
         ratio = m["ratio_to_li_zhao"][i]
         per = "CPU per force" if "per-force" in meas else "CPU per point"
+        when = REGIMES[m["regime"][i]] if "regime" in m else ""
         rows.append(_row(f"model {model} / li-zhao through model.buckling / model.points: "
-                         f"{per}, {meas}, {m['points'][i]} values", ratio, "x", "<= 3x",
+                         f"{per}, {meas}, {m['points'][i]} values"
+                         + (f" [{when}]" if when else ""), ratio, "x", "<= 3x",
                          ratio <= 3, f"{m['rate'][i]:.3g} per s"))
     return rows
 

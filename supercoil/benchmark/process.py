@@ -188,6 +188,39 @@ def hat_throughput_regimes(n, samples=9, compiled=True):
     return out
 
 
+_MODELS = """
+import json, sys
+from supercoil.benchmark.dna_models import model_cost
+kw = json.loads(sys.argv[1])
+kw["sizes"], kw["models"] = tuple(kw["sizes"]), tuple(kw["models"])
+kw["coiled"] = tuple(kw["coiled"]) if kw["coiled"] else None
+print(json.dumps(model_cost(**kw)))
+"""
+
+
+def model_cost_regimes(**kw):
+    """:func:`~supercoil.benchmark.dna_models.model_cost` in a child per memory regime.
+
+    The models' ratio moves with the allocator as the hat curve's does: li-zhao's
+    ten-odd fresh output arrays per call fault page by page, the free-energy kernel
+    fills kept workspaces (measured, 2e5 points to 40 turns at 1.2 pN: li-zhao 1.6 ms
+    with memory reused, 5.2 ms fresh; free-energy 6.6 and 10.2 ms). Each regime's rows
+    carry it in a ``regime`` column (:data:`MALLOC_REGIMES`).
+
+    Returns
+    -------
+    dict
+        The rows of ``model_cost`` (dict of lists) of both regimes, with ``regime``.
+    """
+    rows = None
+    for regime, malloc in MALLOC_REGIMES.items():
+        text, _, _ = _run(["-c", _MODELS, json.dumps(kw)], {**_env(), **malloc}, timeout=600)
+        part = json.loads(text.strip().splitlines()[-1])
+        part["regime"] = [regime] * len(part["model"])
+        rows = part if rows is None else {k: rows[k] + part[k] for k in rows}
+    return rows
+
+
 _FIT_MANY = """
 import json, sys
 from supercoil.benchmark.targets_fit import fit_many_cost
@@ -214,12 +247,12 @@ def fit_many_cost_child(pooled, replayed, read_back, repeats):
 _PHYSICAL = """
 import json, sys
 from supercoil.benchmark.fit_many import physical_throughput
-print(json.dumps(physical_throughput(int(sys.argv[1]))))
+print(json.dumps(physical_throughput(int(sys.argv[1]), repeats=int(sys.argv[2]))))
 """
 
 
-def physical_throughput_child(n_molecules):
+def physical_throughput_child(n_molecules, repeats=1):
     """:func:`~supercoil.benchmark.fit_many.physical_throughput` in a fresh interpreter
     (as :func:`fit_many_cost_child`: the pool forks from a small process)."""
-    text, _, _ = _run(["-c", _PHYSICAL, str(n_molecules)], _env(), timeout=900)
+    text, _, _ = _run(["-c", _PHYSICAL, str(n_molecules), str(repeats)], _env(), timeout=900)
     return json.loads(text.strip().splitlines()[-1])

@@ -116,8 +116,8 @@ def _headline_step(out, size, log, machine, legacy):
     from supercoil.tables import make_table, provenance, write_csv
 
     res = headline.measure(size=size, log=log)
-    write_csv(make_table(res["models"], dna_models.UNITS, provenance(None, machine=machine)),
-              out / "dna_model_cost.csv")
+    write_csv(make_table(res["models"], dna_models.REGIME_UNITS,
+                         provenance(None, machine=machine)), out / "dna_model_cost.csv")
     head = _headline_table(headline.target_rows(res) + legacy, machine)
     write_csv(head, out / "headline.csv")
     md = headline.markdown(head, machine, (res["load_start"], res["load_end"]))
