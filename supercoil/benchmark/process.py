@@ -203,9 +203,9 @@ def model_cost_regimes(**kw):
 
     The models' ratio moves with the allocator as the hat curve's does: li-zhao's
     ten-odd fresh output arrays per call fault page by page, the free-energy kernel
-    fills kept workspaces (measured, 2e5 points to 40 turns at 1.2 pN: li-zhao 1.6 ms
-    with memory reused, 5.2 ms fresh; free-energy 6.6 and 10.2 ms). Each regime's rows
-    carry it in a ``regime`` column (:data:`MALLOC_REGIMES`).
+    fills kept workspaces, so fresh mappings slow li-zhao several times more than
+    free-energy (the bench's rows give both). Each regime's rows carry it in a
+    ``regime`` column (:data:`MALLOC_REGIMES`).
 
     Returns
     -------

@@ -71,7 +71,7 @@ def effective_twist_rigidity(dna, force):
     if not np.all(f > 0):
         raise ValueError(f"force must be positive for C_eff, got {force}")
     c = _mn.effective_twist_rigidity(f, si.bending_rigidity, si.torsional_rigidity, si.kT)
-    return quantity(c * 1e30, _PN_NM2)
+    return quantity(c, U.N * U.m**2).to(_PN_NM2)
 
 
 def extension_factor(dna, force, torque, tail_length):

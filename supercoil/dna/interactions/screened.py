@@ -25,6 +25,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil import display as _d
 from supercoil._checks import check_scale
 from supercoil.core.blocks import in_blocks
 from supercoil.core.dna import contact as _ct
@@ -41,6 +42,8 @@ __all__ = ["Screened"]
 
 #: outer end of the tabulated branch, in hard-core radii (1 um for a = 1 nm)
 _R_MAX_FACTOR = 1000.0
+#: mol/m^3 (the SI salt) to mol/L, from pint
+_MOLAR = _d.spec("M")[1]
 #: validity of Stigter's far-field charge: the strands' surface gap 2 (R - a) must be at
 #: least this many Debye lengths; below it (and in contact, gap 0) ValidityWarning
 #: (docs/theory/screened-interaction.md#validity)
@@ -191,8 +194,8 @@ class Screened(Interaction):
         with np.errstate(over="ignore", under="ignore", divide="ignore"):
             lam = float(_el.debye_length(si.salt, si.temperature))
         check_scale(lam / a, f"the Debye length over the hard-core radius, lambda_D/a (salt "
-                    f"{si.salt * 1e-3:.6g} M, lambda_D = {lam * 1e9:.6g} nm, a = {a * 1e9:.6g} "
-                    "nm)", lo=1.0 / 300.0, hi=_R_MAX_FACTOR,
+                    f"{si.salt * _MOLAR:.6g} M, lambda_D = {_d.text(lam, 'length')}, "
+                    f"a = {_d.text(a, 'length')})", lo=1.0 / 300.0, hi=_R_MAX_FACTOR,
                     why="the screened interaction is solved for a / 300 <= lambda_D <= "
                         f"{_R_MAX_FACTOR:g} a (docs/theory/screened-interaction.md)")
 
@@ -284,8 +287,9 @@ class Screened(Interaction):
 
         warnings.warn(
             f"screened interaction outside its validity at {si.salt:g} mM: above "
-            f"{onset * 1e12:.3g} pN tension the strands' surface gap 2(R - a) is below "
-            f"{MIN_GAP_DEBYE_LENGTHS:g} Debye length ({lam * 1e9:.3g} nm; 0 in contact), "
+            f"{_d.text(onset, 'force', '.3g')} tension the strands' surface gap 2(R - a) is "
+            f"below {MIN_GAP_DEBYE_LENGTHS:g} Debye length ({_d.text(lam, 'length', '.3g')}; 0 "
+            "in contact), "
             "where Stigter's far-field charge does not give the near-field repulsion: the "
             "radius, torque and slope there are qualitative (the screened-interaction "
             "theory page, 'Validity of the far-field charge')", ValidityWarning, stacklevel=3)
@@ -308,6 +312,6 @@ class Screened(Interaction):
     def lengths(self, dna):
         """Debye length, Bjerrum length (nm) and effective line charge (1/nm) as quantities."""
         lam, lB, nu, _ = self.screening(dna)
-        return {"debye_length": quantity(lam * 1e9, U.nm),
-                "bjerrum_length": quantity(lB * 1e9, U.nm),
-                "effective_line_charge": quantity(nu * 1e-9, U.per_nm)}
+        return {"debye_length": _d.quantity(lam, "length"),
+                "bjerrum_length": _d.quantity(lB, "length"),
+                "effective_line_charge": quantity(nu, U.m**-1).to(U.per_nm)}

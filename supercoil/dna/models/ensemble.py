@@ -16,6 +16,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil import display as _d
 from supercoil.core.dna import ensemble as _en
 from supercoil.core.dna import equilibrium as _eq
 from supercoil.core.dna import phases as _ph
@@ -52,9 +53,10 @@ def check_forces(force, dna):
     if np.any(bad):
         x = float(f[bad].flat[0])
         raise ValidityError(
-            f"ensemble model at force {x * 1e12:.6g} pN: outside [kT/(4A) = {lo * 1e12:.4g} pN, "
-            f"{FORCE_MAX * 1e12:.0e} pN], where its phases are evaluated (below, the "
-            "worm-like-chain tail is not stretched: no coexistence to solve)")
+            f"ensemble model at force {_d.text(x, 'force')}: outside [kT/(4A) = "
+            f"{_d.text(lo, 'force', '.4g')}, {_d.text(FORCE_MAX, 'force', '.0e')}], where its "
+            "phases are evaluated (below, the worm-like-chain tail is not stretched: no "
+            "coexistence to solve)")
 
 
 #: points of the superhelix table of the derived plectoneme (cubic Hermite in the torque)
@@ -296,11 +298,12 @@ class Ensemble(DNAModel):
         if not np.any(bad):
             return []
         i = int(np.flatnonzero(bad)[0])
-        return [f"ensemble model (effective_tension) at force {force[i] * 1e12:.6g} pN, turns "
-                f"{turns[i]:.6g}: torque {torque[i] * 1e21:.4g} pN nm leaves the stretched "
-                f"phase an effective tension F - k M^2/(4 kT A) = {fe[i] * 1e12:.4g} pN below "
-                f"its floor {floor * 1e12:.4g} pN (near the chain's torque-induced "
-                "instability at 0); there the phase is a continuation, not the worm-like chain"]
+        return [f"ensemble model (effective_tension) at force {_d.text(force[i], 'force')}, "
+                f"turns {turns[i]:.6g}: torque {_d.text(torque[i], 'torque', '.4g')} leaves the "
+                "stretched phase an effective tension F - k M^2/(4 kT A) = "
+                f"{_d.text(fe[i], 'force', '.4g')} below its floor "
+                f"{_d.text(floor, 'force', '.4g')} (near the chain's torque-induced instability "
+                "at 0); there the phase is a continuation, not the worm-like chain"]
 
     def _free_energy(self, turns, force, dna, thermal, interaction):
         """G(N, F) = -kT ln Z in J (ensemble.md#32-fixed-turns)."""

@@ -17,6 +17,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil import display as _d
 from supercoil.core.dna import free_energy as _fe
 from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
@@ -94,7 +95,8 @@ class FreeEnergy(DNAModel):
             co = _fe.coexistence(force, *_args(dna), _equilibrium(interaction, dna), thermal)
         except SupercoilError as exc:
             raise ValidityError(f"free-energy model: no tail-plectoneme coexistence at "
-                                f"{force[0] * 1e12:g} pN ({type(exc).__name__}: {exc})") from exc
+                                f"{_d.text(force[0], 'force', 'g')} "
+                                f"({type(exc).__name__}: {exc})") from exc
         return co.pull
 
     def _buckling(self, force, dna, thermal, interaction):
@@ -141,7 +143,8 @@ class FreeEnergy(DNAModel):
         if not thermal:
             return []
         return _messages(force, _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT),
-                         np.ones(force.shape, bool), lambda i: f"force {force[i] * 1e12:.6g} pN")
+                         np.ones(force.shape, bool),
+                         lambda i: f"force {_d.text(force[i], 'force')}")
 
     def _validity(self, turns, force, points, dna, thermal):
         """Messages where the tail's expansion fails (zeta_inf <= 0, or bracket Q < 1)."""
@@ -156,7 +159,7 @@ class FreeEnergy(DNAModel):
         Q = _fe.tail_bracket(force, torque, dna.bending_rigidity, dna.kT)
 
         def at(i):
-            return f"force {force.flat[i] * 1e12:.6g} pN, turns {turns.flat[i]:.6g}"
+            return f"force {_d.text(force.flat[i], 'force')}, turns {turns.flat[i]:.6g}"
 
         return _messages(force, Q, where, at)
 

@@ -19,6 +19,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from supercoil import display as _d
 from supercoil.core.dna import li_zhao as _hc
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED
@@ -108,7 +109,7 @@ class LiZhao(DNAModel):
         if np.any(zeta_bad):
             i = np.flatnonzero(zeta_bad)[0]
             return [f"Moroz-Nelson zeta = {zeta[i]:.4g} lies outside (0, 1] at force "
-                    f"{force[i] * 1e12:.6g} pN, turns {turns[i]:.6g}: the extension is not "
+                    f"{_d.text(force[i], 'force')}, turns {turns[i]:.6g}: the extension is not "
                     "valid there"]
         if q_min >= CONVERGED_BRACKET:
             return []  # no long-tail message can fire
@@ -126,7 +127,7 @@ def _zeta(points, dna):
 def long_tail_messages(F, Q, where, N=None):
     """li-zhao's messages where zeta's long-tail factor fails (the shared check)."""
     def at(i):
-        return f"force {F[i] * 1e12:.6g} pN" + (f", turns {N[i]:.6g}" if N is not None else "")
+        return f"force {_d.text(F[i], 'force')}" + (f", turns {N[i]:.6g}" if N is not None else "")
 
     return _tail_messages(F, Q, where, at, limits=(
         "", " (below 0.201 pN in the plectoneme phase for the seed set)"))
