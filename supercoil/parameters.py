@@ -2,7 +2,7 @@
 
 A parameter file looks like::
 
-    kind = "ElasticRod"          # or "DNA"
+    kind = "ElasticRod"          # or "DNA", or "DNAModel" (then also model = "<name>")
     title = "..."
 
     [parameters]
@@ -11,6 +11,13 @@ A parameter file looks like::
 
     [sources]
     young_modulus = "tensile test, ..."   # one source line per value
+
+A ``"DNAModel"`` file holds values of a registered DNA model's declared parameters
+(:class:`~supercoil.dna.model_parameters.ModelParameter`, each in a unit of its
+dimension) and, optionally, a ``[calibration]`` table of the fit it comes from (the
+``torque_scale`` the model's torques were fitted with, a plain number with its source
+line): its material is the model instance and :attr:`ParameterSet.calibration` holds
+the calibration.
 
 The bundled sets live in the repository's top-level ``parameters/`` folder and
 are shipped inside the wheel as ``supercoil/parameters/``, so
@@ -34,11 +41,14 @@ from supercoil.units import ureg
 
 __all__ = ["ParameterSet", "available_parameter_sets", "load_parameters", "read_parameter_set"]
 
-_KINDS = {"ElasticRod": ElasticRod, "DNA": DNA}
+_KINDS = {"ElasticRod": ElasticRod, "DNA": DNA, "DNAModel": None}
 _REQUIRED = {
     "ElasticRod": ("radius", "length", "young_modulus", "shear_modulus"),
     "DNA": ("length", "bending_persistence", "twist_persistence", "radius", "temperature"),
+    "DNAModel": (),
 }
+#: the calibration values a "DNAModel" file may record from its fit
+CALIBRATION_KEYS = ("torque_scale",)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -52,6 +62,7 @@ class ParameterSet:
     values: dict
     sources: dict
     material: object
+    calibration: dict = dataclasses.field(default_factory=dict)
 
     def describe(self) -> str:
         """Human-readable listing: one line per value with its unit and source."""
@@ -120,27 +131,17 @@ def read_parameter_set(name_or_path) -> ParameterSet:
     if not isinstance(raw, dict):
         raise ParameterError(f"{path}: missing [parameters] table")
     sources = doc.get("sources", {})
+    if kind == "DNAModel":
+        material, values, calibration = _model_set(path, doc, raw, sources)
+        return ParameterSet(name, path, kind, str(doc.get("title", name)), values,
+                            dict(sources), material, calibration)
     cls = _KINDS[kind]
     fields = {f.name for f in dataclasses.fields(cls)}
     for key in _REQUIRED[kind]:
         if key not in raw:
             raise ParameterError(f"{path}: missing key {key!r} in [parameters] ({kind})")
-    values = {}
-    for key, text in raw.items():
-        if key not in fields:
-            raise ParameterError(
-                f"{path}: unknown key {key!r} in [parameters]; {kind} takes {sorted(fields)}"
-            )
-        if key not in sources:
-            raise ParameterError(f"{path}: no source line for {key!r} in [sources]")
-        if not isinstance(text, str | int | float):
-            raise ParameterError(f"{path}: {key} must be a string like '4.2 MPa', got {text!r}")
-        try:
-            values[key] = ureg.Quantity(text)
-        except (pint.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-            raise ParameterError(f"{path}: {key} = {text!r}: unknown unit ({exc})") from None
-        except Exception as exc:  # pint raises several parser errors
-            raise ParameterError(f"{path}: {key} = {text!r} cannot be parsed ({exc})") from None
+    values = {key: _quantity(path, key, text, fields, kind, sources)
+              for key, text in raw.items()}
     try:
         material = cls(**values)
     except pint.DimensionalityError as exc:
@@ -149,6 +150,58 @@ def read_parameter_set(name_or_path) -> ParameterSet:
         raise ParameterError(f"{path}: {exc}") from None
     title = str(doc.get("title", name))
     return ParameterSet(name, path, kind, title, values, dict(sources), material)
+
+
+def _quantity(path, key, text, fields, kind, sources):
+    """One ``[parameters]`` entry as a quantity; ParameterError naming the key otherwise."""
+    if key not in fields:
+        raise ParameterError(
+            f"{path}: unknown key {key!r} in [parameters]; {kind} takes {sorted(fields)}"
+        )
+    if key not in sources:
+        raise ParameterError(f"{path}: no source line for {key!r} in [sources]")
+    if not isinstance(text, str | int | float):
+        raise ParameterError(f"{path}: {key} must be a string like '4.2 MPa', got {text!r}")
+    try:
+        return ureg.Quantity(text)
+    except (pint.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
+        raise ParameterError(f"{path}: {key} = {text!r}: unknown unit ({exc})") from None
+    except Exception as exc:  # pint raises several parser errors
+        raise ParameterError(f"{path}: {key} = {text!r} cannot be parsed ({exc})") from None
+
+
+def _model_set(path, doc, raw, sources):
+    """``(model instance, values, calibration)`` of a ``"DNAModel"`` file (checked)."""
+    from supercoil.dna.models import available_models, get_model
+
+    name = doc.get("model")
+    if name not in available_models():
+        raise ParameterError(f"{path}: 'model' must be one of {available_models()}, "
+                             f"got {name!r}")
+    declared = get_model(name).parameters
+    values, si = {}, {}
+    for key, text in raw.items():
+        q = _quantity(path, key, text, set(declared), f"model {name!r}", sources)
+        unit = declared[key].unit or "dimensionless"
+        if q.dimensionality != ureg.Quantity(1.0, unit).dimensionality:
+            raise ParameterError(f"{path}: {key} = {text!r}: wrong dimension, {key} is in "
+                                 f"{unit}")
+        values[key], si[key] = q, float(q.to(declared[key].si_unit).magnitude)
+    calibration = {}
+    for key, value in doc.get("calibration", {}).items():
+        if key not in CALIBRATION_KEYS:
+            raise ParameterError(f"{path}: unknown key {key!r} in [calibration]; it takes "
+                                 f"{list(CALIBRATION_KEYS)}")
+        if key not in sources:
+            raise ParameterError(f"{path}: no source line for {key!r} in [sources]")
+        if not isinstance(value, int | float) or not value > 0:
+            raise ParameterError(f"{path}: {key} must be a positive number, got {value!r}")
+        calibration[key] = float(value)
+    try:
+        model = get_model(name, **si)
+    except ValueError as exc:
+        raise ParameterError(f"{path}: {exc}") from None
+    return model, values, calibration
 
 
 def load_parameters(name_or_path):
@@ -162,7 +215,8 @@ def load_parameters(name_or_path):
 
     Returns
     -------
-    ElasticRod or DNA
+    ElasticRod, DNA or DNAModel
+        A ``"DNAModel"`` file gives the model instance with the file's values.
 
     Raises
     ------

@@ -93,6 +93,65 @@ def test_unknown_name_and_unknown_key(tmp_path):
         sc.load_parameters(p)
 
 
+MODEL_TOML = """kind = "DNAModel"
+model = "ensemble"
+[parameters]
+twist_bend_softening = "1.5"
+plectoneme_twist_persistence_ref = "{p0}"
+[calibration]
+torque_scale = {scale}
+[sources]
+twist_bend_softening = "a"
+plectoneme_twist_persistence_ref = "b"
+torque_scale = "c"
+"""
+
+
+def test_a_model_set_gives_the_model_with_its_values_in_si(tmp_path):
+    from supercoil.dna.models import get_model
+    from supercoil.parameters import read_parameter_set
+
+    p = tmp_path / "m.toml"
+    p.write_text(MODEL_TOML.format(p0="0.0124 um", scale=0.7))
+    ps = read_parameter_set(p)
+    assert ps.kind == "DNAModel" and ps.calibration == {"torque_scale": 0.7}
+    m = ps.material
+    want = get_model("ensemble", twist_bend_softening=1.5,
+                     plectoneme_twist_persistence_ref=12.4e-9).values
+    assert m.values == pytest.approx(want, rel=1e-15)
+    assert m.values["plectoneme_twist_persistence_ref"] == pytest.approx(12.4e-9, rel=1e-15)
+    assert m.values["domain_nucleation"] == get_model("ensemble").values["domain_nucleation"]
+    bundled = sc.load_parameters("ensemble_qian2024_spread_fit")
+    assert bundled.values["twist_bend_softening"] == 1.0  # the Moroz-Nelson floor
+
+
+@pytest.mark.parametrize(("p0", "scale", "match"), [
+    ("12.4 pN", 0.7, "wrong dimension, plectoneme_twist_persistence_ref is in nm"),
+    ("12.4 nm", -1, "torque_scale must be a positive number"),
+    ("12.4 nm", '"0.7"', "torque_scale must be a positive number"),
+])
+def test_bad_model_sets_give_parameter_errors(tmp_path, p0, scale, match):
+    p = tmp_path / "m.toml"
+    p.write_text(MODEL_TOML.format(p0=p0, scale=scale))
+    with pytest.raises(sc.ParameterError, match=match):
+        sc.load_parameters(p)
+
+
+def test_model_set_names_its_unknown_model_key_and_calibration(tmp_path):
+    p = tmp_path / "m.toml"
+    good = MODEL_TOML.format(p0="12 nm", scale=0.7)
+    for text, match in ((good.replace('"ensemble"', '"nope"'), "'model' must be one of"),
+                        (good.replace("[calibration]", 'colour = "1"\n[calibration]'),
+                         "unknown key 'colour' in \\[parameters\\]; model 'ensemble'"),
+                        (good.replace("torque_scale = 0", "force_scale = 0"),
+                         "unknown key 'force_scale' in \\[calibration\\]"),
+                        (good.replace('torque_scale = "c"\n', ""),
+                         "no source line for 'torque_scale'")):
+        p.write_text(text)
+        with pytest.raises(sc.ParameterError, match=match):
+            sc.load_parameters(p)
+
+
 @pytest.mark.background("wheel")
 def test_parameter_sets_load_from_a_built_wheel(installed_wheel):
     """Build the wheel, unpack it away from the checkout and load both sets from it."""

@@ -18,17 +18,23 @@ import numpy as np
 
 from supercoil import display
 
-__all__ = ["DEFAULT_CONFIGS", "load_published", "plot_validation", "validate"]
+__all__ = ["DEFAULT_CONFIGS", "TORQUE_QUANTITIES", "load_published", "plot_validation", "validate"]
 
 #: (model, parameter set, interaction): the paper's construction on the seed set,
-#: the consistent and the Marko 2007 model on the 150 mM set, and the phase-ensemble
-#: model with its defaults and the set fitted to the curves of Qian et al. (2024)
+#: the consistent and the Marko 2007 model on the 150 mM set, the phase-ensemble
+#: model with its defaults and the set fitted to the curves of Qian et al. (2024), and
+#: its force-spread fit to the same curves (a "DNAModel" parameter set in the model's
+#: place: the model with that set's values)
 DEFAULT_CONFIGS = (
     ("li-zhao", "dna", "hard-core"),
     ("free-energy", "dna_150mM_nacl", "screened"),
     ("marko2007", "dna_150mM_nacl", None),
     ("ensemble", "dna_qian2024_fit", None),
+    ("ensemble_qian2024_spread_fit", "dna_qian2024_spread_fit", None),
 )
+#: quantities proportional to the model's torque: a model set fitted with a torque scale
+#: s (model torque = s x the trap's) predicts them in the trap's units as prediction / s
+TORQUE_QUANTITIES = ("buckling_torque", "effective_twist_persistence")
 #: where a row gives no force (or zero force, where the models hold no plectoneme),
 #: the models are evaluated at this force (pN); the note of the row says so
 FALLBACK_FORCE_PN = {"plectoneme_radius": 0.2, "extension_jump_ratio": 2.0}
@@ -67,12 +73,28 @@ def _molecule(set_name, row):
     return dna.replace(**changes) if changes else dna
 
 
+def _model(spec):
+    """``(model spec, torque scale)``: a registered name as is (scale 1), or the instance
+    and the fitted torque scale of a bundled ``"DNAModel"`` parameter set."""
+    from supercoil.dna.models import available_models
+    from supercoil.exceptions import ParameterError
+    from supercoil.parameters import read_parameter_set
+
+    if not isinstance(spec, str) or spec in available_models():
+        return spec, 1.0
+    pset = read_parameter_set(spec)
+    if pset.kind != "DNAModel":
+        raise ParameterError(f"validate: {spec!r} in a config's model place is a "
+                             f"{pset.kind} set, not a model or a DNAModel parameter set")
+    return pset.material, pset.calibration.get("torque_scale", 1.0)
+
+
 def _predict(quantity, force_pn, dna, model, interaction, unit):
     """One model prediction (magnitude in ``unit``) and a note, or (nan, reason)."""
     from supercoil.dna.hat import resolve
     from supercoil.units import ureg
 
-    si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, model,
+    si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, _model(model)[0],
                                  interaction or "hard-core")
     kT = si.kT
     if quantity == "plectoneme_radius":
@@ -232,8 +254,10 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
     pub = load_published() if published is None else published
     cols = {k: [] for k in ("quantity", "force", "salt", "measured", "uncertainty", "unit",
                             "model", "parameter_set", "interaction", "predicted",
-                            "relative_error", "predicted_low", "predicted_high", "source",
-                            "read_from", "note")}
+                            "relative_error", "predicted_low", "predicted_high",
+                            "torque_scale", "predicted_trap_torque",
+                            "relative_error_trap_torque", "source", "read_from", "note")}
+    scales = {c[0]: _model(c[0])[1] for c in configs}
     for _, row in pub.iterrows():
         q = row["quantity"]
         force = row["force"]
@@ -245,12 +269,16 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
         for model, set_name, interaction in configs:
             pred, note, low, high = _evaluate(row, q, force, model, set_name, interaction)
             measured = float(row["value"])
+            s = scales[model]
+            trap = pred / s if q in TORQUE_QUANTITIES and s != 1.0 else np.nan
             for k, v in (("quantity", q), ("force", force), ("salt", row["salt"]),
                          ("measured", measured), ("uncertainty", row["uncertainty"]),
                          ("unit", row["unit"]), ("model", model), ("parameter_set", set_name),
                          ("interaction", interaction or ""), ("predicted", pred),
                          ("relative_error", pred / measured - 1.0),
                          ("predicted_low", low), ("predicted_high", high),
+                         ("torque_scale", s), ("predicted_trap_torque", trap),
+                         ("relative_error_trap_torque", trap / measured - 1.0),
                          ("source", row["source"]), ("read_from", row["read_from"]),
                          ("note", (note0 + note).strip("; "))):
                 cols[k].append(v)
