@@ -95,6 +95,26 @@ def test_fit_recovers_the_torque_scale(scaled_torque, base, true_dna):
         "residual_rms"].m
 
 
+def test_report_gives_c_over_the_torque_scale_with_its_propagated_error(scaled_torque, base):
+    """C / s (the twist stiffness in the measured torque's units) and its delta-method
+    error against a second method: the spread of C / s over draws from the covariance."""
+    from supercoil.dna.fitting.report import twist_in_trap_units
+
+    r = sc.fit_hat_curves(scaled_torque, base, vary=["twist_persistence", "radius",
+                                                     "torque_scale"])
+    value, err = twist_in_trap_units(r)
+    C, s = r.parameters["twist_persistence"].m_as("nm"), r.parameters["torque_scale"].m
+    assert value == pytest.approx(C / s, rel=1e-15)
+    cov = r.covariance.loc[["twist_persistence", "torque_scale"],
+                           ["twist_persistence", "torque_scale"]].to_numpy()
+    draws = np.random.default_rng(7).multivariate_normal([C, s], cov, size=200_000)
+    assert err == pytest.approx(np.std(draws[:, 0] / draws[:, 1]), rel=0.03)
+    assert f"twist_persistence / torque_scale = {value:.6g} +/- {err:.4g} nm" in r.report()
+    # without a free torque scale there is nothing to derive
+    plain = sc.fit_hat_curves(scaled_torque, base, vary=["twist_persistence", "radius"])
+    assert twist_in_trap_units(plain) is None and "[[Derived]]" not in plain.report()
+
+
 def test_fixed_torque_scale_is_reported_as_fixed(scaled_torque, base):
     r = sc.fit_hat_curves(scaled_torque, base, fixed={"torque_scale": TRUE_TS})
     assert r.fixed["torque_scale"].m == pytest.approx(TRUE_TS)

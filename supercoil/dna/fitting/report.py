@@ -8,7 +8,7 @@ from supercoil import display
 from supercoil.dna.fitting.consistency import report_lines
 from supercoil.units import ureg
 
-__all__ = ["fit_report"]
+__all__ = ["fit_report", "twist_in_trap_units"]
 
 
 def _in_data_unit(result, nm):
@@ -112,6 +112,37 @@ def _correlation_lines(result, min_correlation, max_correlations=6):
     return [head] + [f"    C({a}, {b}) = {v:+.4f}" for _, a, b, v in shown]
 
 
+def twist_in_trap_units(result):
+    """``(C / s, its standard error)`` in nm of a fit with C and the torque scale s free.
+
+    The model's torque is s times the measured one, so its twist persistence C is in the
+    model's torque units; ``C / s`` is the twist stiffness in the units of the measured
+    torque (docs/theory/ensemble.md#61-the-force-spread-fits-set-and-which-c-the-curves-measure).
+    The error is the first-order propagation of the covariance,
+    ``var(C/s) = (var C - 2 (C/s) cov(C, s) + (C/s)^2 var s) / s^2``. None unless both are
+    free and determined.
+    """
+    names = ("twist_persistence", "torque_scale")
+    if not all(n in result.names and n not in result.undetermined for n in names):
+        return None
+    C = result.parameters[names[0]].m_as("nm")
+    s = float(result.parameters[names[1]].magnitude)
+    cov = result.covariance.loc[list(names), list(names)].to_numpy()  # nm and 1
+    r = C / s
+    var = (cov[0, 0] - 2.0 * r * cov[0, 1] + r * r * cov[1, 1]) / (s * s)
+    return r, float(np.sqrt(max(var, 0.0)))
+
+
+def _derived_lines(result):
+    trap = twist_in_trap_units(result)
+    if trap is None:
+        return []
+    return ["[[Derived]]",
+            f"    twist_persistence / torque_scale = {trap[0]:.6g} +/- {trap[1]:.4g} nm "
+            "(C in the measured torque's units; "
+            "docs/theory/ensemble.md#6-validation-without-refitting)"]
+
+
 def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
     """Statistics, parameter table with units, fixed values, correlations, warnings."""
     d = result.spec.data
@@ -150,6 +181,7 @@ def fit_report(result, min_correlation=0.1, max_correlations=6) -> str:
         lines.append("[[Fixed]]")
         for name, q in result.fixed.items():
             lines.append(f"    {name:<{width}}{q.magnitude:>12.6g}  {q.units:~P}")
+    lines += _derived_lines(result)
     lines += _correlation_lines(result, min_correlation, max_correlations)
     if result.notes:
         lines.append("[[Notes]]")
