@@ -22,7 +22,8 @@ fits a small synthetic workbook of the same layout (marko2007 curves whose
 measured torque is the model torque / 0.8), so the test suite runs it.
 
 Writes published_fits.csv (per model and variant: residual RMS per channel, A,
-C, length, P, turns offset, torque scale with their errors, AIC, BIC),
+C, length, P, turns offset, torque scale with their errors, C / torque scale (the
+twist stiffness in the measured torque's units) with its propagated error, AIC, BIC),
 published_maxwell.csv (the per-force slopes and plateau torques),
 published_fits.txt (the reports) and published_fits.png.
 """
@@ -47,6 +48,7 @@ from supercoil.datasets.published import (
     write_synthetic_workbook,
 )
 from supercoil.dna.fitting import compare_models
+from supercoil.dna.fitting.report import twist_in_trap_units
 from supercoil.dna.models import get_model
 from supercoil.example_cli import example_parser
 
@@ -88,7 +90,8 @@ def _pm(rec, name):
 def table_of(rows):
     cols = {k: [] for k in ("fit", "success", "extension_rms", "torque_rms", "A", "A_err", "C",
                             "C_err", "length", "length_err", "P", "P_err", "turns_offset",
-                            "turns_offset_err", "torque_scale", "torque_scale_err", "aic",
+                            "turns_offset_err", "torque_scale", "torque_scale_err",
+                            "C_over_torque_scale", "C_over_torque_scale_err", "aic",
                             "bic", "delta_aic", "delta_bic", "nparams", "error")}
     for label, rec, res, _ in rows:
         cols["fit"].append(label)
@@ -106,6 +109,9 @@ def table_of(rows):
                 v, e = 1.0, 0.0  # held at 1
             cols[key].append(v)
             cols[f"{key}_err"].append(e)
+        trap = twist_in_trap_units(res) if res is not None else None
+        cols["C_over_torque_scale"].append(np.nan if trap is None else trap[0])
+        cols["C_over_torque_scale_err"].append(np.nan if trap is None else trap[1])
         cols["aic"].append(rec.get("aic", np.nan))
         cols["bic"].append(rec.get("bic", np.nan))
         cols["nparams"].append(int(rec.get("nparams", 0)))
@@ -116,7 +122,8 @@ def table_of(rows):
         cols[f"delta_{crit}"] = list(v - best)
     units = {k: "" for k in cols}
     units.update(extension_rms="nm", torque_rms="pN nm", A="nm", A_err="nm", C="nm",
-                 C_err="nm", length="nm", length_err="nm", P="nm", P_err="nm",
+                 C_err="nm", C_over_torque_scale="nm", C_over_torque_scale_err="nm",
+                 length="nm", length_err="nm", P="nm", P_err="nm",
                  turns_offset="turn", turns_offset_err="turn")
     return sc.tables.make_table(cols, units, sc.tables.provenance(
         source="supercoil.datasets.published (the user's copy of the source data)",
