@@ -52,9 +52,10 @@ def test_ensemble_fits_the_real_curves_with_its_fitted_defaults(curves):
 
 def test_force_spread_at_the_moroz_nelson_floor_meets_the_targets_in_trap_units(curves):
     """The force-spread fit from the default start (force_spread from its default start
-    FORCE_SPREAD_START) at the default tolerance (docs/theory/ensemble.md#5-fit, "The Moroz-Nelson floor": measured extension RMS
-    13.83 nm, torque 0.702 pN nm, A 40.6 nm, C 79.0 nm, k on its lower bound 1, turns
-    offset +0.04, torque scale 0.684): every target, C read in the trap's torque units
+    FORCE_SPREAD_START) at the default tolerance (docs/theory/ensemble.md#5-fit, "The
+    Moroz-Nelson floor": measured extension RMS 13.83 nm, torque 0.702 pN nm, A 40.6 nm,
+    C 79.0 nm, k on its lower bound 1, turns offset +0.04, torque scale 0.684): every
+    target, C read in the trap's torque units
     (C / s = 115.4 +- 3.4 nm, docs/theory/ensemble.md#6-validation-without-refitting); in
     the model's torque units C is 79 nm, below 85-120 nm."""
     from supercoil.dna.fitting.report import twist_in_trap_units

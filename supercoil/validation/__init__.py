@@ -289,7 +289,8 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
 
 
 def plot_validation(table, path=None):
-    """One panel per quantity: measured values (with errors) and each model's prediction."""
+    """One panel per quantity: measured values (with errors) and each model's prediction
+    (open markers: a torque quantity divided by the set's torque scale)."""
     import matplotlib.pyplot as plt
 
     quantities = list(dict.fromkeys(table["quantity"]))
@@ -304,6 +305,10 @@ def plot_validation(table, path=None):
         for j, (model, g) in enumerate(t.groupby("model", sort=False)):
             x = np.arange(len(g)) + 0.1 * (j + 1)
             line, = ax.plot(x, g["predicted"], markers[model], label=model)
+            if "predicted_trap_torque" in g and np.isfinite(g["predicted_trap_torque"]).any():
+                # a set fitted with a torque scale s: its torques also in the trap's units
+                ax.plot(x, g["predicted_trap_torque"], markers[model], mfc="none",
+                        color=line.get_color(), label=f"{model} / torque_scale")
             # rows whose source lacks a condition: the prediction's range, not a point
             ax.vlines(x, g["predicted_low"], g["predicted_high"], color=line.get_color(),
                       lw=2, alpha=0.6)
