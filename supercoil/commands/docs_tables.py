@@ -29,13 +29,20 @@ def _g(x, digits=4):
 
 
 def validation_summary(table):
-    """Per (quantity, model): the number of compared rows and the range of |relative error|."""
+    """Per (quantity, model): the number of compared rows and the range of |relative error|
+    (and of |relative error| in the trap's torque units, where a set gives a torque scale)."""
     ok = table.dropna(subset=["relative_error"])
     cols = {"quantity": [], "model": [], "rows": [], "min_abs_relative_error": [],
-            "max_abs_relative_error": []}
+            "max_abs_relative_error": [], "min_abs_relative_error_trap_torque": [],
+            "max_abs_relative_error_trap_torque": []}
     for (q, model), g in ok.groupby(["quantity", "model"], sort=False):
         err = g["relative_error"].abs()
-        for key, value in zip(cols, (q, model, len(g), err.min(), err.max()), strict=True):
+        trap = (g["relative_error_trap_torque"].abs().dropna()
+                if "relative_error_trap_torque" in g else err.iloc[:0])
+        values = (q, model, len(g), err.min(), err.max(),
+                  trap.min() if len(trap) else float("nan"),
+                  trap.max() if len(trap) else float("nan"))
+        for key, value in zip(cols, values, strict=True):
             cols[key].append(value)
     units = dict.fromkeys(cols, "")
     return make_table(cols, units, provenance(None, source="supercoil validate",
@@ -43,10 +50,16 @@ def validation_summary(table):
 
 
 def validation_markdown(summary) -> str:
+    def span(lo, hi):
+        return "-" if not np.isfinite(lo) else f"{lo:.3f} - {hi:.3f}"
+
     rows = [[r.quantity, f"`{r.model}`", int(r.rows),
-             f"{r.min_abs_relative_error:.3f} - {r.max_abs_relative_error:.3f}"]
+             span(r.min_abs_relative_error, r.max_abs_relative_error),
+             span(getattr(r, "min_abs_relative_error_trap_torque", np.nan),
+                  getattr(r, "max_abs_relative_error_trap_torque", np.nan))]
             for r in summary.itertuples(index=False)]
-    return markdown_table(["quantity", "model", "rows", "abs. relative error (min - max)"], rows)
+    return markdown_table(["quantity", "model", "rows", "abs. relative error (min - max)",
+                           "same, prediction / torque scale"], rows)
 
 
 # ---- main job: `supercoil hat` buckling.csv per model -------------------------------------------

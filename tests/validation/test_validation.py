@@ -160,3 +160,21 @@ def test_rows_say_which_of_their_conditions_the_model_does_not_take(default_tabl
     stated = np.isfinite(published["force"]) & (published["force"] > 0)
     np.testing.assert_array_equal(per_row["force"][stated], published["force"][stated])
     assert per_row["note"][~stated].str.contains("evaluated at").all()
+
+
+def test_the_docs_summary_gives_the_trap_unit_errors_only_where_a_set_has_a_torque_scale():
+    from supercoil.commands.docs_tables import validation_markdown, validation_summary
+
+    table = validate(configs=(("marko2007", "dna_150mM_nacl", None),
+                              ("ensemble_qian2024_spread_fit", "dna_qian2024_spread_fit",
+                               None)))
+    summary = validation_summary(table)
+    spread = summary[summary["model"] == "ensemble_qian2024_spread_fit"]
+    marko = summary[summary["model"] == "marko2007"]
+    assert marko["min_abs_relative_error_trap_torque"].isna().all()
+    torque = table[(table["model"] == "ensemble_qian2024_spread_fit")
+                   & (table["quantity"] == "buckling_torque")]
+    row = spread[spread["quantity"] == "buckling_torque"]
+    assert row["max_abs_relative_error_trap_torque"].iloc[0] == \
+        pytest.approx(abs(torque["relative_error_trap_torque"].iloc[0]), rel=1e-15)
+    assert "same, prediction / torque scale" in validation_markdown(summary)
