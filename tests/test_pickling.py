@@ -60,6 +60,16 @@ def test_materials_roundtrip_and_replace(dna, rod):
         assert back.replace(**change) == mat.replace(**change)
 
 
+def test_a_model_parameter_set_roundtrips_with_its_values():
+    from supercoil.parameters import read_parameter_set
+
+    pset = read_parameter_set("ensemble_qian2024_spread_fit")
+    back = roundtrip(pset)
+    assert back.material == pset.material and hash(back.material) == hash(pset.material)
+    assert back.calibration == {"torque_scale": 0.684}
+    assert back.values == pset.values
+
+
 def test_salted_dna_roundtrip(dna):
     salty = dna.replace(salt=150 * u.mM)
     assert roundtrip(salty).si.salt == pytest.approx(150.0)
