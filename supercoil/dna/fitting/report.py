@@ -117,7 +117,7 @@ def twist_in_trap_units(result):
 
     The model's torque is s times the measured one, so its twist persistence C is in the
     model's torque units; ``C / s`` is the twist stiffness in the units of the measured
-    torque (docs/theory/ensemble.md#61-the-force-spread-fits-set-and-which-c-the-curves-measure).
+    torque (docs/theory/ensemble.md#6-validation-without-refitting, section 6.1).
     The error is the first-order propagation of the covariance,
     ``var(C/s) = (var C - 2 (C/s) cov(C, s) + (C/s)^2 var s) / s^2``. None unless both are
     free and determined.
