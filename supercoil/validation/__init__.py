@@ -94,7 +94,7 @@ def _predict(quantity, force_pn, dna, model, interaction, unit):
     from supercoil.dna.hat import resolve
     from supercoil.units import ureg
 
-    si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, _model(model)[0],
+    si, f, _, m, inter = resolve(dna, force_pn * ureg.pN, True, model,
                                  interaction or "hard-core")
     kT = si.kT
     if quantity == "plectoneme_radius":
@@ -199,8 +199,9 @@ def _quiet():
         yield
 
 
-def _evaluate(row, q, force, model, set_name, interaction):
-    """``(predicted, note, low, high)`` of one published row for one config."""
+def _evaluate(row, q, force, model, set_name, interaction, label=None):
+    """``(predicted, note, low, high)`` of one published row for one config (``model``: a
+    name or an instance; ``label``: the config's name of it in the notes)."""
     import warnings
 
     from supercoil.exceptions import SupercoilError, SupercoilWarning
@@ -215,7 +216,7 @@ def _evaluate(row, q, force, model, set_name, interaction):
     except SupercoilError as exc:
         pred, note = np.nan, f"{type(exc).__name__}: {exc}"[:200]
     low = high = np.nan
-    notes = _conditions(row, set_name, model, interaction)
+    notes = _conditions(row, set_name, label or model, interaction)
     if q in LENGTH_DEPENDENT and not np.isfinite(row["dna_length"]) and np.isfinite(pred):
         # the source lacks a condition the prediction depends on: no comparison, the
         # prediction's range over the bundled lengths instead
@@ -257,7 +258,7 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
                             "relative_error", "predicted_low", "predicted_high",
                             "torque_scale", "predicted_trap_torque",
                             "relative_error_trap_torque", "source", "read_from", "note")}
-    scales = {c[0]: _model(c[0])[1] for c in configs}
+    resolved = {c[0]: _model(c[0]) for c in configs}  # each set read once
     for _, row in pub.iterrows():
         q = row["quantity"]
         force = row["force"]
@@ -267,9 +268,9 @@ def validate(configs=DEFAULT_CONFIGS, published=None):
             note0 = (f"measured at {'zero force' if row['force'] == 0 else 'an unstated force'};"
                      f" evaluated at {force:g} pN; ")
         for model, set_name, interaction in configs:
-            pred, note, low, high = _evaluate(row, q, force, model, set_name, interaction)
+            m, s = resolved[model]
+            pred, note, low, high = _evaluate(row, q, force, m, set_name, interaction, model)
             measured = float(row["value"])
-            s = scales[model]
             trap = pred / s if q in TORQUE_QUANTITIES and s != 1.0 else np.nan
             for k, v in (("quantity", q), ("force", force), ("salt", row["salt"]),
                          ("measured", measured), ("uncertainty", row["uncertainty"]),
