@@ -285,7 +285,8 @@ def extension_messages(force, turns, points, dna):
     return [f"extension {display.text(z[i], 'length')} at force "
             f"{display.text(force[i], 'force')}, turns {turns[i]:.6g} lies outside "
             f"[0, L = {display.text(dna.length, 'length')}]: the thermal formula is not valid "
-            "there (tail of a few persistence lengths or less)"]
+            "there (a tail of a few persistence lengths or less, or a force below the "
+            "thermal expansion's range)"]
 
 
 #: points per block of the checks that build masks (their temporaries stay bounded)

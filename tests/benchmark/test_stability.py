@@ -408,6 +408,9 @@ class _Parabola(DNAModel):
     parameters: ClassVar[dict] = {
         "torque_error": ModelParameter("torque_error", "", 0.0, -1.0, 1.0,
                                        "relative error of the reported torque", "test"),
+        "extension_excess": ModelParameter("extension_excess", "", 0.0, 0.0, 1.0,
+                                           "relative excess of the stretching term (z above "
+                                           "L at small turns, Maxwell kept)", "test"),
     }
 
     def has_free_energy(self, thermal):
@@ -420,9 +423,10 @@ class _Parabola(DNAModel):
     def _state(self, turns, force, dna):
         om = 2 * np.pi * np.asarray(turns, float) / dna.length
         a, k = dna.bending_persistence, 0.05
-        G = dna.length * (-force * (1 - k * (a * om) ** 2) + 0.5 * dna.torsional_rigidity * om**2)
-        z = dna.length * (1 - k * (a * om) ** 2)
-        M = (2 * force * k * a**2 * om + dna.torsional_rigidity * om)
+        f = force * (1 + self.values["extension_excess"])
+        G = dna.length * (-f * (1 - k * (a * om) ** 2) + 0.5 * dna.torsional_rigidity * om**2)
+        z = dna.length * (1 + self.values["extension_excess"]) * (1 - k * (a * om) ** 2)
+        M = (2 * f * k * a**2 * om + dna.torsional_rigidity * om)
         return G, np.clip(z, 0, None), M * (1 + self.values["torque_error"])
 
     def _points(self, turns, force, dna, thermal, interaction, short_tail_length):
@@ -457,6 +461,23 @@ def test_family_map_catches_a_model_that_breaks_maxwell(parabola_registered):
     assert "WRONG" not in outcomes and {"ok", "flagged"} & set(outcomes)
     details = [d for o, d in bad.ravel() if o == "WRONG"]
     assert details and all("torque differs from dG/dN / 2 pi" in d for d in details)
+
+
+def test_family_map_flags_a_warned_extension_outside_0_l_and_calls_an_unwarned_one_wrong(
+        parabola_registered, monkeypatch):
+    """An extension above L on points not flagged short_tail (Maxwell kept): the shared
+    limit warns, so the cell is flagged; with that warning silenced it is WRONG."""
+    import supercoil.dna.validity as validity
+
+    dna = sc.load_parameters("dna_150mM_nacl").replace(length=500 * u.nm)
+    model = _Parabola(extension_excess=0.01)
+    warned = maps_family.family_map(dna, model, None, quick=True)[3]
+    pairs = [(o, d) for o, d in warned.ravel() if "outside [0, L" in d]
+    assert pairs and all(o == "flagged" for o, _ in pairs)
+    monkeypatch.setattr(validity, "extension_messages", lambda *args: [])
+    silent = maps_family.family_map(dna, model, None, quick=True)[3]
+    wrong = [d for o, d in silent.ravel() if o == "WRONG"]
+    assert wrong and all(d.startswith("unflagged extension") for d in wrong)
 
 
 def test_family_map_classifies_a_slow_cell_as_a_hang(monkeypatch):

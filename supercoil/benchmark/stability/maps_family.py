@@ -9,9 +9,12 @@ bending persistence A (elasticity).
 
 References (a second method, not the model's own formulas):
 
-* the contract of :mod:`supercoil.dna.models.base`: finite numbers, ``0 <= z <= L`` on
-  points not flagged ``short_tail``, extension even and torque odd in N (the grid is
-  symmetric), phase codes of the shared set;
+* the contract of :mod:`supercoil.dna.models.base`: finite numbers, extension even and
+  torque odd in N (the grid is symmetric), phase codes of the shared set; ``0 <= z <= L``
+  on points not flagged ``short_tail``, or else the warning of the shared limit
+  (:func:`supercoil.dna.validity.extension_messages`, which names such a point): an
+  extension outside its physical range with that warning is flagged, without it WRONG
+  (another warning of the same call does not excuse it);
 * models derived from one free energy (``has_free_energy``): at interior points (same
   phase as both neighbours) ``z = -dG/dF`` and ``M = (1/2 pi) dG/dN`` by central
   differences of the model's free energy, to ``1e-5 L`` and ``1e-5 max|M|``.
@@ -37,6 +40,9 @@ from supercoil.benchmark.stability.classify import (
 
 #: a cell slower than this (s) is classified WRONG: a solver that does not come back
 HANG_SECONDS = 20.0
+#: the words of the shared limit's warning on an extension outside [0, L]
+#: (:func:`supercoil.dna.validity.extension_messages`)
+EXTENSION_WARNING = "lies outside [0, L"
 #: supercoiling density at the ends of each cell's turns grid
 SIGMA_MAX = 0.15
 _HELICAL_REPEAT = 3.57e-9  # m per helical turn (the package's h)
@@ -112,23 +118,47 @@ def free_energy_problems(dna, F, model, inter, thermal):
 
 
 def contract_problems(df, dna, symmetric=True):
-    """The contract's bounds (and, for a model symmetric in N, its symmetries) on one hat
-    curve over symmetric turns."""
+    """``(problems, soft)`` of the contract on one hat curve over symmetric turns: for a
+    model symmetric in N its symmetries (problems), and an extension outside [0, L] on a
+    point not flagged ``short_tail`` (soft: WRONG unless the call warned of it,
+    :data:`EXTENSION_WARNING`)."""
     L = dna.si.length
     z = display.from_display(df["extension"].to_numpy(), "extension")
     M = df["torque"].to_numpy()
     short = df["short_tail"].to_numpy(bool)
-    out = []
+    out, soft = [], []
     bad = ~short & ((z < -1e-9 * L) | (z > L * (1 + 1e-9)))
     if bad.any():
-        out.append(f"unflagged extension {z[bad][0]:.6g} m outside [0, L]")
+        soft.append(f"unflagged extension {z[bad][0]:.6g} m outside [0, L]")
     if not symmetric:
-        return out
+        return out, soft
     if not np.allclose(z, z[::-1], rtol=1e-9, atol=1e-12 * L):
         out.append("extension is not even in N")
     if not np.allclose(M, -M[::-1], rtol=1e-9, atol=1e-12 * max(np.abs(M).max(), 1e-300)):
         out.append("torque is not odd in N")
-    return out
+    return out, soft
+
+
+def _cell(d, F, turns, kw, model, thermal):
+    """``(outcome, detail)`` of one cell: the hat curve of ``d`` at ``F`` over ``turns``."""
+    import supercoil as sc
+
+    t0 = time.perf_counter()
+    df, exc, warns = call(lambda: sc.hat_curve(d, F * sc.ureg.pN, turns, **kw))
+    seconds = time.perf_counter() - t0
+    problems, soft = [], []
+    if seconds > HANG_SECONDS:
+        problems.append(f"hang: the hat curve took {seconds:.1f} s (> {HANG_SECONDS} s)")
+    elif df is not None:
+        num = df.select_dtypes("number")
+        problems = finite_problems({c: num[c].to_numpy() for c in num.columns})
+        if not problems:
+            problems, soft = contract_problems(df, d, model.symmetric_in_turns)
+        if not problems and model.has_free_energy(thermal) and F > 0:
+            problems = free_energy_problems(d, F, kw["model"], kw.get("interaction"), thermal)
+    if soft and not any(EXTENSION_WARNING in str(w.message) for w in warns):
+        problems, soft = problems + soft, []  # no warning names the extension
+    return verdict(exc, warns, problems, soft=soft)
 
 
 def family_map(dna, name, inter, quick, thermal=True):
@@ -148,7 +178,6 @@ def family_map(dna, name, inter, quick, thermal=True):
         ys = log_grid(10.0, 200.0, 2 if quick else 8)  # nm
         axis = Axis("bending_persistence", "bending persistence A [nm]", "nm", ys)
     model = get_model(name)
-    has_g = model.has_free_energy(thermal)
     kw = {"model": name, "thermal": thermal, **({"interaction": inter} if inter else {})}
     out = np.empty((ys.size, forces.size), dtype=object)
     for j, y in enumerate(ys):
@@ -156,19 +185,6 @@ def family_map(dna, name, inter, quick, thermal=True):
         nmax = SIGMA_MAX * d.si.length / _HELICAL_REPEAT
         turns = np.linspace(-nmax, nmax, 21 if quick else 81)
         for i, F in enumerate(forces):
-            t0 = time.perf_counter()
-            df, exc, warns = call(lambda d=d, F=F, t=turns: sc.hat_curve(d, F * u.pN, t, **kw))
-            seconds = time.perf_counter() - t0
-            problems = []
-            if seconds > HANG_SECONDS:
-                problems.append(f"hang: the hat curve took {seconds:.1f} s (> {HANG_SECONDS} s)")
-            elif df is not None:
-                num = df.select_dtypes("number")
-                problems = finite_problems({c: num[c].to_numpy() for c in num.columns})
-                if not problems:
-                    problems = contract_problems(df, d, model.symmetric_in_turns)
-                if not problems and has_g and F > 0:
-                    problems = free_energy_problems(d, F, name, inter, thermal)
-            out[j, i] = verdict(exc, warns, problems)
+            out[j, i] = _cell(d, F, turns, kw, model, thermal)
     key = f"hat_curve {name}" + (f"/{inter}" if inter else "")
     return key, Axis("force", "force [pN]", "pN", forces), axis, out
