@@ -71,6 +71,9 @@ class ParameterSet:
         for key, q in self.values.items():
             val = f"{q:~P}" if hasattr(q, "units") else f"{q:g}"
             lines.append(f"  {key:<{width}} = {val:<14}  # {self.sources.get(key, '')}")
+        for key, value in self.calibration.items():  # the fit's, of a "DNAModel" set
+            lines.append(f"  {key:<{width}} = {value:<14g}  # calibration of the fit: "
+                         f"{self.sources.get(key, '')}")
         return "\n".join(lines)
 
 

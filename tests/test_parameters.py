@@ -123,6 +123,8 @@ def test_a_model_set_gives_the_model_with_its_values_in_si(tmp_path):
     assert m.values["domain_nucleation"] == get_model("ensemble").values["domain_nucleation"]
     bundled = sc.load_parameters("ensemble_qian2024_spread_fit")
     assert bundled.values["twist_bend_softening"] == 1.0  # the Moroz-Nelson floor
+    text = read_parameter_set("ensemble_qian2024_spread_fit").describe()
+    assert "torque_scale" in text and "0.684" in text and "calibration of the fit" in text
 
 
 @pytest.mark.parametrize(("p0", "scale", "match"), [
