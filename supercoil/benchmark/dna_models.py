@@ -70,7 +70,8 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
     from supercoil.core.dna import free_energy as fe
     from supercoil.dna.interactions import get_interaction
 
-    d = (dna or sc.load_parameters("dna")).si
+    material = dna or sc.load_parameters("dna")
+    d = material.si
     per_force, points = _calls(d, models)
     rows = {k: [] for k in ("measurement", "model", "points", "time", "per_item", "rate",
                             "ratio_to_li_zhao")}
@@ -107,7 +108,29 @@ def model_cost(dna=None, n_forces=1000, sizes=(1_000, 100_000), force=1.2e-12, r
                                 samples=repeat)
             for model in models:
                 add(f"{label} at {display.text(force, 'force', 'g')}", model, n, t[model])
+    if coiled:  # the same points as a user gets them: units, table and shared checks
+        N = np.linspace(-coiled[0], coiled[0], coiled[1])
+        t = interleaved_cpu({m: lambda m=m: _public(material, force, N, m) for m in models},
+                            samples=repeat)
+        for model in models:
+            add(f"{PUBLIC} past full coiling, |N| <= {coiled[0]:g} at "
+                f"{display.text(force, 'force', 'g')}", model, N.size, t[model])
     return rows
+
+
+#: the label of :func:`model_cost`'s rows through the public ``sc.hat_curve``
+PUBLIC = "public sc.hat_curve (units, table, shared checks), hat points"
+
+
+def _public(material, force, turns, model):
+    """``sc.hat_curve`` of ``material`` at ``force`` (N), its warnings dropped."""
+    import warnings
+
+    import supercoil as sc
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sc.SupercoilWarning)
+        return sc.hat_curve(material, force * sc.ureg.N, turns, model=model)
 
 
 def screened_equilibrium_cost(dna=None, n_forces=1000, repeat=3):

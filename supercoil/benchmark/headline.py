@@ -313,8 +313,10 @@ def _model_rows(r):
         ratio = m["ratio_to_li_zhao"][i]
         per = "CPU per force" if "per-force" in meas else "CPU per point"
         when = REGIMES[m["regime"][i]] if "regime" in m else ""
-        rows.append(_row(f"model {model} / li-zhao through model.buckling / model.points: "
-                         f"{per}, {meas}, {m['points'][i]} values"
+        path = ("" if meas.startswith("public") else
+                " through model.buckling / model.points")
+        rows.append(_row(f"model {model} / li-zhao{path}: {per}, {meas}, "
+                         f"{m['points'][i]} values"
                          + (f" [{when}]" if when else ""), ratio, "x", "<= 3x",
                          ratio <= 3, f"{m['rate'][i]:.3g} per s"))
     return rows

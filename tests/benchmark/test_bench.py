@@ -158,9 +158,11 @@ def test_model_cost_measures_every_model():
     from supercoil.tables import make_table
 
     rows = model_cost(n_forces=20, sizes=(200,), repeat=1, coiled=(40.0, 400))
-    assert make_table(rows, UNITS).shape == (8, 7)
-    assert rows["model"] == list(MODELS) * 4
+    assert make_table(rows, UNITS).shape == (10, 7)
+    assert rows["model"] == list(MODELS) * 5
     assert "past full coiling" in rows["measurement"][6]
+    assert rows["measurement"][8].startswith("public sc.hat_curve")  # the same points
+    assert rows["points"][8] == rows["points"][6] == 400
     ratio = np.array(rows["ratio_to_li_zhao"])
     assert np.all(ratio[::2] == 1.0) and np.all(np.isfinite(ratio)) and np.all(ratio > 0)
     assert np.all(np.array(rows["rate"]) > 0)

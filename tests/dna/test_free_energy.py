@@ -361,8 +361,9 @@ def test_fully_coiled_state_does_not_depend_on_force(si):
 
 
 def test_state_recorder_sees_final_fully_coiled_states_only(si):
-    """The public layer's recorder gets the coexistence solves and one final solve of the
-    fully coiled points, not the secant's trials (which could trip R < r0 spuriously)."""
+    """The public layer's recorder gets the coexistence solves and one final solve at the
+    extreme tensions of the fully coiled points (here their two), not the secant's trials
+    (which could trip R < r0 spuriously)."""
     from supercoil.dna.models.free_energy import FreeEnergy
     from supercoil.dna.validity import StateRecorder
 
@@ -376,6 +377,54 @@ def test_state_recorder_sees_final_fully_coiled_states_only(si):
     assert len(rec.states) == 4  # three Newton solves of the pull, one final coiled solve
     assert np.all(rec.states[-1].force > 1.2e-12) and rec.states[-1].force.size == 2
     np.testing.assert_array_equal(rec.states[-1].torque, p.torque[coiled])
+
+
+@pytest.mark.parametrize(("name", "sets"), [("hard-core", ["dna", "dna_150mM_nacl"]),
+                                            ("screened", ["dna_10mM_nacl", "dna_1M_nacl"])])
+def test_the_superhelix_radius_does_not_grow_with_the_tension(name, sets):
+    """What record_extremes rests on: along the plectoneme branch R(T) is non-increasing
+    (A = 10-200 nm, 0.01-60 pN), so R < r0 holds on a set of the largest tensions."""
+    import warnings
+
+    from supercoil.dna.interactions import get_interaction
+
+    inter = get_interaction(name)
+    for s in sets:
+        for A in (10.0, 50.0, 200.0):
+            dna = sc.load_parameters(s).replace(bending_persistence=A * sc.ureg.nm).si
+            with warnings.catch_warnings():  # the screened near-field validity warning
+                warnings.simplefilter("ignore", sc.SupercoilWarning)
+                R = inter.equilibrium(np.geomspace(0.01e-12, 60e-12, 400), dna).radius
+            assert np.all(np.diff(R) <= 0.0), (s, A)
+
+
+def test_public_radius_warning_of_many_fully_coiled_points_is_the_exhaustive_one():
+    """The R < r0 warning of a public free-energy hat curve whose fully coiled points reach
+    the strands' contact (150 mM, hard-core: R < r0 = 1 nm at the highest tensions) is
+    the one plectoneme_messages gives on the states of every fully coiled point, solved
+    here independently."""
+    import warnings
+
+    from supercoil.dna.interactions import HardCore
+    from supercoil.dna.validity import plectoneme_messages
+
+    dna = sc.load_parameters("dna_150mM_nacl").replace(length=1 * sc.ureg.um)
+    si = dna.si
+    N = np.linspace(0.0, 0.99 * si.length / 3.57e-9, 3000)  # to |sigma| = 0.99
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        df = sc.hat_curve(dna, 1.0 * sc.ureg.pN, N, model="free-energy")
+    coiled = (df["phase"] == "fully coiled").to_numpy()
+    assert coiled.sum() > 1000
+    p = fe.hat_points(N, np.full(N.size, 1e-12), si.length, si.bending_rigidity,
+                      si.torsional_rigidity, si.kT, lambda T: HardCore().equilibrium(T, si))
+    M = np.asarray(p.torque)[coiled]
+    T = -(np.asarray(p.free_energy)[coiled] - 2 * np.pi * N[coiled] * M) / si.length \
+        - M * M / (2 * si.torsional_rigidity)
+    want = plectoneme_messages(HardCore().equilibrium(np.sort(T), si), si)
+    assert want, "the case must reach R < r0"
+    got = [str(w.message) for w in rec if "superhelix radius" in str(w.message)]
+    assert got == want
 
 
 @pytest.mark.parametrize("block", [1, 2, 1 << 15])

@@ -21,7 +21,7 @@ from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.exceptions import NoEquilibriumError, ValidityError
 
-__all__ = ["Few", "call_branch", "coiled_turns", "solve"]
+__all__ = ["Few", "call_branch", "coiled_turns", "record_extremes", "solve"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -249,5 +249,23 @@ def solve(n, inv, coiled, co, loop, length, B, C, equilibrium, trial_equilibrium
             Mc, Tc = _table.secant(x, co.pull[ci], start, C, trial_equilibrium or equilibrium,
                                    ends)
     if trial_equilibrium is not None:
-        Mc = np.asarray(equilibrium(Tc).torque, float)
+        record_extremes(equilibrium, Tc)
     return Mc, Tc
+
+
+def record_extremes(equilibrium, tension):
+    """The fully coiled states at the smallest and largest of ``tension``, solved by the
+    caller's recording ``equilibrium`` for its checks (the trials went to the unrecorded
+    one); the points keep their own states.
+
+    The shared check on these states (:func:`supercoil.dna.validity.plectoneme_messages`:
+    the superhelix radius below the hard-core radius, named at the largest such tension)
+    gives on the two the message it gives on every point, because the radius does not grow
+    with the tension along the branch (measured for the shipped interactions, hard-core
+    and screened, 1 mM-1 M and A = 10-200 nm: tests/dna/test_free_energy.py). Solving every
+    point once more dominated the public hat curve past full coiling
+    (docs/theory/free-energy.md#8-cost).
+    """
+    if tension.size:
+        lo, hi = float(tension.min()), float(tension.max())
+        equilibrium(np.array([lo, hi] if hi > lo else [lo]))

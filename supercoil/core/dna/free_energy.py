@@ -364,9 +364,10 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
         Flag tails shorter than this (m); default ``3 B/kT``.
     trial_equilibrium : callable, optional
         Used instead of ``equilibrium`` for the secant's trial tensions of the
-        fully coiled points, whose final states are then solved once more by
-        ``equilibrium``: a caller recording states for validity checks sees
-        the final states only, not the trials.
+        fully coiled points (and their table); ``equilibrium`` then solves the
+        states at the smallest and largest of their final tensions
+        (:func:`supercoil.core.dna.coiled_points.record_extremes`): a caller
+        recording states for validity checks sees those, not the trials.
     end_loop : bool
         Add the plectoneme end loop (docs/theory/end-loop.md#7-free-energy); the
         returned plectoneme length then includes the loop's contour.

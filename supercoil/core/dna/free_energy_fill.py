@@ -311,7 +311,7 @@ def _coiled(parts, n, turns, i, co, length, B, C, short_tail_length, equilibrium
             _table.evaluate_inverse(branch, x, (Mb, T), (z, work.j[:m], c))
             got = True
             if trial_equilibrium is not None:
-                Mb[...] = np.asarray(equilibrium(T).torque, float)
+                _points.record_extremes(equilibrium, T)
     if not got:
         inv = None if one else np.full(m, i, np.intp)
         Mc, Tc = _points.solve(nv, inv, slice(None), co, None, length, B, C, equilibrium,
