@@ -182,14 +182,13 @@ def _model_set(path, doc, raw, sources):
         raise ParameterError(f"{path}: 'model' must be one of {available_models()}, "
                              f"got {name!r}")
     declared = get_model(name).parameters
-    values, si = {}, {}
+    values = {}
     for key, text in raw.items():
-        q = _quantity(path, key, text, set(declared), f"model {name!r}", sources)
+        q = values[key] = _quantity(path, key, text, set(declared), f"model {name!r}", sources)
         unit = declared[key].unit or "dimensionless"
         if q.dimensionality != ureg.Quantity(1.0, unit).dimensionality:
             raise ParameterError(f"{path}: {key} = {text!r}: wrong dimension, {key} is in "
                                  f"{unit}")
-        values[key], si[key] = q, float(q.to(declared[key].si_unit).magnitude)
     calibration = {}
     for key, value in doc.get("calibration", {}).items():
         if key not in CALIBRATION_KEYS:
@@ -200,8 +199,8 @@ def _model_set(path, doc, raw, sources):
         if not isinstance(value, int | float) or not value > 0:
             raise ParameterError(f"{path}: {key} must be a positive number, got {value!r}")
         calibration[key] = float(value)
-    try:
-        model = get_model(name, **si)
+    try:  # the model converts each quantity to SI and checks its range
+        model = get_model(name, **values)
     except ValueError as exc:
         raise ParameterError(f"{path}: {exc}") from None
     return model, values, calibration

@@ -37,8 +37,7 @@ def validation_summary(table):
             "max_abs_relative_error_trap_torque": []}
     for (q, model), g in ok.groupby(["quantity", "model"], sort=False):
         err = g["relative_error"].abs()
-        trap = (g["relative_error_trap_torque"].abs().dropna()
-                if "relative_error_trap_torque" in g else err.iloc[:0])
+        trap = g["relative_error_trap_torque"].abs().dropna()
         values = (q, model, len(g), err.min(), err.max(),
                   trap.min() if len(trap) else float("nan"),
                   trap.max() if len(trap) else float("nan"))
@@ -55,8 +54,7 @@ def validation_markdown(summary) -> str:
 
     rows = [[r.quantity, f"`{r.model}`", int(r.rows),
              span(r.min_abs_relative_error, r.max_abs_relative_error),
-             span(getattr(r, "min_abs_relative_error_trap_torque", np.nan),
-                  getattr(r, "max_abs_relative_error_trap_torque", np.nan))]
+             span(r.min_abs_relative_error_trap_torque, r.max_abs_relative_error_trap_torque)]
             for r in summary.itertuples(index=False)]
     return markdown_table(["quantity", "model", "rows", "abs. relative error (min - max)",
                            "same, prediction / torque scale"], rows)
