@@ -4,7 +4,11 @@ tests/rod/data/smooth_spinning_reference.json holds every field of both records 
 12 x 4 and a 12 x 5 grid (turns from 1e-3 to 55.5, both signs; slack 0-33.3 cm; head
 tension 0-17 N), written with repr() by the earlier implementation (commit d9eedab: one
 plain bisection over the whole array); the present solver (a Newton estimate, a grid
-cell checked by signs, the bisection inside it) must give the same floats.
+cell checked by signs, the bisection inside it) must give the same roots. The roots
+(the tilts) are the same floats on any machine (the bisection keeps the sign of each
+cell); the fields derived from them through sin, cos and tan are met to 4 ulp, because
+numpy's SIMD loops of those round differently on different CPUs (1 ulp apart on an
+AVX2-only CPU).
 """
 
 import json
@@ -39,7 +43,11 @@ def test_blocked_solvers_reproduce_the_previous_values_bitwise():
         for field, text in REF[name].items():
             want = np.array([float(v) for v in text])
             got = np.ravel(np.broadcast_to(rec.si(field), np.shape(rec.si("alpha"))))
-            np.testing.assert_array_equal(got, want, err_msg=f"{name}.{field}")
+            if field.startswith("alpha"):
+                np.testing.assert_array_equal(got, want, err_msg=f"{name}.{field}")
+            else:
+                np.testing.assert_allclose(got, want, rtol=9e-16, atol=0.0,
+                                           err_msg=f"{name}.{field}")
 
 
 def test_block_boundaries_do_not_change_values():
