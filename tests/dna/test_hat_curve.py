@@ -353,10 +353,13 @@ def test_blocked_points_equal_one_block_with_interleaved_forces(monkeypatch):
 @pytest.mark.parametrize("fast", [False, True])
 @pytest.mark.parametrize("thermal", [True, False])
 def test_summary_is_the_reductions_of_the_points(thermal, fast):
-    """The kernel's block-by-block summary equals the reductions over the whole arrays."""
+    """The kernel's block-by-block summary equals the reductions over the whole arrays.
+
+    Blocks of 229 points: 7 full blocks that straddle the forces' boundaries (401 points
+    each) and a last block of a single point (1604 = 7 x 229 + 1)."""
     F = np.repeat(np.array([0.15, 0.4, 1.2, 3.0]) * 1e-12, 401)
     N = np.tile(np.linspace(-60, 60, 401), 4)
-    for block, short in ((7, None), (hc.BLOCK, None), (7, 0.0)):
+    for block, short in ((229, None), (hc.BLOCK, None), (229, 0.0)):
         with pytest.MonkeyPatch.context() as mp:
             mp.setattr(hc, "BLOCK", block)
             p = hc.hat_curve_points(N, F, *ARGS, thermal=thermal, fast=fast,
