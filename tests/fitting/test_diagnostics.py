@@ -89,3 +89,22 @@ def test_a_correct_fit_passes_the_runs_test(result):
     assert result.goodness["test"] == "runs"
     assert result.goodness["p_value"] > 1e-3
     assert not [w for w in result.warnings if "goodness" in w]
+
+
+def test_p_values_are_scipy_stats_own():
+    """The diagnostics and profile levels call scipy.special directly (scipy.stats costs
+    ~0.5-1 s to import): the same numbers as scipy.stats' chi2 and norm, bit for bit."""
+    from supercoil.dna.fitting import profile
+
+    for chi2, nfree in ((0.3, 1), (100.0, 100), (250.0, 180), (1e-3, 7), (900.0, 360)):
+        p, high = diagnostics.chi_square_test(chi2, nfree)
+        upper, lower = stats.chi2.sf(chi2, nfree), stats.chi2.cdf(chi2, nfree)
+        assert p == min(1.0, 2.0 * min(upper, lower)) and high == (upper <= lower)
+    r = np.random.default_rng(4).normal(size=300)
+    assert diagnostics.runs_test(r, np.arange(300))[3] == stats.norm.cdf(
+        diagnostics.runs_test(r, np.arange(300))[2])
+    for level in (0.5, 0.6827, 0.95, 0.999):
+        assert profile._chi2_ppf_1(level) == stats.chi2.ppf(level, 1)
+    assert profile.sigma_level(1.0) == stats.chi2.cdf(1.0, 1)
+    assert profile.sigma_level(2.0) == pytest.approx(0.9544997361036416, rel=1e-15)  # erf(sqrt 2)
+
