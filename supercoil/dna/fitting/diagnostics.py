@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import special  # scipy.stats' chi2 and norm call these; stats costs ~1 s to import
+from scipy import special  # the functions of scipy.stats' chi2 and norm, without stats
 
 from supercoil import display
 

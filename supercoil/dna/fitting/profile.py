@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 import pandas as pd
-from scipy import special  # scipy.stats' chi2 calls these; stats costs ~1 s to import
+from scipy import special  # what scipy.stats' chi2 calls, without importing all of scipy.stats
 
 from supercoil.exceptions import FitError
 
