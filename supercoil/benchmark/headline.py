@@ -254,6 +254,12 @@ def _fit_rows(r):
     return rows
 
 
+def _span(p, key):
+    """``"a-b"`` of a paired ratio's smallest and largest pair (its value alone if absent)."""
+    lo, hi = p.get(f"{key}_range", (p[key], p[key]))
+    return f"{lo:.3g}-{hi:.3g}"
+
+
 def _physical_rows(r):
     """fit_many with the physical model (pool against serial) and the fits' CPU ratios."""
     p = r["physical"]
@@ -263,7 +269,8 @@ def _physical_rows(r):
              "parent) / serial", p["cpu_ratio"], "x", "<= 1.11x (per-core throughput "
              "within 10 %)", p["cpu_ratio"] <= 1.0 / 0.9,
              f"serial {p['serial_cpu'] * 1e3:.3g} ms, pool {p['pool_cpu'] * 1e3:.3g} ms per "
-             f"molecule (medians of {p.get('repeats', 1)} alternated runs); chunks of "
+             f"molecule (medians of {p.get('repeats', 1)} alternated runs; the ratio the "
+             f"median of the pairs', which spread over {_span(p, 'cpu_ratio')}); chunks of "
              "molecules per submit (sc.fit_many)"),
         _row(f"public sc.fit_many, {p['molecules']} molecules, model free-energy / hard-core: "
              f"molecules per second per core, ProcessPoolExecutor({p['workers']}) (wall / "
@@ -271,8 +278,11 @@ def _physical_rows(r):
              p["per_core_ratio"] >= 0.9,
              f"wall: serial {p['serial_wall']:.3g} s ({p['serial_rate']:.3g} molecules/s), "
              f"pool {p['pool_wall']:.3g} s ({p['pool_rate_per_core']:.3g} molecules/s per "
-             f"core); the workers got {p['pool_cores']:.2g} cores (their CPU / pool wall): "
-             "below 2 the machine's load, not the pool, sets this ratio"),
+             f"core); the ratio the median of {p.get('repeats', 1)} pairs' (each pool run "
+             f"against the serial run before it), which spread over "
+             f"{_span(p, 'per_core_ratio')}; the workers got {p['pool_cores']:.2g} cores "
+             "(their CPU / pool wall): below 2 the machine's load, not the pool, sets this "
+             "ratio"),
     ]
     m, ref = r["fit_models"], {}
     for i, meas in enumerate(m["measurement"]):

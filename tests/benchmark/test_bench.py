@@ -125,6 +125,13 @@ def test_every_target_has_a_value_and_a_consistent_met_column(bench_dir):
     cli = head[head["measurement"].str.startswith("supercoil hat")]["note"].iloc[0]
     for phase in ("import", "compute", "plot"):
         assert re.search(rf"{phase} [0-9.]+ s", cli), phase
+    # the pool's ratios are medians of paired runs, each within the spread of its pairs
+    for needle in ("CPU per molecule, pool", "molecules per second per core"):
+        row = head[head["measurement"].str.contains(needle, regex=False)].iloc[0]
+        lo, hi = (float(x) for x in re.search(r"spread over ([0-9.]+)-([0-9.]+)",
+                                              row["note"]).groups())
+        value = float(row["value"])  # the note's numbers have 3 digits (within 0.5 %)
+        assert lo * (1 - 6e-3) <= value <= hi * (1 + 6e-3), row["note"]
 
 
 @ON_BENCH
