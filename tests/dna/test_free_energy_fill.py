@@ -152,6 +152,31 @@ def test_stacked_series_evaluate_bit_for_bit():
         assert np.array_equal(got[1], ch.chebval(t, b))
 
 
+@pytest.mark.parametrize("degree", [0, 1, 2, 8, 32, 64, 128])
+def test_chebval_rows_equals_clenshaw(degree):
+    """The polynomial rows and one matrix product (numerics.chebval_rows) give numpy's
+    Clenshaw sums of every stacked series, at the domain's ends too: a decaying series (as
+    the branch's) to 16 ulp of its largest value, any series within the sums' rounding
+    bound (degree + 1) eps sum|c| (measured: at most 7 ulp, and 20 ulp of sum|c|)."""
+    from numpy.polynomial import chebyshev as ch
+
+    from supercoil.core.numerics import chebval_rows, stacked
+
+    rng = np.random.default_rng(degree)
+    t = np.concatenate([np.linspace(-1, 1, 2049), [-1.0, 0.0, 1.0]])
+    # a decaying series (as the branch's) and a flat one (the worst case for the sum)
+    series = [rng.normal(size=degree + 1) * 0.7 ** np.arange(degree + 1),
+              rng.normal(size=degree + 1), rng.normal(size=max(degree // 2, 1))]
+    got = chebval_rows(t, stacked(*series))
+    assert got.shape == (3, t.size)
+    eps = np.finfo(float).eps
+    for k, (g, c) in enumerate(zip(got, series, strict=True)):
+        err = np.max(np.abs(g - ch.chebval(t, c)))
+        assert err <= (degree + 1) * eps * np.sum(np.abs(c)), (degree, k)
+        if k == 0:
+            assert err <= 16 * eps * np.max(np.abs(ch.chebval(t, c))), degree
+
+
 @pytest.mark.parametrize("thermal", [True, False])
 def test_few_coiled_points_solved_once_bit_for_bit(monkeypatch, si, thermal):
     """A one-force call with a few fully coiled points in several blocks: their secant

@@ -32,6 +32,7 @@ import numpy as np
 from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import coiled_table as _table
+from supercoil.core.numerics import chebval_rows, stacked
 from supercoil.exceptions import NoEquilibriumError, ValidityError
 
 __all__ = ["GROWTH", "HERMITE_RTOL", "REMEMBERED", "START_DEGREE", "BranchTable", "build",
@@ -143,8 +144,8 @@ def build(u_lo, u_hi, equilibrium):
         t = np.linspace(-1.0, 1.0, 2 * pieces + 1)
         h = 2.0 / pieces  # piece width in t: slopes per unit s are h dv/dt
         rows, err = [], 0.0
-        for c, dc in ((cM, dcM), (ct, dct)):
-            v, dv = _ch.chebval(t, c), _ch.chebval(t, dc)
+        values = chebval_rows(t, stacked(cM, dcM, ct, dct))
+        for v, dv in (values[:2], values[2:]):
             r = _table.hermite(v[0::2], dv[0::2], h)
             mid = r[0] + 0.5 * (r[1] + 0.5 * (r[2] + 0.5 * r[3]))
             err = max(err, np.max(np.abs(mid - v[1::2])) / np.max(np.abs(v)))

@@ -50,7 +50,7 @@ import numpy as np
 from numpy.polynomial import chebyshev as _ch
 
 from supercoil.core.dna import end_loop as _loop
-from supercoil.core.numerics import stacked
+from supercoil.core.numerics import chebval_rows, stacked
 from supercoil.exceptions import ValidityError
 
 __all__ = [
@@ -260,7 +260,7 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
     last = None
     both = stacked(cl, dcl)
     for _ in range(_NEWTON_MAXITER):
-        lp, dlp = _ch.chebval(t, both)
+        lp, dlp = chebval_rows(t, both)
         step = np.abs((lp - x) / dlp)
         t = t - (lp - x) / dlp
         # converged: the step, or the next one predicted from quadratic convergence
@@ -334,7 +334,7 @@ def inverse_of(series):
     """The :class:`Inverse` of a :class:`Series` (see :func:`inverse_table`), or None."""
     u_lo, half, cl, dcl, cM, lp_nodes = series
     dcM = _ch.chebder(cM)
-    three = stacked(cM, dcl)
+    three = stacked(cM, dcl, dcM)
     x_lo, x_hi = lp_nodes[-1], lp_nodes[0]
 
     def level(pieces, guess=None):
@@ -350,10 +350,10 @@ def inverse_of(series):
         if t is None:
             return None, np.inf
         T = np.exp(u_lo + half * (t + 1.0))
-        M, dl = _ch.chebval(t, three)  # dl_p/dt; dT/dt = half T
+        M, dl, dM = chebval_rows(t, three)  # dl_p/dt; dT/dt = half T
         h = (x_hi - x_lo) / pieces  # from the width itself: a node spacing would add rounding
         cT = hermite(T[0::2], half * T[0::2] / dl[0::2], h)
-        cM_ = hermite(M[0::2], _ch.chebval(t[0::2], dcM) / dl[0::2], h)
+        cM_ = hermite(M[0::2], dM[0::2] / dl[0::2], h)
         at_T, at_M = (c[0] + 0.5 * (c[1] + 0.5 * (c[2] + 0.5 * c[3])) for c in (cT, cM_))
         err = max(np.max(np.abs(at_T / T[1::2] - 1.0)),
                   np.max(np.abs(at_M - M[1::2])) / np.max(np.abs(M)))
