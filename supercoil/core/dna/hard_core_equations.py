@@ -261,7 +261,7 @@ def joint_solve(T_target, a, u, b, rtol, u_branch):
     """The joint Newton of :func:`scalar_joint_solve` on arrays: ``(alpha, rho, ok)``.
 
     Each tension steps until its own steps are below the tolerances and is then held
-    (its result does not depend on the other tensions of the call). ``ok`` False where
+    (its result does not depend on the other tensions of the call: tested). ``ok`` False where
     a tension left ``(ALPHA_LO, ALPHA_HI)`` or ``u_branch``, was not settled after
     :data:`JOINT_MAXITER` steps, or its tension residual after the final (GE2) solve
     (:func:`reduced_tilt`) exceeds :data:`JOINT_RESIDUAL`; ``alpha`` and ``rho`` are
