@@ -236,7 +236,7 @@ def _nested_newton(T_target, a, u, b, beta, rtol):
     """``(alpha, u)`` by Newton in u on the tension with (GE2) solved for alpha at each
     iterate, safeguarded by bisection in the whole branch (the method of
     :func:`solve_reduced` on floats)."""
-    u_lo, u_hi = math.log(RHO_MIN), math.log(_RHO_TABLE_MAX)
+    u_lo, u_hi = _U_BRANCH
     for _ in range(200):
         rho = math.exp(u)
         a = _r.scalar_tilt(a, rho, b, beta)
