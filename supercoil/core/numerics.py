@@ -409,13 +409,17 @@ def stacked(*series):
 def chebval_rows(t, coefficients):
     """The series of the columns of ``coefficients`` (:func:`stacked`) at t: ``(m, t.size)``.
 
-    The Chebyshev polynomials ``T_k(t)`` as rows (``T_{k+1} = 2 t T_k - T_{k-1}``, two
-    in-place operations per degree on contiguous rows) and one matrix product for all
-    series, instead of numpy's ``chebval`` (Clenshaw, three temporaries per degree and
-    series block). Kept hand-written by measurement: for 2 series of degree 32 at 2049
-    points it takes half of ``chebval``'s CPU, within 1.2e-15 of it relative to the
-    largest value (|T_k| <= 1 on [-1, 1]: the rows carry no growing error; tested
-    against ``chebval`` at degrees 1-128).
+    The Chebyshev polynomials ``T_k(t)`` as rows and one matrix product for all series,
+    instead of numpy's ``chebval`` (Clenshaw, three temporaries per degree and series
+    block). The rows double in blocks by the product rule ``T_{m+j} = 2 T_m T_j - T_{m-j}``
+    (j = 1..m: two in-place operations per block, 3 log2(degree) array calls in all,
+    instead of two per degree by the three-term recurrence). Kept hand-written by
+    measurement: for 2 series of degree 32 it takes about 0.8 of the three-term rows'
+    CPU at 2049 points and 0.35 at 129 (there the per-call overhead dominates), and half
+    of ``chebval``'s or less. The rows' rounding (against ``cos(k arccos t)`` in long
+    double, 2049 points on [-1, 1]): at most 11 ulp to degree 33 (the three-term rows:
+    25), 33 at 64 and 104 at 128 (three-term: 28 and 41); the sums stay within
+    ``(degree + 1) eps sum|c|`` of ``chebval`` (tested at degrees 0-128).
     """
     t = np.asarray(t, dtype=float)
     n = coefficients.shape[0]
@@ -423,8 +427,11 @@ def chebval_rows(t, coefficients):
     rows[0] = 1.0
     if n > 1:
         rows[1] = t
-    t2 = 2.0 * t
-    for k in range(2, n):
-        np.multiply(t2, rows[k - 1], out=rows[k])
-        rows[k] -= rows[k - 2]
+    m = 1  # rows 0..m are filled
+    while m + 1 < n:
+        k = min(m, n - 1 - m)  # the block m+1 .. m+k from T_1..T_k and T_{m-1}..T_{m-k}
+        block = rows[m + 1:m + 1 + k]
+        np.multiply(rows[1:k + 1], 2.0 * rows[m], out=block)
+        block -= rows[m - k:m][::-1]
+        m += k
     return coefficients.T @ rows
