@@ -123,17 +123,15 @@ def test_runs():
 
 
 def test_tail_torque_in_place_is_the_newton(si):
-    """The in-place Newton is :func:`free_energy.tail_torque`, bit for bit."""
+    """The in-place Newton is :func:`free_energy.tail_torque`, bit for bit, up to the
+    bracket's edge (v -> 1, where the stopping bound is loosest)."""
     L, B, C, kT, _ = si
-    x = np.linspace(0.0, 0.99, 5001) * 2 * np.pi * 8 / L
-    work = [np.empty(x.size) for _ in range(4)]
-    ref = fe.tail_torque(x, 1.2e-12, B, C, kT)
-    got = ff.tail_torque(x, 1.2e-12, B, C, kT, np.empty(x.size), work, np.empty(x.size, bool))
-    assert np.array_equal(got, ref)
-    bounds = tuple(a[:x.size] for a in ff.Work(x.size).bounds)
-    got = ff.tail_torque(x, 1.2e-12, B, C, kT, np.empty(x.size), work, np.empty(x.size, bool),
-                         bounds)
-    assert np.array_equal(got, ref)
+    up_to_buckling = np.linspace(0.0, 0.99, 5001) * 2 * np.pi * 8 / L
+    for x in (up_to_buckling, np.geomspace(1e3, 5e7, 301)):
+        work = [np.empty(x.size) for _ in range(4)]
+        ref = fe.tail_torque(x, 1.2e-12, B, C, kT)
+        got = ff.tail_torque(x, 1.2e-12, B, C, kT, np.empty(x.size), work)
+        assert np.array_equal(got, ref)
 
 
 def test_stacked_series_evaluate_bit_for_bit():

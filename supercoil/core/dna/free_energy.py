@@ -64,7 +64,14 @@ from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
 from supercoil.core.dna import end_loop as _loop
 from supercoil.core.dna import free_energy_fill as _fill
-from supercoil.core.dna import moroz_nelson as _mn
+from supercoil.core.dna.free_energy_tail import (  # re-exported: the tail at its torque
+    TAIL_RTOL,
+    tail_bracket,
+    tail_free_energy,
+    tail_settled,
+    tail_torque,
+)
+from supercoil.core.dna.free_energy_tail import check_bracket as _check_bracket
 from supercoil.core.dna.interface import (
     FULLY_COILED,
     PLECTONEME,
@@ -74,6 +81,7 @@ from supercoil.core.dna.interface import (
 from supercoil.exceptions import ValidityError
 
 __all__ = [
+    "TAIL_RTOL",
     "Coexistence",
     "FreeEnergyPoints",
     "coexistence",
@@ -83,6 +91,7 @@ __all__ = [
     "plectoneme_torque_at_linking",
     "tail_bracket",
     "tail_free_energy",
+    "tail_settled",
     "tail_torque",
 ]
 
@@ -91,7 +100,6 @@ _TWO_PI = 2.0 * np.pi
 #: convergence: the accepted T_eff is then within ~1e-15 F of the root)
 _PULL_RTOL = 1e-13
 _PULL_MAXITER = 12
-_TAIL_MAXITER = 60
 #: last Newton step (fraction of F) applied to the state by first-order extrapolation
 _PULL_EXTRAPOLATE = 1e-8
 
@@ -122,79 +130,6 @@ class FreeEnergyPoints(NamedTuple):
     short_tail: np.ndarray  # bool
     zeta: np.ndarray  # extension / tail length (1 athermal, 0 fully coiled)
     free_energy: np.ndarray  # G(N, F), J
-
-
-#: the Moroz-Nelson bracket ``Q = B F/kT^2 - M^2/(4 kT^2) - 1/32`` (dimensionless), shared
-#: with li-zhao's zeta (:func:`supercoil.core.dna.moroz_nelson.zeta_bracket`)
-tail_bracket = _mn.zeta_bracket
-
-
-def tail_free_energy(force, torque, B, C, kT, thermal=True):
-    """``(g_s, -dg_s/dF, -dg_s/dM)``: tail free energy per length (J/m), zeta_inf, l_s (1/m).
-
-    Implements docs/theory/free-energy.md (FE1, FE2, FE3).
-
-    Raises
-    ------
-    ValidityError
-        (thermal) naming force and torque where ``Q <= 0`` (the bracket closes).
-    """
-    force = np.asarray(force, float)
-    torque = np.asarray(torque, float)
-    if not thermal:
-        return -force - torque * torque / (2.0 * C), np.ones_like(force + torque), torque / C
-    Q = tail_bracket(force, torque, B, kT)
-    _check_bracket(Q, force, torque)
-    r = np.sqrt(Q)
-    g = -force + (kT * kT / B) * r - torque * torque / (2.0 * C)
-    return g, 1.0 - 0.5 / r, torque / C + torque / (4.0 * B * r)
-
-
-def _check_bracket(Q, force, torque):
-    if not np.min(Q) > 0.0:  # one reduction in the common case (NaN fails it too)
-        _mn.check_bracket(Q, force, torque, what="Moroz-Nelson tail free energy")
-
-
-def tail_torque(linking, force, B, C, kT):
-    """Torque M >= 0 of the thermal tail with ``l_s(F, M) = linking`` (rad/m, >= 0).
-
-    Implements docs/theory/free-energy.md (FE7) for the stretched phase (S = 0).
-
-    With ``v = M / M_Q`` (``M_Q = 2 kT sqrt(Q0)``, ``Q0 = B F/kT^2 - 1/32``: the
-    bracket closes at v = 1), ``l_s(v) = v M_Q [1/C + 1/(4 B sqrt(Q0) sqrt(1 - v^2))]``
-    is increasing and convex on [0, 1) and unbounded, so every linking has one
-    root. Newton started at the upper bound ``v_hi = C_eff(M=0) linking / M_Q``
-    (``l_s(v_hi) >= linking``) decreases monotonically onto the root (convexity)
-    and converges quadratically: 3-5 steps to rounding. Measured 12x faster
-    than scipy ``find_root`` (Chandrupatla) for 2e5 points at 1.2 pN, the same root
-    to 2 ulp, which is why it is hand-written.
-
-    Raises
-    ------
-    ValidityError
-        Where the bracket is closed already at M = 0 (``Q0 <= 0``).
-    """
-    x, force = np.asarray(linking, float), np.asarray(force, float)  # a scalar force stays one
-    Q0 = B * force / (kT * kT) - 1.0 / 32.0
-    _check_bracket(Q0, force, 0.0)
-    r0 = np.sqrt(Q0)
-    MQ = 2.0 * kT * r0
-    a = 1.0 / C
-    b = 1.0 / (4.0 * B * r0)
-    v = np.minimum(x / (MQ * (a + b)), 1.0 - 2.0**-30)
-    for _ in range(_TAIL_MAXITER):
-        w = np.sqrt((1.0 - v) * (1.0 + v))
-        f = v * MQ * (a + b / w) - x
-        df = MQ * (a + b / (w * w * w))
-        dv = f / df
-        v = np.minimum(np.maximum(v - dv, 0.0), 1.0 - 2.0**-52)  # np.clip, without its wrapper
-        if np.all(np.abs(dv) <= 2e-15 * v):
-            return v * MQ
-    i = np.flatnonzero(~(np.abs(dv) <= 2e-15 * v))[0]
-    x, force = np.broadcast_arrays(x, force)
-    raise ValidityError(
-        f"at force {force.flat[i] * 1e12:.6g} pN no tail torque carries "
-        f"{x.flat[i] * 1e-6:.6g} rad/um of linking before the Moroz-Nelson bracket closes")
 
 
 def _plectoneme(equilibrium, tension):

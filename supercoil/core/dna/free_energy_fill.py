@@ -29,6 +29,7 @@ import numpy as np
 
 from supercoil.core.dna import coiled_points as _points
 from supercoil.core.dna import coiled_table as _table
+from supercoil.core.dna import free_energy_tail as _tail
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
@@ -39,22 +40,20 @@ _TAIL_MAXITER = 60
 
 
 class Work:
-    """Workspace: float, bool and index buffers of ``size`` points, reused block by block.
+    """Workspace: float, complex, bool and index buffers of ``size`` points, reused block by block.
 
     One per thread is kept between calls (:func:`borrow`): a workspace allocated per
     call is fresh memory each time (the allocator returns it to the system when the
     call frees it), and its first use costs a page fault per 512 points (measured at
     2e5 points, 1.2 pN, to 40 turns: a third of the page faults of a call and a sixth of
-    its CPU time). It holds about 2 MB.
+    its CPU time). It holds about 3 MB.
     """
 
     def __init__(self, size):
         self.f = [np.empty(size) for _ in range(7)]
-        self.b = [np.empty(size, bool) for _ in range(3)]
+        self.b = [np.empty(size, bool) for _ in range(2)]
         self.j = np.empty(size, np.intp)
-        # the Newton's bounds as arrays: np.maximum/np.minimum against a scalar cost about
-        # four times as much as against an array (measured, 8000 points)
-        self.bounds = np.zeros(size), np.full(size, 1.0 - 2.0**-52)
+        self.c = [np.empty(size, complex) for _ in range(2)]
 
 
 _KEPT = threading.local()
@@ -204,8 +203,7 @@ def _stretched(sl, n, turns, force, length, B, C, kT, thermal, short_tail_length
     if thermal:
         np.multiply(nv, _TWO_PI, out=x)
         x /= length
-        tail_torque(x, force, B, C, kT, M, (t1, t2, t3, t4), work.b[2][:m],
-                    tuple(a[:m] for a in work.bounds))
+        tail_torque(x, force, B, C, kT, M, (t1, t2, t3, t4))
         _tail_free_energy(force, M, B, C, kT, g, zeta, t1)
     else:  # the li-zhao expression: C_eff (2 pi / L) n with C_eff = C / 1.0
         np.multiply(nv, C / 1.0 * (_TWO_PI / length), out=M)
@@ -221,15 +219,12 @@ def _stretched(sl, n, turns, force, length, B, C, kT, thermal, short_tail_length
     out.short_tail[sl].fill(length < short_tail_length)
 
 
-def tail_torque(x, force, B, C, kT, out, work, done, bounds=None):
-    """:func:`supercoil.core.dna.free_energy.tail_torque` at one force, in place.
+def tail_torque(x, force, B, C, kT, out, work):
+    """:func:`supercoil.core.dna.free_energy_tail.tail_torque` at one force, in place.
 
-    The same Newton (same start, operations and stopping rule) in the buffers ``work``
-    (four of x's size) and ``done`` (bool); the torque into ``out``. ``bounds``: arrays of
-    x's size holding 0 and ``1 - 2**-52`` (the clip of v), else the scalars.
+    The same Newton (same start, operations and stopping rule, bit for bit) in the
+    buffers ``work`` (four of x's size); the torque into ``out``.
     """
-    from supercoil.core.dna import free_energy as _fe
-
     Q0 = B * force / (kT * kT) - 1.0 / 32.0
     if not Q0 > 0.0:
         _mn.check_bracket(Q0, force, 0.0, what="Moroz-Nelson tail free energy")
@@ -238,42 +233,32 @@ def tail_torque(x, force, B, C, kT, out, work, done, bounds=None):
     a = 1.0 / C
     b = 1.0 / (4.0 * B * r0)
     v = out  # v = M / M_Q, scaled at the end
-    lo, hi = bounds or (0.0, 1.0 - 2.0**-52)
-    w, f, df, tol = work
-    np.divide(x, MQ * (a + b), out=v)
+    w2, g, dv, y = work
+    np.divide(x, MQ, out=y)
+    np.divide(y, a + b, out=v)
     np.minimum(v, 1.0 - 2.0**-30, out=v)
     for _ in range(_TAIL_MAXITER):
-        np.subtract(1.0, v, out=w)
-        np.add(1.0, v, out=f)
-        w *= f
-        np.sqrt(w, out=w)  # w = sqrt((1 - v)(1 + v))
-        np.divide(b, w, out=f)
-        f += a
-        np.multiply(v, MQ, out=df)
-        f *= df
-        f -= x  # f = v M_Q (a + b/w) - x
-        np.multiply(w, w, out=df)
-        df *= w
-        np.divide(b, df, out=df)
-        df += a
-        df *= MQ  # df = M_Q (a + b/w^3)
-        f /= df  # dv
-        v -= f
-        np.maximum(v, lo, out=v)
-        np.minimum(v, hi, out=v)
-        np.abs(f, out=f)
-        np.multiply(v, 2e-15, out=tol)
-        if np.less_equal(f, tol, out=done).all():
+        np.subtract(1.0, v, out=w2)
+        np.add(1.0, v, out=g)
+        w2 *= g  # w^2 = (1 - v)(1 + v)
+        np.sqrt(w2, out=dv)
+        np.divide(b, dv, out=dv)  # q = b / w
+        np.add(dv, a, out=g)
+        g *= v
+        g -= y  # g = (q + a) v - y
+        dv /= w2
+        dv += a  # g' = q / w^2 + a
+        np.divide(g, dv, out=dv)
+        v -= dv
+        if _tail.tail_settled(dv.max(), dv.min(), w2.min(), a, b, b):
             v *= MQ
             return v
-    return _fe.tail_torque(x, force, B, C, kT)  # names the point (ValidityError)
+    return _tail.tail_torque(x, force, B, C, kT)  # names the point (ValidityError)
 
 
 def _tail_free_energy(force, M, B, C, kT, g, zeta, tmp):
     """``g_s`` and ``zeta_inf`` into g and zeta: the operations of
-    :func:`supercoil.core.dna.free_energy.tail_free_energy` (thermal)."""
-    from supercoil.core.dna import free_energy as _fe
-
+    :func:`supercoil.core.dna.free_energy_tail.tail_free_energy` (thermal)."""
     Q = zeta
     np.divide(M, kT, out=tmp)
     np.multiply(tmp, 0.25, out=Q)
@@ -281,7 +266,7 @@ def _tail_free_energy(force, M, B, C, kT, g, zeta, tmp):
     np.subtract(B * force / (kT * kT), Q, out=Q)
     Q -= 1.0 / 32.0
     if not Q.min() > 0.0:
-        _fe.tail_free_energy(force, M, B, C, kT)  # raises, naming force and torque
+        _tail.tail_free_energy(force, M, B, C, kT)  # raises, naming force and torque
     r = np.sqrt(Q, out=Q)
     np.multiply(r, kT * kT / B, out=g)
     g += -force
@@ -308,7 +293,8 @@ def _coiled(parts, n, turns, i, co, length, B, C, short_tail_length, equilibrium
     if isinstance(branch, _table.Inverse):
         x_lo, x_hi = branch.x_lo, branch.x_hi
         if x.max() <= x_hi and x.min() >= x_lo - 1e-9 * (x_hi - x_lo):
-            _table.evaluate_inverse(branch, x, (Mb, T), (z, work.j[:m], c))
+            _table.evaluate_inverse(branch, x, (Mb, T),
+                                    (z, work.j[:m], c, *(a[:m] for a in work.c)))
             got = True
             if trial_equilibrium is not None:
                 _points.record_extremes(equilibrium, T)
