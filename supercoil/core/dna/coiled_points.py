@@ -51,7 +51,8 @@ class _AtC(NamedTuple):
     C: float
 
 
-def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, memo=None):
+def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, memo=None,
+                extremes=None):
     """One table of the fully coiled branch for all points of a call, or None.
 
     A pass over the points (in blocks, no per-point temporaries kept) finds the fully
@@ -68,12 +69,15 @@ def call_branch(turns, force, uf, co, loop, length, B, C, equilibrium, block, me
 
     One force, no loop and fewer than ``MIN_POINTS`` fully coiled points: their states,
     solved once for the call (:class:`Few`) instead of once in each block that has some.
+    ``extremes``: the caller's ``(turns.min(), turns.max())``, if it has them.
     """
     thr = coiled_turns(co, loop, length)
     count, top = 0, -np.inf
     if uf.size == 1:
-        count = np.count_nonzero(turns >= thr[0]) + np.count_nonzero(turns <= -thr[0])
-        top = max(turns.max(), -turns.min())
+        lo, hi = extremes or (turns.min(), turns.max())
+        top = max(hi, -lo)
+        if top >= thr[0]:
+            count = np.count_nonzero(turns >= thr[0]) + np.count_nonzero(turns <= -thr[0])
     else:
         for lo in range(0, turns.size, block):
             a = np.abs(turns[lo:lo + block])

@@ -318,8 +318,8 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     if not (np.isfinite(length) and length > 0):
         raise ValueError(f"length must be positive and finite, got {length!r}")
     f_lo, f_hi = (force.min(), force.max()) if force.size else (1.0, 1.0)
-    if not (np.isfinite(f_lo) and np.isfinite(f_hi) and (turns.size == 0 or (
-            np.isfinite(turns.min()) and np.isfinite(turns.max())))):  # NaN propagates
+    t_lo, t_hi = (turns.min(), turns.max()) if turns.size else (0.0, 0.0)
+    if not all(np.isfinite([f_lo, f_hi, t_lo, t_hi])):  # NaN propagates
         raise ValueError("turns and force must be finite")
     if short_tail_length is None:
         short_tail_length = SHORT_TAIL_PERSISTENCE_LENGTHS * B / kT
@@ -331,7 +331,8 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     co = coexistence(uf, length, B, C, kT, equilibrium, thermal, memo)
     loop = loop_constants(co, length, B, C, kT, thermal) if end_loop else None
     branch = _points.call_branch(turns.reshape(-1), force.reshape(-1), uf, co, loop, length,
-                                 B, C, trial_equilibrium or equilibrium, BLOCK, memo)
+                                 B, C, trial_equilibrium or equilibrium, BLOCK, memo,
+                                 (t_lo, t_hi))
 
     out = _fill.fill_blocks(turns.reshape(-1), force.reshape(-1), uf, one, co, loop, length, B,
                             C, kT, equilibrium, thermal, short_tail_length, trial_equilibrium,
