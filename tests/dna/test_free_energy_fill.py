@@ -106,6 +106,28 @@ def test_shuffled_one_force_falls_back(monkeypatch, si):
     _assert_identical(new, old)
 
 
+def test_first_coiled_is_the_general_paths_test(si):
+    """The fully coiled threshold on |N| (free_energy_fill.first_coiled) classifies every
+    point as the general path's ``(|N| - N_b) 2 pi / D >= L`` does, at the 40 floats on
+    either side of it, for the seed set's forces and 300 random (N_b, 2 pi / D, L)."""
+    L, B, C, kT, _ = si
+    co = fe.coexistence(np.array([0.3e-12, 1.2e-12, 6e-12]), L, B, C, kT, equilibrium_of(si))
+    rng = np.random.default_rng(11)
+    cases = [(nb, 2 * np.pi / D, L) for nb, D in zip(co.buckling_turns, co.linking_rate,
+                                                      strict=True)]
+    cases += list(zip(rng.uniform(0, 100, 300), 10.0 ** rng.uniform(-12, -6, 300),
+                      10.0 ** rng.uniform(-7, -4, 300), strict=True))
+    for Nb, per_turn, length in cases:
+        top = ff.first_coiled(Nb, per_turn, length)
+        n = np.full(81, top)
+        for k in range(40):  # the floats next to the threshold, below and above
+            n[39 - k] = np.nextafter(n[40 - k], -np.inf)
+            n[41 + k] = np.nextafter(n[40 + k], np.inf)
+        S = np.subtract(n, Nb) * per_turn
+        assert np.array_equal(S >= length, n >= top), (Nb, per_turn, length)
+        assert S[40] >= length > S[39]
+
+
 def test_runs():
     """A mask's True points as at most two slices (one at each end), or False."""
     m = np.zeros(10, bool)

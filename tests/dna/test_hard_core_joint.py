@@ -86,13 +86,29 @@ def test_a_joint_step_that_leaves_the_branch_or_is_not_finite_is_refused():
 
 def test_equilibrium_of_few_and_many_forces_agree():
     """The scalar path (up to 12 forces) and the vector path (more) run different joint
-    solvers: the same states."""
+    solvers and build the state by different code (floats, arrays): the same states."""
     forces = np.geomspace(0.2e-12, 15e-12, 40)
     many = pl.equilibrium(forces, B, 100e-9 * KT, KT, R0)
     few = [pl.equilibrium(forces[i:i + 4], B, 100e-9 * KT, KT, R0) for i in range(0, 40, 4)]
-    for name in ("alpha", "radius", "torque"):
+    for name in many._fields:
         np.testing.assert_allclose(np.concatenate([getattr(s, name) for s in few]),
-                                   getattr(many, name), rtol=1e-14)
+                                   getattr(many, name), rtol=1e-14, err_msg=name)
+
+
+@given(st.floats(0.1, 10.0), st.floats(0.02, 0.78), st.floats(-1.0, 2.0))
+def test_scalar_state_is_the_vector_formulas(b_factor, alpha, log_rho):
+    """hard_core_equations.scalar_state on floats: the reduced torque and interaction of
+    the vector functions (reduced_torque, marko_siggia.reduced_interaction) to 4 ulp."""
+    from supercoil.core.dna import marko_siggia as ms
+
+    b_, rho = b * b_factor, 10.0**log_rho
+    beta = b_ ** (-1.0 / 3.0)
+    torque, s, c, tan, w = hc.scalar_state(alpha, rho, b_, beta)
+    a, r = np.array([alpha]), np.array([rho])
+    np.testing.assert_allclose(torque, hc.reduced_torque(a, r, b_)[0], rtol=1e-15)
+    np.testing.assert_allclose(w, ms.reduced_interaction(a, r, beta)[0], rtol=1e-15)
+    np.testing.assert_allclose((s, c, tan), (np.sin(a[0]), np.cos(a[0]), np.tan(a[0])),
+                               rtol=4.5e-16)
 
 
 def test_a_tensions_root_does_not_depend_on_the_other_tensions_of_the_call():

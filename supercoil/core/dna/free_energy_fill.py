@@ -23,6 +23,7 @@ scatters of the selections.
 
 from __future__ import annotations
 
+import math
 import threading
 
 import numpy as np
@@ -33,7 +34,8 @@ from supercoil.core.dna import free_energy_tail as _tail
 from supercoil.core.dna import moroz_nelson as _mn
 from supercoil.core.dna.interface import FULLY_COILED, PLECTONEME, STRETCHED
 
-__all__ = ["Work", "borrow", "fill", "fill_blocks", "give_back", "one_force", "runs"]
+__all__ = ["Work", "borrow", "fill", "fill_blocks", "first_coiled", "give_back", "one_force",
+           "runs"]
 
 _TWO_PI = 2.0 * np.pi
 _TAIL_MAXITER = 60
@@ -148,18 +150,26 @@ def fill(turns, force, i, co, length, B, C, kT, thermal, short_tail_length, equi
     size = turns.size
     n = np.abs(turns, out=work.f[0][:size])
     Nb = co.buckling_turns[i]
-    S = out.plectoneme_length  # (|N| - N_b) 2 pi / D: the plectoneme's S (the general
-    np.subtract(n, Nb, out=S)  # path's max(., 0) and min(., L) are the stretched runs' 0
-    S *= _TWO_PI / co.linking_rate[i]  # and the fully coiled runs' L, filled there)
+    per_turn = _TWO_PI / co.linking_rate[i]  # S = (|N| - N_b) 2 pi / D, the general path's
+    S = out.plectoneme_length  # (its max(., 0) and min(., L): the stretched runs' 0 and the
+    top = first_coiled(Nb, per_turn, length)  # fully coiled runs' L, filled there)
+    if top is None:  # S on every point, its test as the general path's
+        np.subtract(n, Nb, out=S)
+        S *= per_turn
+        coiled = runs(np.greater_equal(S, length, out=work.b[1][:size]))
+    else:  # the same test on |N| (S is monotone in |N|): S on the plectoneme runs only
+        coiled = runs(np.greater_equal(n, top, out=work.b[1][:size]))
     stretched = runs(np.less_equal(n, Nb, out=work.b[0][:size]))
-    coiled = runs(np.greater_equal(S, length, out=work.b[1][:size]))
     if stretched is False or coiled is False or len(stretched) > 1:
         return False
     start = 0
     for r in [*sorted(stretched + coiled, key=lambda r: r.start), slice(size, size)]:
         if r.start > start:
-            _plectoneme(slice(start, r.start), n, turns, i, co, length, short_tail_length,
-                        out, work)
+            sl = slice(start, r.start)
+            if top is not None:
+                np.subtract(n[sl], Nb, out=S[sl])
+                S[sl] *= per_turn
+            _plectoneme(sl, n, turns, i, co, length, short_tail_length, out, work)
         start = r.stop
     if stretched:
         _stretched(stretched[0], n, turns, force[0], length, B, C, kT, thermal,
@@ -168,6 +178,28 @@ def fill(turns, force, i, co, length, B, C, kT, thermal, short_tail_length, equi
         _coiled(coiled, n, turns, i, co, length, B, C, short_tail_length, equilibrium,
                 trial_equilibrium, branch, one, out, work)
     return True
+
+
+def first_coiled(Nb, per_turn, length):
+    """The smallest float ``|N|`` whose plectoneme length ``fl(fl(|N| - N_b) per_turn)``
+    reaches ``length`` (the fully coiled test of the general path, exactly), or None.
+
+    The test is monotone in ``|N|`` (each rounded operation is), so it is one threshold:
+    found from ``N_b + L / per_turn`` in a few steps of one ulp (Python floats round as
+    numpy's float64 operations do). A block is then classified on ``|N|`` alone and S is
+    computed on its plectoneme points only (two array passes fewer on the rest).
+    """
+    n = float(Nb + length / per_turn)
+    Nb, per_turn = float(Nb), float(per_turn)
+    for _ in range(64):
+        if (n - Nb) * per_turn >= length:
+            below = math.nextafter(n, -math.inf)
+            if not (below - Nb) * per_turn >= length:
+                return n
+            n = below
+        else:
+            n = math.nextafter(n, math.inf)
+    return None  # pragma: no cover - rounding moves the threshold by a few ulp
 
 
 def _products(G, n, M, length, tmp):

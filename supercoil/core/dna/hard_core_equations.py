@@ -29,6 +29,7 @@ __all__ = [
     "reduced_torque",
     "scalar_ge2_tension",
     "scalar_joint_solve",
+    "scalar_state",
     "scalar_tilt",
 ]
 
@@ -118,6 +119,25 @@ def reduced_torque(alpha, rho, b):
     c2 = c * c - s * s
     w_a, _ = _ms.reduced_interaction_partials(alpha, rho, beta)
     return (b * s * s * 2.0 * s * c / rho + rho * w_a) / c2
+
+
+def scalar_state(a, rho, b, beta):
+    """Pure-float ``(M', sin, cos, tan, w')`` at one root: the reduced torque
+    (:func:`reduced_torque`), the tilt's functions and the reduced interaction
+    (:func:`~supercoil.core.dna.marko_siggia.reduced_interaction`), by the formulas of
+    the vector functions in their order (the scalar path's state: the same values to a
+    few ulp, tested)."""
+    s = math.sin(a)
+    c = math.cos(a)
+    tan = math.tan(a)
+    t = tan / math.pi
+    t_a = (1.0 + tan * tan) / math.pi
+    cbrt_r2 = math.cbrt(rho * rho)
+    rho_m12 = rho**-12
+    w_a = t_a * (12.0 * t**11 * rho_m12 + _TWO_THIRDS * beta / math.cbrt(t) * (1.0 / cbrt_r2))
+    torque = (b * s * s * 2.0 * s * c / rho + rho * w_a) / (c * c - s * s)
+    w = (1.0 + t**12) * rho_m12 + beta * (1.0 + math.cbrt(t * t)) / cbrt_r2
+    return torque, s, c, tan, w
 
 
 # ---------------------------------------------------------------------------
