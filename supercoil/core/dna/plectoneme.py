@@ -260,17 +260,51 @@ def _nested_newton(T_target, a, u, b, beta, rtol):
 
 
 def _reduced_start(T_target, b):
-    """``(u0, u_lo, u_hi, alpha0)``: the start of each tension, linear in b's branch table,
-    and the table interval that brackets it (``u = log rho``)."""
+    """``(u0, u_lo, u_hi, alpha0)``: the start of each tension in b's branch table and the
+    table interval that brackets it (``u = log rho``).
+
+    The start is the cubic through the four table rows around the tension (Lagrange in
+    T', kept inside the bracket): within 2e-5 of the root in u and alpha (the linear
+    interpolation between the two rows: 4e-4; b from 0.3 to 3 times the seed set's), so
+    the joint Newton takes 2 steps instead of 3 (:func:`_cubic_start`).
+    """
     rho_t, alpha_t, T_t = reduced_branch_table(float(b))
     # T_t decreasing: index of the interval [k, k+1] with T_t[k] >= T > T_t[k+1]
     k = np.searchsorted(-T_t, -T_target, side="left") - 1
     k = np.clip(k, 0, rho_t.size - 2)
-    u_lo, u_hi = np.log(rho_t[k]), np.log(rho_t[k + 1])
-    T_lo, T_hi = T_t[k], T_t[k + 1]
-    frac = np.clip((T_lo - T_target) / (T_lo - T_hi), 0.0, 1.0)
-    return (u_lo + frac * (u_hi - u_lo), u_lo, u_hi,
-            alpha_t[k] + frac * (alpha_t[k + 1] - alpha_t[k]))
+    u_t = _log_rho_table(float(b))
+    u_lo, u_hi = u_t[k], u_t[k + 1]
+    a_lo, a_hi = alpha_t[k], alpha_t[k + 1]
+    if T_t.size < 4:  # a branch of fewer than four rows: linear between the two
+        frac = np.clip((T_t[k] - T_target) / (T_t[k] - T_t[k + 1]), 0.0, 1.0)
+        return u_lo + frac * (u_hi - u_lo), u_lo, u_hi, a_lo + frac * (a_hi - a_lo)
+    u0, a0 = _cubic_start(T_target, k, T_t, u_t, alpha_t)
+    return (np.minimum(np.maximum(u0, u_lo), u_hi), u_lo, u_hi,
+            np.minimum(np.maximum(a0, np.minimum(a_lo, a_hi)), np.maximum(a_lo, a_hi)))
+
+
+@lru_cache(maxsize=64)
+def _log_rho_table(b):
+    """``log rho`` of :func:`reduced_branch_table` (cached with it)."""
+    return np.log(reduced_branch_table(b)[0])
+
+
+def _cubic_start(T, k, T_t, u_t, alpha_t):
+    """``(u, alpha)`` at the tensions T by the cubic through the table rows
+    ``j..j+3`` around each interval k (Lagrange weights in T')."""
+    j = np.clip(k - 1, 0, T_t.size - 4)
+    rows = [j + i for i in range(4)]
+    nodes = [T_t[r] for r in rows]
+    u = np.zeros(T.shape)
+    a = np.zeros(T.shape)
+    for i in range(4):
+        w = np.ones(T.shape)
+        for m in range(4):
+            if m != i:
+                w *= (T - nodes[m]) / (nodes[i] - nodes[m])
+        u += w * u_t[rows[i]]
+        a += w * alpha_t[rows[i]]
+    return u, a
 
 
 def _nested_reduced(T_target, b, rtol, u0, u_lo, u_hi, alpha0):
