@@ -316,3 +316,46 @@ def test_inverse_table_matches_newton_on_the_table_and_gives_up_on_a_kink(si):
     np.testing.assert_allclose(T, got[1], rtol=1e-13)
     eq, _, C_k = _jumping_branch()
     assert ct.inverse_table((1e-12, 1e-10), C_k, eq) is None
+
+
+def test_inverse_one_step_level_is_the_newton_roots_level(si, monkeypatch):
+    """The finer inverse levels take one Newton step from the coarser inverse and move the
+    series' values to the roots by Taylor's rule (coiled_table._one_step): the table the
+    roots and a second series evaluation give, to a few ulp (4e-15; the inverse's own
+    tolerance is 3e-14), at 1.73 times full coiling (40 turns at 1.2 pN: the step is
+    used); at 3 times the coarser inverse is too far and the roots solve."""
+    _, _, C, _, _ = si
+    pull, start, _, x_full = _problem(si, 1.2e-12, False)
+    _, T_hi = ct.secant(np.array([1.73 * x_full]), np.array([pull]), np.array([start]), C,
+                        equilibrium_of(si), None)
+    series = ct.branch_series((pull, T_hi[0]), C, equilibrium_of(si))
+    used = []
+    one_step = ct._one_step
+    monkeypatch.setattr(ct, "_one_step", lambda *a: used.append(one_step(*a)) or used[-1])
+    new = ct.inverse_of(series)
+    assert used and all(u is not None for u in used)
+    monkeypatch.setattr(ct, "_one_step", lambda *a: None)
+    ref = ct.inverse_of(series)
+    assert new.coefficients.shape == ref.coefficients.shape
+    x = np.linspace(ref.x_lo, ref.x_hi, 20001)
+    (M, T), (M_r, T_r) = ct.evaluate_inverse(new, x), ct.evaluate_inverse(ref, x)
+    assert np.max(np.abs(M - M_r)) <= 4e-15 * np.max(np.abs(M_r))
+    np.testing.assert_allclose(T, T_r, rtol=4e-15)
+
+
+@pytest.mark.parametrize("order", [1, 2, 3])
+def test_derivative_bound_bounds_the_series_derivative(order):
+    """coiled_table._derivative_bound: at least max |f^(n)| on [-1, 1], and reached by
+    T_k itself (at t = 1)."""
+    from numpy.polynomial import chebyshev as ch
+
+    rng = np.random.default_rng(order)
+    t = np.linspace(-1.0, 1.0, 4001)
+    for _ in range(20):
+        c = rng.normal(size=33) * 0.8 ** np.arange(33)
+        assert np.max(np.abs(ch.chebval(t, ch.chebder(c, order)))) <= \
+            ct._derivative_bound(c, order) * (1 + 1e-12)
+    unit = np.zeros(9)
+    unit[8] = 1.0
+    assert ct._derivative_bound(unit, order) == pytest.approx(
+        ch.chebval(1.0, ch.chebder(unit, order)), rel=1e-13)
