@@ -221,3 +221,26 @@ def test_few_coiled_points_solved_once_bit_for_bit(monkeypatch, si, thermal):
     assert 2 <= coiled < ct.MIN_POINTS
     assert once == 1 and len(calls) == 3  # once for the call; the two end blocks' own
     _assert_identical(new, old)
+
+
+@pytest.mark.parametrize("force", [0.15e-12, 0.3e-12, 1.2e-12, 6e-12, 40e-12])
+def test_one_force_pull_on_floats_is_the_array_newton(si, force):
+    """free_energy._pull at one force runs on floats (_pull_one): the array Newton's
+    pull, torque, torsion and bracket bit for bit (the array path: two equal forces)."""
+    _, B, C, kT, _ = si
+    eq = equilibrium_of(si)
+    one = fe._pull(np.array([force]), B, C, kT, eq)
+    two = fe._pull(np.array([force, force]), B, C, kT, eq)
+    for a, b in zip(one, two, strict=True):
+        assert a.shape == (1,) and np.array_equal(a, b[:1]), (a, b)
+
+
+def test_one_force_pull_errors_are_the_array_ones(si):
+    """Where a check fails the float pull hands over to the array one, which names it."""
+    from supercoil.exceptions import ValidityError
+
+    L, B, C, kT, _ = si
+    eq = equilibrium_of(si)
+    for f, text in ((0.05e-12, "no positive tension"), (60e-12, "bracket")):
+        with pytest.raises(ValidityError, match=text):
+            fe.coexistence(np.array([f]), L, B, C, kT, eq)

@@ -53,6 +53,7 @@ athermal li-zhao construction of :mod:`supercoil.core.dna.li_zhao`.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -148,6 +149,10 @@ def _pull(force, B, C, kT, equilibrium):
     ``tau -= delta dtau/dT`` (secant of the last two calls, error ~ 1e-4 delta),
     instead of a fourth equilibrium call: 3 calls per force instead of 4.
     """
+    if force.size == 1:  # one force on floats (the same operations); None: the checks raise
+        got = _pull_one(float(force.flat[0]), B, kT, equilibrium)
+        if got is not None:
+            return tuple(np.full(force.shape, v) for v in got)
     s = kT * kT / B
     Q0 = tail_bracket(force, 0.0, B, kT)
     _check_bracket(Q0, force, np.zeros_like(force))  # F <= kT^2/(32 B): no tail at all
@@ -175,6 +180,40 @@ def _pull(force, B, C, kT, equilibrium):
         T = T - step
     raise ValidityError(  # pragma: no cover - Newton on a nearly linear h
         f"the tail's effective pull did not converge in {_PULL_MAXITER} steps")
+
+
+def _pull_one(F, B, kT, equilibrium):
+    """:func:`_pull` at one force on Python floats, operation for operation (a third of
+    its CPU besides the equilibrium calls), or None where a check fails (the array
+    version then raises, naming the force)."""
+    s = kT * kT / B
+    Q0 = B * F / (kT * kT) - 0.25 * 0.0 * 0.0 - 1.0 / 32.0
+    if not Q0 > 0.0:
+        return None
+    T = F - s * math.sqrt(Q0)
+    prev = None
+    for _ in range(_PULL_MAXITER):
+        if not T > 0.0:
+            return None
+        st = equilibrium(np.array([T]))
+        M, tau = float(st.torque[0]), float(st.torsion[0])
+        m = M / kT
+        Q = B * F / (kT * kT) - 0.25 * m * m - 1.0 / 32.0
+        if not Q > 0.0:
+            return None
+        r = math.sqrt(Q)
+        step = (T - F + s * r) / (1.0 - M / (4.0 * B * r * tau))
+        if abs(step) <= _PULL_RTOL * F:
+            return T, M, tau, Q
+        if prev is not None and abs(step) <= _PULL_EXTRAPOLATE * F:
+            dT = T - prev[0]
+            dtau = (tau - prev[1]) / dT if dT != 0.0 else 0.0
+            T, M, tau = T - step, M - step / tau, tau - step * dtau
+            m = M / kT
+            return T, M, tau, B * F / (kT * kT) - 0.25 * m * m - 1.0 / 32.0
+        prev = (T, tau)
+        T = T - step
+    return None
 
 
 def coexistence(force, length, B, C, kT, equilibrium, thermal=True, memo=None):
