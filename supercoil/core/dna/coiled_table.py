@@ -44,6 +44,7 @@ settle, :func:`torque_at_linking` returns None and the caller falls back to its 
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import NamedTuple
 
 import numpy as np
@@ -394,11 +395,18 @@ def inverse_of(series):
 def _derivative_bound(c, order):
     """A bound of ``|f^(order)(t)|`` on [-1, 1] for the Chebyshev series c: ``T_k^(n)`` is
     largest at t = 1, ``T_k^(n)(1) = prod_{m<n} (k^2 - m^2) / (2m + 1)``."""
-    k2 = np.arange(c.size, dtype=float) ** 2
-    weight = np.ones(c.size)
+    return float(np.abs(c) @ _derivative_weights(c.size, order))
+
+
+@lru_cache(maxsize=32)
+def _derivative_weights(size, order):
+    """``T_k^(order)(1)`` for k < size (:func:`_derivative_bound`), read-only."""
+    k2 = np.arange(size, dtype=float) ** 2
+    weight = np.ones(size)
     for m in range(order):
         weight *= np.maximum(k2 - m * m, 0.0) / (2 * m + 1)
-    return float(np.abs(c) @ weight)
+    weight.flags.writeable = False
+    return weight
 
 
 def _one_step(x, t0, six, bounds, half):
@@ -435,8 +443,19 @@ def _one_step(x, t0, six, bounds, half):
 
 def hermite(y, dy, h):
     """Coefficient rows (4, K) of the cubic Hermite pieces through values y and slopes dy."""
-    y0, y1, m0, m1 = y[:-1], y[1:], h * dy[:-1], h * dy[1:]
-    return np.stack([y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1, 2.0 * (y0 - y1) + m0 + m1])
+    out = np.empty((4, y.size - 1))
+    c0, m0, c2, c3 = out
+    c0[...] = y[:-1]
+    np.multiply(dy[:-1], h, out=m0)
+    m1 = h * dy[1:]
+    np.subtract(y[1:], c0, out=c3)  # y1 - y0
+    np.multiply(c3, 3.0, out=c2)
+    c2 -= 2.0 * m0
+    c2 -= m1  # 3 (y1 - y0) - 2 m0 - m1
+    np.multiply(c3, -2.0, out=c3)
+    c3 += m0
+    c3 += m1  # 2 (y0 - y1) + m0 + m1
+    return out
 
 
 def evaluate_inverse(inverse, x, out=None, work=None):
