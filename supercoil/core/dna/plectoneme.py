@@ -440,7 +440,7 @@ def _scalar_block(force, Tr, B, C, kT, r0, b, rtol):
     """:func:`_equilibrium_block` of a few forces on Python floats: the roots by
     :func:`_solve_scalar`, the state by
     :func:`~supercoil.core.dna.hard_core_equations.scalar_state` (the vector formulas on
-    floats: on one force about a sixth of their array operations' CPU, measured)."""
+    floats: on one force about a fifth of their array operations' CPU, measured)."""
     beta = b ** (-1.0 / 3.0)
     rows = []
     for t in Tr.ravel().tolist():
