@@ -64,6 +64,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.numerics import table_cubic
 from supercoil.exceptions import NoEquilibriumError
 
 __all__ = [
@@ -320,18 +321,11 @@ def _h_t_m(alpha, R, B, partials):
 
 def _start(flat, branch, k):
     """Start ``(alpha, log R)``: 4-point Lagrange interpolation in T through the table
-    nodes around the bracket ``k`` (clipped into the bracket)."""
+    nodes around the bracket ``k`` (:func:`~supercoil.core.numerics.table_cubic`),
+    log R clipped into the bracket."""
     T_t, a_t, u_t = branch.tension, branch.alpha, np.log(branch.radius)
-    j = np.clip(k - 1, 0, max(T_t.size - 4, 0))[:, None] + np.arange(min(4, T_t.size))
-    x = T_t[j]
-    basis = np.ones(j.shape)
-    for m in range(j.shape[1]):
-        for q in range(j.shape[1]):
-            if q != m:
-                basis[:, m] *= (flat - x[:, q]) / (x[:, m] - x[:, q])
-    u = np.clip(np.sum(basis * u_t[j], axis=1), u_t[k], u_t[k + 1])
-    a = np.sum(basis * a_t[j], axis=1)
-    return a, u
+    u, a = table_cubic(flat, k, T_t, u_t, a_t)
+    return a, np.clip(u, u_t[k], u_t[k + 1])
 
 
 def _solve_free_newton(flat, B, partials, branch):

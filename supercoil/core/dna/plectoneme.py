@@ -87,6 +87,7 @@ from supercoil.core.dna.hard_core_equations import (
     reduced_torque,
 )
 from supercoil.core.numerics import safe_newton as _safe_newton
+from supercoil.core.numerics import table_cubic
 from supercoil.exceptions import NoEquilibriumError
 
 __all__ = [
@@ -266,7 +267,8 @@ def _reduced_start(T_target, b):
     The start is the cubic through the four table rows around the tension (Lagrange in
     T', kept inside the bracket): within 2e-5 of the root in u and alpha (the linear
     interpolation between the two rows: 4e-4; b from 0.3 to 3 times the seed set's), so
-    the joint Newton takes 2 steps instead of 3 (:func:`_cubic_start`).
+    the joint Newton takes 2 steps instead of 3
+    (:func:`~supercoil.core.numerics.table_cubic`, as the screened solver's start).
     """
     rho_t, alpha_t, T_t = reduced_branch_table(float(b))
     # T_t decreasing: index of the interval [k, k+1] with T_t[k] >= T > T_t[k+1]
@@ -275,10 +277,8 @@ def _reduced_start(T_target, b):
     u_t = _log_rho_table(float(b))
     u_lo, u_hi = u_t[k], u_t[k + 1]
     a_lo, a_hi = alpha_t[k], alpha_t[k + 1]
-    if T_t.size < 4:  # a branch of fewer than four rows: linear between the two
-        frac = np.clip((T_t[k] - T_target) / (T_t[k] - T_t[k + 1]), 0.0, 1.0)
-        return u_lo + frac * (u_hi - u_lo), u_lo, u_hi, a_lo + frac * (a_hi - a_lo)
-    u0, a0 = _cubic_start(T_target, k, T_t, u_t, alpha_t)
+    u0, a0 = (v.reshape(k.shape) for v in table_cubic(T_target.ravel(), k.ravel(), T_t, u_t,
+                                                      alpha_t))
     return (np.minimum(np.maximum(u0, u_lo), u_hi), u_lo, u_hi,
             np.minimum(np.maximum(a0, np.minimum(a_lo, a_hi)), np.maximum(a_lo, a_hi)))
 
@@ -287,24 +287,6 @@ def _reduced_start(T_target, b):
 def _log_rho_table(b):
     """``log rho`` of :func:`reduced_branch_table` (cached with it)."""
     return np.log(reduced_branch_table(b)[0])
-
-
-def _cubic_start(T, k, T_t, u_t, alpha_t):
-    """``(u, alpha)`` at the tensions T by the cubic through the table rows
-    ``j..j+3`` around each interval k (Lagrange weights in T')."""
-    j = np.clip(k - 1, 0, T_t.size - 4)
-    rows = [j + i for i in range(4)]
-    nodes = [T_t[r] for r in rows]
-    u = np.zeros(T.shape)
-    a = np.zeros(T.shape)
-    for i in range(4):
-        w = np.ones(T.shape)
-        for m in range(4):
-            if m != i:
-                w *= (T - nodes[m]) / (nodes[i] - nodes[m])
-        u += w * u_t[rows[i]]
-        a += w * alpha_t[rows[i]]
-    return u, a
 
 
 def _nested_reduced(T_target, b, rtol, u0, u_lo, u_hi, alpha0):
