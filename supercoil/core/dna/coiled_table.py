@@ -258,8 +258,7 @@ def _roots(x, cl, dcl, lp_nodes, half, t=None):
         t = np.interp(x, lp_nodes[::-1], lobatto(cl.size - 1)[::-1])
     last = None
     both = stacked(cl, dcl)
-    k2 = np.arange(cl.size, dtype=float) ** 2
-    curvature = float(np.abs(cl) @ (k2 * (k2 - 1.0) / 3.0))  # >= max |l_p''(t)| on [-1, 1]
+    curvature = _derivative_bound(cl, 2)  # >= max |l_p''(t)| on [-1, 1]
     for _ in range(_NEWTON_MAXITER):
         lp, dlp = chebval_rows(t, both)
         step = np.abs((lp - x) / dlp)
