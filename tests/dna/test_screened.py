@@ -560,8 +560,52 @@ def test_newton_converges_without_the_fallback_inside_the_branch(dna150):
     # branch ends every force converges by Newton alone
     B, f, br = _kernel(dna150)
     F = np.geomspace(0.01e-12, br.tension[0] * 0.99, 200)
-    ok = eq._solve_free_newton(F, B, f, br)[3]
+    *_, ok = eq._solve_free_newton(F, B, f, br)
     assert np.all(ok)
+
+
+def test_newton_needs_about_six_evaluations_per_force(dna150):
+    # one fresh Jacobian (3 evaluations), chord steps until two of them bound the error,
+    # the final state (1): the count before the chord bound was 7.9 per force
+    B, f, br = _kernel(dna150)
+    F = np.geomspace(0.05e-12, 5e-12, 200)
+    seen = []
+
+    def counted(a, R):
+        seen.append(np.size(a))
+        return f(a, R)
+
+    eq.solve_equilibrium(F, B, counted, br)
+    assert sum(seen) / F.size <= 6.5
+
+
+@pytest.mark.parametrize("salt", [10.0, 150.0])
+def test_energy_is_the_interaction_at_the_returned_states(dna150, salt):
+    # Newton's last evaluation (bit for bit a new call), nodes, the fallback, contact
+    B, f, br = _kernel(_at_salt(dna150, salt))
+    d = _at_salt(dna150, salt).si
+    inter = Screened()
+    contact = inter.contact_branch(d)
+    F = np.concatenate([_forces_on_branch(br, 40), [br.tension[5]]])
+    if contact is not None:
+        F = np.concatenate([F, [contact.tension[0] * 2.0]])
+    for method in ("newton", "direct"):
+        a, R, M, w = eq.solve_equilibrium(F, B, f, br, contact, method=method, energy=True)
+        ref = eq.solve_equilibrium(F, B, f, br, contact, method=method)
+        for x, y in zip((a, R, M), ref, strict=True):
+            np.testing.assert_array_equal(x, y)
+        np.testing.assert_array_equal(w, f(a, R)[0])
+
+
+def test_quadrature_nodes_from_one_exponential_match_sinh_and_cosh():
+    # _nodes takes sinh t and cosh t from exp(t): 12 digits of z at the smallest node
+    a, R, lam = np.array([0.3, 0.6]), np.array([1e-9, 8e-9]), np.array(0.78e-9)
+    _, _, z, dz = scr._nodes(a, R, lam)
+    D = 2.0 * R[:, None]
+    t_max = np.arccosh(1.0 + scr.CUTOFF_DECAYS * lam / D)
+    t = t_max * scr._X
+    np.testing.assert_allclose(z, D * np.sinh(t), rtol=1e-12, atol=0.0)
+    np.testing.assert_allclose(dz, D * np.cosh(t) * t_max * scr._W, rtol=1e-15, atol=0.0)
 
 
 @pytest.mark.parametrize("method", ["newton", "direct"])

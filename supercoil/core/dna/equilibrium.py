@@ -31,7 +31,10 @@ Each target tension is bracketed in that table (nodes k, k+1). ``method="newton"
 vectorised over the forces, from a 4-point Lagrange interpolation of alpha and log R
 in T through the table; the Jacobian is a forward difference (step 1e-7 in alpha and
 log R; every residual is exact, so the Jacobian's error only slows convergence), kept
-fixed (chord steps) once a step is below 1e-6, until both steps are below 1e-13. A
+fixed (chord steps) once a step is below 1e-4, until both steps are below 1e-13 or two
+chord steps on one Jacobian bound the error left: with the contraction
+``rho = step_k / step_(k-1) < 1/2`` it is below ``rho step_k / (1 - rho)``, accepted
+under 1e-16 (rad, and in log R). A
 result is accepted only if it lies in the bracket's log R interval, its tilt within
 1e-3 rad of the bracket's tilts and the relative residuals of (GE2) and the tension
 are below 1e-10; elsewhere (in practice within ~1e-8 of a fold's maximum, where the
@@ -41,8 +44,11 @@ solve. ``method="direct"`` (the reference) solves ``T(alpha(R), R) = T_target`` 
 solving (GE2) for alpha by the same routine (nested Chandrupatla). A force equal to a
 node's tension is that node (both methods).
 
-Measured (150 mM NaCl, ``dna_150mM_nacl``, one run): Newton needs 7-8 evaluations of
-the interaction's partials per force against 127-146 for the direct solve; 1000 forces
+Measured (150 mM NaCl, ``dna_150mM_nacl``, one run): Newton needs about 6 evaluations
+of the interaction's partials per force (6.5 on average over 5 mM-1 M with the three
+variants below, 7.9 with a fresh Jacobian down to steps of 1e-6 and no error bound)
+against 127-146 for the direct solve; ``energy=True`` returns the interaction at the
+states from the last of them; 1000 forces
 0.05-5 pN cost about 1/15 of the direct solve's CPU time; over
 5 mM-1 M, with/without confinement and charge fraction 0.4 (about 9,500 forces
 0.05-50 pN, table nodes and forces up to 1e-12 below the branch's top included) the
@@ -87,7 +93,8 @@ T_FLOOR = 1e-15
 _FD_STEP = 1e-7  # forward-difference step of the Newton Jacobian (rad, and in log R)
 _NEWTON_TOL = 1e-13  # last Newton step (rad, and in log R) below which it has converged
 _NEWTON_MAXITER = 12
-_CHORD_STEP = 1e-6  # after a step below this the Jacobian is kept (chord iteration)
+_CHORD_STEP = 1e-4  # after a step below this the Jacobian is kept (chord iteration)
+_CHORD_ERROR = 1e-16  # chord error bound (rad, and in log R) below which it has converged
 _RESIDUAL_TOL = 1e-10  # relative residuals of (GE2) and the tension accepted at the end
 _TILT_SLACK = 1e-3  # rad: Newton's tilt may leave the bracket's tilts by this (an extremum)
 
@@ -310,13 +317,13 @@ def _solve_free_direct(flat, B, partials, branch, xatol):
 
 
 def _h_t_m(alpha, R, B, partials):
-    """``(h, T, M, scale of h)`` at (alpha, R) from one call of ``partials``."""
+    """``(h, T, M, scale of h, w)`` at (alpha, R) from one call of ``partials``."""
     X, Y, w, kappa = _xy(alpha, R, B, partials)
     s2, c2 = np.sin(2.0 * alpha), np.cos(2.0 * alpha)
     h = 0.5 * s2 * X + R * c2 * Y
     M = R * X / c2
     T = -0.5 * B * kappa * kappa + M * 0.5 * s2 / R - w
-    return h, T, M, np.abs(0.5 * s2 * X) + np.abs(R * c2 * Y)
+    return h, T, M, np.abs(0.5 * s2 * X) + np.abs(R * c2 * Y), w
 
 
 def _start(flat, branch, k):
@@ -331,7 +338,8 @@ def _start(flat, branch, k):
 def _solve_free_newton(flat, B, partials, branch):
     """Newton on ``(h, T - F) = 0`` in ``(alpha, log R)`` (module doc, Method).
 
-    Returns ``(alpha, R, M, ok)``; where ``ok`` is False the iteration left the table's
+    Returns ``(alpha, R, M, w, ok)`` (``w`` the interaction at the state, from the last
+    evaluation); where ``ok`` is False the iteration left the table's
     bracket or did not converge, and the caller falls back to the direct solve.
     """
     T_t, a_t, u_t = branch.tension, branch.alpha, np.log(branch.radius)
@@ -342,6 +350,7 @@ def _solve_free_newton(flat, B, partials, branch):
     done = np.zeros(n, bool)
     jac = np.zeros((4, n))  # h_a, h_u, g_a, g_u (forward differences)
     fresh = np.ones(n, bool)  # a new Jacobian at the next step (else the last one: chord)
+    last = np.full(n, np.inf)  # the last step, where it was a chord step (else inf)
     for _ in range(_NEWTON_MAXITER):
         if live.size == 0:
             break
@@ -351,7 +360,7 @@ def _solve_free_newton(flat, B, partials, branch):
         A = np.concatenate([al, aj + _FD_STEP, aj])
         U = np.concatenate([ul, uj, uj + _FD_STEP])
         with np.errstate(all="ignore"):  # a wild iterate is caught below (fallback)
-            h, T, _, _ = _h_t_m(A, np.exp(U), B, partials)
+            h, T = _h_t_m(A, np.exp(U), B, partials)[:2]
         h0, g0 = h[:m], T[:m] - F
         base = fresh[live]
         c = nj.size
@@ -372,13 +381,18 @@ def _solve_free_newton(flat, B, partials, branch):
         bad = ~(np.isfinite(da) & np.isfinite(du) & (a[live] > 0.0) & (a[live] < _ALPHA_HI)
                 & (u[live] > u_t[kl] - width) & (u[live] < u_t[kl + 1] + width))
         step = np.maximum(np.abs(da), np.abs(du))
-        conv = step < _NEWTON_TOL
+        # two chord steps on one Jacobian: contraction rho = step / last, the error left
+        # after this step is below rho step / (1 - rho)
+        rho = step / last[live]  # 0 after a fresh step (last = inf): no estimate
+        conv = (step < _NEWTON_TOL) | ((rho > 0.0) & (rho < 0.5)
+                                       & (rho * step <= _CHORD_ERROR * (1.0 - rho)))
+        last[live] = np.where(base, np.inf, step)
         fresh[live] = step > _CHORD_STEP
         done[live[conv & ~bad]] = True
         live = live[~(conv | bad)]
     R = np.exp(u)
     with np.errstate(all="ignore"):  # forces not done are not used (fallback)
-        h, T, M, h_scale = _h_t_m(a, R, B, partials)
+        h, T, M, h_scale, w = _h_t_m(a, R, B, partials)
         span = np.abs(a_t[k + 1] - a_t[k]) + _TILT_SLACK
         ok = (done & (u >= u_t[k] - 1e-12) & (u <= u_t[k + 1] + 1e-12)
               & (a > 0.0) & (a < _ALPHA_HI)
@@ -386,11 +400,14 @@ def _solve_free_newton(flat, B, partials, branch):
               & (a <= np.maximum(a_t[k], a_t[k + 1]) + span)
               & (np.abs(h) <= _RESIDUAL_TOL * h_scale)
               & (np.abs(T - flat) <= _RESIDUAL_TOL * np.abs(flat)))
-    return a, R, M, ok
+    return a, R, M, w, ok
 
 
 def _solve_free(flat, B, partials, branch, xatol, method):
+    """``(alpha, R, M, w)`` on the free branch; ``w`` NaN where the solve did not
+    evaluate the interaction at the state (nodes, the direct solve)."""
     alpha, R, M = np.empty(flat.shape), np.empty(flat.shape), np.empty(flat.shape)
+    w = np.full(flat.shape, np.nan)
     # a force equal to a node's tension is that node: recomputed there, T may lie a few
     # ulp on the wrong side of the target and the node's bracket hold no sign change
     # (the direct solve failed there); the fold's first node is also a double root
@@ -404,17 +421,20 @@ def _solve_free(flat, B, partials, branch, xatol, method):
     if method == "direct":
         alpha[rest], R[rest], M[rest] = _solve_free_direct(flat[rest], B, partials, branch,
                                                            xatol)
-        return alpha, R, M
-    a, r, m, ok = _solve_free_newton(flat[rest], B, partials, branch)
+        return alpha, R, M, w
+    a, r, m, e, ok = _solve_free_newton(flat[rest], B, partials, branch)
     if not np.all(ok):  # safeguard: the bracketed reference where Newton failed
         a[~ok], r[~ok], m[~ok] = _solve_free_direct(flat[rest][~ok], B, partials, branch,
                                                     xatol)
-    alpha[rest], R[rest], M[rest] = a, r, m
-    return alpha, R, M
+        e[~ok] = np.nan
+    alpha[rest], R[rest], M[rest], w[rest] = a, r, m, e
+    return alpha, R, M, w
 
 
-def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, method="newton"):
-    """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force).
+def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, method="newton",
+                      energy=False):
+    """``(alpha, R, M)`` of the uniform plectoneme at each tension (arrays like force),
+    with ``energy=True`` ``(alpha, R, M, w)``.
 
     Implements docs/theory/plectoneme.md (GE1, GE2).
 
@@ -442,6 +462,10 @@ def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, met
         ``"newton"`` (default): Newton on the 2x2 system from the table, falling back to
         the direct solve where it fails; ``"direct"``: the nested bracketed solve, the
         reference (module docstring, Method).
+    energy : bool
+        Also return the interaction ``w = partials(alpha, R)[0]`` (J/m) at the states:
+        Newton's last evaluation, where it has one (the same floats as a new call),
+        else one call of ``partials`` on the remaining states.
 
     Raises
     ------
@@ -464,15 +488,22 @@ def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, met
     alpha = np.empty(flat.shape)
     R = np.empty(flat.shape)
     M = np.full(flat.shape, np.inf)
+    w = np.full(flat.shape, np.nan)
     if np.any(free):
-        alpha[free], R[free], M[free] = _solve_free(flat[free], B, partials, branch, xatol,
-                                                    method)
+        alpha[free], R[free], M[free], w[free] = _solve_free(flat[free], B, partials, branch,
+                                                             xatol, method)
     if np.any(touch):
         a_c, M_c = _ct.solve_contact(flat[touch], B, partials, contact)
         better = M_c < M[touch]  # the lower torque is the equilibrium
         idx = np.flatnonzero(touch)[better]
-        alpha[idx], R[idx], M[idx] = a_c[better], contact.radius, M_c[better]
-    return alpha.reshape(force.shape), R.reshape(force.shape), M.reshape(force.shape)
+        alpha[idx], R[idx], M[idx], w[idx] = a_c[better], contact.radius, M_c[better], np.nan
+    out = (alpha.reshape(force.shape), R.reshape(force.shape), M.reshape(force.shape))
+    if not energy:
+        return out
+    miss = np.isnan(w)
+    if np.any(miss):
+        w[miss] = partials(alpha[miss], R[miss])[0]
+    return (*out, w.reshape(force.shape))
 
 
 def equilibrium_residuals(force, alpha, R, omega, B, C, partials):

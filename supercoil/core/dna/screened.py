@@ -83,22 +83,35 @@ def parallel_rods(radius, debye, prefactor):
 
 
 def _nodes(alpha, radius, debye):
-    """Quadrature nodes z (m) and weights dz (m), shape (..., n), half line z >= 0."""
+    """Quadrature nodes z (m) and weights dz (m), shape (..., n), half line z >= 0.
+
+    ``sinh t`` and ``cosh t`` from one ``exp`` (a third of the cost of numpy's sinh and
+    cosh); at the smallest node ``t ~ 1e-4`` the difference ``(e^t - e^-t)/2`` keeps
+    about 12 digits of z, where z enters d only as ``z^2`` against ``4 R^2``.
+    """
     alpha, radius = np.broadcast_arrays(np.asarray(alpha, float), np.asarray(radius, float))
-    D = 2.0 * radius[..., None]
-    t_max = np.arccosh(1.0 + CUTOFF_DECAYS * debye / D)
-    t = t_max * _X
-    z = D * np.sinh(t)
-    dz = D * np.cosh(t) * t_max * _W
+    half = radius[..., None]  # D / 2, D = 2R
+    t_max = np.arccosh(1.0 + CUTOFF_DECAYS * debye / (2.0 * half))
+    e = np.exp(t_max * _X)
+    inv = 1.0 / e
+    z = e - inv
+    z *= half  # D sinh t
+    dz = e + inv
+    dz *= half * t_max
+    dz *= _W  # D cosh t t_max w
     return alpha, radius, z, dz
 
 
 def _distance(alpha, radius, z):
+    """``(d, q, R, 1 + cos q)`` at the nodes z."""
     p = (radius * np.cos(alpha) / np.sin(alpha))[..., None]
     q = z / p
     R = radius[..., None]
-    d2 = z * z + 2.0 * R * R * (1.0 + np.cos(q))
-    return np.sqrt(d2), q, R
+    c1 = np.cos(q)
+    c1 += 1.0
+    d = c1 * (2.0 * R * R)
+    d += z * z
+    return np.sqrt(d, out=d), q, R, c1
 
 
 def electrostatic(alpha, radius, debye, prefactor):
@@ -121,8 +134,8 @@ def electrostatic(alpha, radius, debye, prefactor):
     Implements docs/theory/screened-interaction.md (SI4).
     """
     alpha, radius, z, dz = _nodes(alpha, radius, debye)
-    d, _, _ = _distance(alpha, radius, z)
-    integral = 2.0 * np.sum(np.exp(-d / debye) / d * dz, axis=-1)
+    d = _distance(alpha, radius, z)[0]
+    integral = 2.0 * np.sum(np.exp(d / -debye) / d * dz, axis=-1)
     return prefactor * integral / (2.0 * np.cos(alpha))
 
 
@@ -132,16 +145,28 @@ def electrostatic_partials(alpha, radius, debye, prefactor):
     Implements docs/theory/screened-interaction.md (SI4).
     """
     alpha, radius, z, dz = _nodes(alpha, radius, debye)
-    d, q, R = _distance(alpha, radius, z)
+    d, q, R, c1 = _distance(alpha, radius, z)
     inv_d = 1.0 / d
-    e = np.exp(-d / debye) * inv_d
+    e = np.exp(d / -debye)
+    e *= inv_d
     # d/dd [exp(-d/lambda)/d] = -e (1/lambda + 1/d), times dd = d(d^2) / (2d); the
-    # constant 1/sin(2 alpha) of d(d^2)/dalpha taken out of the sum
-    g = e * (1.0 / debye + inv_d) * (0.5 * inv_d) * dz
-    q_sin_q = q * np.sin(q)
-    I = 2.0 * np.sum(e * dz, axis=-1)
-    I_R = -2.0 * np.sum(g * (4.0 * R * (1.0 + np.cos(q)) + 2.0 * R * q_sin_q), axis=-1)
-    I_a = 2.0 * np.sum(g * (4.0 * R * R * q_sin_q), axis=-1) / np.sin(2.0 * alpha)
+    # constant 1/sin(2 alpha) of d(d^2)/dalpha taken out of the sum (in-place: the
+    # arrays are (points, nodes), and each pass costs about as much as the sum)
+    g = inv_d + 1.0 / debye
+    g *= e
+    inv_d *= 0.5
+    g *= inv_d
+    g *= dz
+    q_sin_q = np.sin(q)
+    q_sin_q *= q
+    e *= dz
+    I = 2.0 * np.sum(e, axis=-1)
+    c1 *= 4.0 * R  # 4R (1 + cos q) + 2R q sin q
+    c1 += q_sin_q * (2.0 * R)
+    c1 *= g
+    I_R = -2.0 * np.sum(c1, axis=-1)
+    g *= q_sin_q
+    I_a = 2.0 * np.sum(g, axis=-1) * (4.0 * radius * radius) / np.sin(2.0 * alpha)
     c = np.cos(alpha)
     k = prefactor / (2.0 * c)
     w = k * I

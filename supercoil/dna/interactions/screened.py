@@ -297,11 +297,11 @@ class Screened(Interaction):
     @staticmethod
     def _state(force, si, partials, branch, contact):
         B, C = si.bending_rigidity, si.torsional_rigidity
-        alpha, R, M = _eq.solve_equilibrium(force, B, partials, branch, contact)
+        alpha, R, M, w = _eq.solve_equilibrium(force, B, partials, branch, contact,
+                                               energy=True)
         s, c = np.sin(alpha), np.cos(alpha)
         kappa, tau = s * s / R, s * c / R
         omega = M / C
-        w = partials(alpha, R)[0]
         return PlectonemeState(
             force=force, alpha=alpha, radius=R, pitch=2.0 * np.pi * R / np.tan(alpha),
             omega=omega, torque=M, curvature=kappa, torsion=tau,
