@@ -1,22 +1,7 @@
 """Uniform plectoneme at fixed tension for any interaction ``w(alpha, R)``.
 Float-only SI kernel (docs/theory/plectoneme.md; docs/theory/screened-interaction.md#5).
 
-Equations
----------
-For a uniform double helix of tilt alpha and radius R, stationarity of the energy
-[Eq Ep1] gives (GE1) ``C omega = X / tau_alpha`` and (GE2)
-``tau_R X - tau_alpha Y = 0`` with ``X = B kappa kappa_alpha + w_alpha`` and
-``Y = B kappa kappa_R + w_R``; the tension is ``T = -(1/2) B kappa^2 + C omega tau - w``.
-With ``kappa = sin^2 a / R`` and ``tau = sin a cos a / R`` (docs/theory/plectoneme.md),
-``-R^2 (GE2)`` reads
-
-    h(alpha, R) = (sin 2alpha / 2) X + R cos(2alpha) Y = 0,
-
-which does not contain C: the torque ``M = C omega = X / tau_alpha``, alpha and R at a
-given tension are independent of C. Along the solution curve ``dT = tau dM``
-(the state is a stationary point of ``f = B kappa^2/2 + w - M tau`` at fixed torque
-and ``T = -f``), so the stable branch is the one on which T decreases monotonically
-as R grows (M grows with T).
+Equations: :mod:`supercoil.core.dna.equilibrium_equations`.
 
 Method
 ------
@@ -28,35 +13,19 @@ the first grid point where T stops decreasing or falls to zero.
 
 Each target tension is bracketed in that table (nodes k, k+1). ``method="newton"``
 (default) solves the 2x2 system ``(h, T - F) = 0`` in ``(alpha, log R)`` by Newton,
-vectorised over the forces, from a 4-point Lagrange interpolation of alpha and log R
-in T through the table; the Jacobian is a forward difference (step 1e-7 in alpha and
-log R; every residual is exact, so the Jacobian's error only slows convergence), kept
-fixed (chord steps) once a step is below 1e-4, until both steps are below 1e-13 or two
-chord steps on one Jacobian bound the error left: with the contraction
-``rho = step_k / step_(k-1) < 1/2`` it is below ``rho step_k / (1 - rho)``, accepted
-under 1e-16 (rad, and in log R). A
-result is accepted only if it lies in the bracket's log R interval, its tilt within
-1e-3 rad of the bracket's tilts and the relative residuals of (GE2) and the tension
-are below 1e-10; elsewhere (in practice within ~1e-8 of a fold's maximum, where the
-root is double, and at the branch's far end) the force falls back to the direct
-solve. ``method="direct"`` (the reference) solves ``T(alpha(R), R) = T_target`` for
-``log R`` with ``scipy.optimize.elementwise.find_root`` in the bracket, each evaluation
-solving (GE2) for alpha by the same routine (nested Chandrupatla). A force equal to a
-node's tension is that node (both methods).
-
-Measured (150 mM NaCl, ``dna_150mM_nacl``, one run): Newton needs about 6 evaluations
-of the interaction's partials per force (6.5 on average over 5 mM-1 M with the three
-variants below, 7.9 with a fresh Jacobian down to steps of 1e-6 and no error bound)
-against 127-146 for the direct solve; ``energy=True`` returns the interaction at the
-states from the last of them; 1000 forces
-0.05-5 pN cost about 1/15 of the direct solve's CPU time; over
-5 mM-1 M, with/without confinement and charge fraction 0.4 (about 9,500 forces
-0.05-50 pN, table nodes and forces up to 1e-12 below the branch's top included) the
-two agree to 5e-15 in alpha, 1.1e-14 in R and 1.8e-14 in the torque; at 1e-8 below a
-fold's maximum (R ill-conditioned there, ``dR ~ sqrt(dT)``) to 6e-11 in R and 2e-13
-in the torque (tested at 1e-10). Hand-written Newton is kept against scipy's
-bracketed solver for this measured factor; the fallback keeps scipy's bracket
-guarantee.
+vectorised over the forces, from a 4-point Lagrange interpolation in T through the
+table, with forward-difference Jacobians (step 1e-7) kept fixed (chord steps) once a
+step is below 1e-4, until both steps are below 1e-13 or two chord steps on one
+Jacobian, of contraction ``rho = step_k / step_(k-1) < 1/2``, bound the error left,
+``rho step_k / (1 - rho)``, below 1e-16. A result outside the bracket, or with
+relative residuals above 1e-10, falls back to ``method="direct"`` (the reference):
+``T(alpha(R), R) = T_target`` for ``log R`` by ``scipy.optimize.elementwise.find_root``
+in the bracket, each evaluation solving (GE2) for alpha by the same routine. A force
+equal to a node's tension is that node (both methods). The rules, the accuracy (the
+two agree to 4.3e-14 over 5 mM-1 M, tested at 1e-10) and the cost (about 6
+evaluations of the partials per force against 127-146 for the direct solve, the
+measured factor for which hand-written Newton is kept; the fallback keeps scipy's
+bracket guarantee): docs/theory/screened-interaction.md, section 8.
 
 Errors: a force above ``T(r_min)`` would push R below the hard core (the strands would
 pass through each other); a force below the branch's smallest tension has no
@@ -70,6 +39,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.dna.equilibrium_equations import (
+    equilibrium_residuals,
+    tension,
+    tilt_residual,
+    torque,
+    xy_terms,
+)
 from supercoil.core.numerics import table_cubic
 from supercoil.exceptions import NoEquilibriumError
 
@@ -107,42 +83,6 @@ class Branch(NamedTuple):
     tension: np.ndarray
     ends_at_zero: bool  # True if T reaches 0 on the grid (else the grid ran out)
     fold: bool  # True if the branch starts at a maximum of T (not at the hard core)
-
-
-def _xy(alpha, R, B, partials):
-    s = np.sin(alpha)
-    c = np.cos(alpha)
-    kappa = s * s / R
-    w, w_a, w_R = partials(alpha, R)
-    X = B * kappa * 2.0 * s * c / R + w_a
-    Y = -B * kappa * s * s / (R * R) + w_R
-    return X, Y, w, kappa
-
-
-def tilt_residual(alpha, R, B, partials):
-    """``h = -R^2 (GE2) = (sin 2a / 2) X + R cos(2a) Y`` (N).
-
-    Implements docs/theory/plectoneme.md (GE2).
-    """
-    X, Y, _, _ = _xy(alpha, R, B, partials)
-    return np.sin(2.0 * alpha) * 0.5 * X + R * np.cos(2.0 * alpha) * Y
-
-
-def torque(alpha, R, B, partials):
-    """(GE1) torque ``M = C omega = X / tau_alpha = R X / cos(2 alpha)`` (N m).
-
-    Implements docs/theory/plectoneme.md (GE1).
-    """
-    X, _, _, _ = _xy(alpha, R, B, partials)
-    return R * X / np.cos(2.0 * alpha)
-
-
-def tension(alpha, R, B, partials):
-    """``T = -(1/2) B kappa^2 + M tau - w`` with M from (GE1) (N)."""
-    X, _, w, kappa = _xy(alpha, R, B, partials)
-    M = R * X / np.cos(2.0 * alpha)
-    tau = np.sin(alpha) * np.cos(alpha) / R
-    return -0.5 * B * kappa * kappa + M * tau - w
 
 
 def solve_tilt(R, B, partials, strict=True):
@@ -318,7 +258,7 @@ def _solve_free_direct(flat, B, partials, branch, xatol):
 
 def _h_t_m(alpha, R, B, partials):
     """``(h, T, M, scale of h, w)`` at (alpha, R) from one call of ``partials``."""
-    X, Y, w, kappa = _xy(alpha, R, B, partials)
+    X, Y, w, kappa = xy_terms(alpha, R, B, partials)
     s2, c2 = np.sin(2.0 * alpha), np.cos(2.0 * alpha)
     h = 0.5 * s2 * X + R * c2 * Y
     M = R * X / c2
@@ -504,22 +444,3 @@ def solve_equilibrium(force, B, partials, branch, contact=None, xatol=1e-14, met
     if np.any(miss):
         w[miss] = partials(alpha[miss], R[miss])[0]
     return (*out, w.reshape(force.shape))
-
-
-def equilibrium_residuals(force, alpha, R, omega, B, C, partials):
-    """Relative residuals ``(GE1, GE2, tension)`` from the un-reduced equations of
-    docs/theory/plectoneme.md (geometry partials written out here, not the solver's ``h``)."""
-    s, c = np.sin(alpha), np.cos(alpha)
-    kappa, tau = s * s / R, s * c / R
-    k_a, k_r = np.sin(2 * alpha) / R, -s * s / R**2
-    t_a, t_r = np.cos(2 * alpha) / R, -np.sin(2 * alpha) / (2 * R**2)
-    w, w_a, w_r = partials(alpha, R)
-    X = B * kappa * k_a + w_a
-    Y = B * kappa * k_r + w_r
-    ge1 = (C * omega * t_a - X) / (np.abs(C * omega * t_a) + np.abs(B * kappa * k_a)
-                                   + np.abs(w_a))
-    ge2 = (t_r * X - t_a * Y) / (np.abs(t_r * X) + np.abs(t_a * B * kappa * k_r)
-                                 + np.abs(t_a * w_r))
-    terms = (0.5 * B * kappa**2, C * omega * tau, w, force)
-    ten = (-terms[0] + terms[1] - terms[2] - force) / sum(np.abs(x) for x in terms)
-    return ge1, ge2, ten
