@@ -150,8 +150,8 @@ def electrostatic_partials(alpha, radius, debye, prefactor):
     e = np.exp(d / -debye)
     e *= inv_d
     # d/dd [exp(-d/lambda)/d] = -e (1/lambda + 1/d), times dd = d(d^2) / (2d); the
-    # constant 1/sin(2 alpha) of d(d^2)/dalpha taken out of the sum (in-place: the
-    # arrays are (points, nodes), and each pass costs about as much as the sum)
+    # constant 1/sin(2 alpha) of d(d^2)/dalpha taken out of the sum (in place: no new
+    # (points, nodes) array per product)
     g = inv_d + 1.0 / debye
     g *= e
     inv_d *= 0.5
