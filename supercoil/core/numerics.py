@@ -48,6 +48,7 @@ __all__ = [
     "finite_difference",
     "first_crossing",
     "safe_newton",
+    "single_thread_product",
     "stacked",
     "table_cubic",
 ]
@@ -453,4 +454,33 @@ def chebval_rows(t, coefficients):
         np.multiply(rows[1:k + 1], 2.0 * rows[m], out=block)
         block -= rows[m - k:m][::-1]
         m += k
-    return coefficients.T @ rows
+    return single_thread_product(coefficients.T, rows)
+
+
+#: multiply-adds per matrix product that BLAS libraries run on one thread: OpenBLAS
+#: threads a product from 65,536 x its ``GEMM_MULTITHREAD_THRESHOLD`` (4 by default; 1 is
+#: its lowest setting, so this bound holds for every build)
+SINGLE_THREAD_PRODUCT = 65536
+
+
+def single_thread_product(a, b):
+    """``a @ b`` (a: ``(m, n)``, b: ``(n, N)``, ``m >= 2``) in column blocks of ``b``, each
+    product below :data:`SINGLE_THREAD_PRODUCT` multiply-adds, so that BLAS never starts
+    its threads.
+
+    Kept by measurement (OpenBLAS 0.3.31, 2 cores): the series rows of a branch table,
+    ``(4 x 33) @ (33 x 4097)``, ran threaded and cost 3.8x the CPU of one thread (the wall
+    time 1.2x), and the idle BLAS threads then spin for about 0.1 s, which doubled the CPU
+    of the whole free-energy fit that built the table (and of any fit after it in that
+    time, or of the other worker of a 2-process pool). In blocks it costs 1.1-1.3x the
+    single-thread product. Each column is the same dot products as in the whole product;
+    the sums agree with ``a @ b`` to a few ulp (the micro-kernel of the last, narrower
+    block may order them differently).
+    """
+    width = max(SINGLE_THREAD_PRODUCT // (a.shape[0] * a.shape[1]), 1)
+    if b.shape[1] <= width:
+        return a @ b
+    out = np.empty((a.shape[0], b.shape[1]))
+    for start in range(0, b.shape[1], width):
+        np.matmul(a, b[:, start:start + width], out=out[:, start:start + width])
+    return out

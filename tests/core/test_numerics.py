@@ -201,3 +201,68 @@ def test_table_cubic_reproduces_cubics_on_a_descending_table():
     two = nodes[[0, -1]]
     (lin,) = table_cubic(x, np.zeros(x.size, int), two, line(two))
     np.testing.assert_allclose(lin, line(x), rtol=0, atol=1e-13)
+
+
+@pytest.mark.parametrize(("m", "n", "columns"), [
+    (4, 33, 10), (4, 33, 496), (4, 33, 497), (4, 33, 4097), (6, 65, 2049), (2, 17, 1),
+    (300, 300, 3)])  # the last: wider than the bound in one column, one column per block
+def test_single_thread_product_is_the_matrix_product(m, n, columns):
+    """The column blocks give ``a @ b``: the same dot products, so within the sums' rounding
+    (n eps sum|a||b|), and the blocks stay under the single-thread bound."""
+    rng = np.random.default_rng(columns)
+    a, b = rng.normal(size=(m, n)), rng.normal(size=(n, columns))
+    got = nu.single_thread_product(a, b)
+    assert got.shape == (m, columns)
+    bound = n * np.finfo(float).eps * (np.abs(a) @ np.abs(b))
+    assert np.all(np.abs(got - a @ b) <= bound)
+    width = max(nu.SINGLE_THREAD_PRODUCT // (m * n), 1)
+    assert m * n * min(width, columns) <= max(nu.SINGLE_THREAD_PRODUCT, m * n)
+
+
+def _helper_thread_ticks():
+    """CPU clock ticks of this process's threads that Python did not start (BLAS's and
+    other libraries' workers; not the suite's background lane), from Linux's /proc."""
+    import os
+    import threading
+
+    python, ticks = {t.native_id for t in threading.enumerate()}, 0
+    for task in os.listdir("/proc/self/task"):
+        if int(task) not in python:
+            with open(f"/proc/self/task/{task}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            ticks += int(fields[11]) + int(fields[12])  # utime + stime
+    return ticks
+
+
+def test_a_cold_physical_fit_leaves_the_blas_threads_idle():
+    """A cold free-energy + screened fit (its branch table built: a (4 x 33) @ (33 x 4097)
+    product of the series rows) runs no BLAS product threaded: a threaded product leaves
+    OpenBLAS's idle threads spinning for about 0.1 s, CPU that doubled the fit's. The
+    helper threads may use at most 2 clock ticks (20 ms) over the fit and 0.15 s after it;
+    a spinning thread takes about 10 in the 0.15 s alone."""
+    import os
+
+    tp = pytest.importorskip("threadpoolctl")
+    if not os.path.isdir("/proc/self/task"):
+        pytest.skip("needs Linux /proc to read each thread's CPU")
+    pools = [p for p in tp.threadpool_info() if p["user_api"] == "blas"]
+    if not pools or max(p["num_threads"] for p in pools) < 2:
+        pytest.skip("BLAS runs on one thread here")
+    import warnings
+
+    import supercoil as sc
+    from supercoil.benchmark.targets_fit import clear_kernel_caches
+
+    u = sc.ureg
+    dna = sc.load_parameters("dna_150mM_nacl")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        data = sc.simulate_rotation_curves(dna, np.array([0.5, 2.0]) * u.pN,
+                                           points_per_force=40, noise=5 * u.nm, seed=3)
+        clear_kernel_caches()
+        time.sleep(0.2)  # threads a product before this test started settle first
+        before = _helper_thread_ticks()
+        sc.fit_hat_curves(data, dna, vary=["twist_persistence"], model="free-energy",
+                          interaction="screened")
+        time.sleep(0.15)
+    assert _helper_thread_ticks() - before <= 2
