@@ -470,9 +470,9 @@ def single_thread_product(a, b):
 
     Kept by measurement (OpenBLAS 0.3.31, 2 cores): the series rows of a branch table,
     ``(4 x 33) @ (33 x 4097)``, ran threaded and cost 3.8x the CPU of one thread (the wall
-    time 1.2x), and the idle BLAS threads then spin for about 0.1 s, which doubled the CPU
-    of the whole free-energy fit that built the table (and of any fit after it in that
-    time, or of the other worker of a 2-process pool). In blocks it costs 1.1-1.3x the
+    time 1.2x), and the idle BLAS threads then spin until OpenBLAS's thread timeout,
+    which doubled the CPU of the whole free-energy fit that built the table (and of
+    whatever ran next within the timeout). In blocks it costs 1.1-1.3x the
     single-thread product. Each column is the same dot products as in the whole product;
     the sums agree with ``a @ b`` to a few ulp (the micro-kernel of the last, narrower
     block may order them differently).

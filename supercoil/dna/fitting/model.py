@@ -395,12 +395,17 @@ class HatCurveModel:
                        f"{self.describe(u)}: the kernel fails on both sides")
 
     def dz_dturns(self, u):
-        """dz/dN (then dtau/dN if fitted) at every point: one kernel call at N -/+ h."""
+        """dz/dN (then dtau/dN if fitted) at every point: the model's closed-form slopes at
+        the points of ``u`` where it has them (:meth:`_model_slopes`), else one kernel call
+        at N -/+ h."""
         h = 1e-4
         ts = self.scale("torque_scale", u)
         n0 = self.unpack(u)[3]
         n_eff = self.data.turns - n0[self.data.mol_index]
         force = self.data.force
+        slopes = self._model_slopes(u, n_eff, ts)
+        if slopes is not None:
+            return slopes
         try:
             pts = self.kernel_at(np.concatenate([n_eff - h, n_eff + h]),
                                  np.concatenate([force, force]), u)
@@ -420,6 +425,23 @@ class HatCurveModel:
             except _KERNEL_ERRORS:
                 continue
         raise FitError(f"cannot differentiate the model in turns at {self.describe(u)}")
+
+    def _model_slopes(self, u, n_eff, ts):
+        """The model's ``turn_slopes`` at the (cached) points of ``u`` as the channels'
+        dN derivative, or None: the model has none, the points are a force spread's
+        average or per-force calls, or the torque is fitted and a point has no dM/dN
+        (NaN: the free-energy model's fully coiled points)."""
+        if self._per_force or self.scale("force_spread", u) != 0.0:
+            return None
+        dna, model, inter = self.unpack(u)[:3]
+        force = self.data.force * self.scale("force_scale", u)
+        slopes = model.turn_slopes(n_eff, force, dna, self.thermal, inter, self.points(u)[0])
+        if slopes is None:
+            return None
+        dz, dM = slopes
+        if not self.data.has_torque:
+            return dz
+        return np.concatenate([dz, dM / ts]) if np.all(np.isfinite(dM)) else None
 
     # ---- text ----
     def describe(self, u=None):

@@ -182,6 +182,19 @@ class DNAModel(Parametrised, abc.ABC):
         _v.check_finite_output(self, force, {"free energy": g}, turns)
         return g
 
+    def turn_slopes(self, turns, force, dna, thermal, interaction, points):
+        """``(dz/dN, dM/dN)`` (SI, per turn) at ``points``, the model's own points at
+        ``(turns, force)``, in closed form; None where the model has none (the default:
+        callers then differentiate :meth:`points`). A fit's Jacobian column in the turns
+        offset uses them instead of a kernel call at ``N -/+ h``; ``dM/dN`` may be NaN at
+        points where only ``dz/dN`` is known."""
+        turns, force, dna, thermal, interaction = self._point_inputs(turns, force, dna,
+                                                                     thermal, interaction)
+        return self._turn_slopes(turns, force, dna, thermal, interaction, points)
+
+    def _turn_slopes(self, turns, force, dna, thermal, interaction, points):
+        return None
+
     def validity(self, turns, force, points, dna, thermal) -> list[str]:
         """Messages the public layer issues as ValidityWarning: the shared limits, then
         the model's own (docs/theory/limits.md#dna)."""

@@ -19,6 +19,7 @@ import numpy as np
 
 from supercoil import display as _d
 from supercoil.core.dna import free_energy as _fe
+from supercoil.core.dna import free_energy_slopes as _slopes
 from supercoil.core.dna.interface import FULLY_COILED
 from supercoil.dna.models.base import Buckling, DNAModel, HatPoints
 from supercoil.dna.moroz_nelson import CONVERGED_BRACKET
@@ -133,6 +134,16 @@ class FreeEnergy(DNAModel):
                            memo=interaction.kernel_memo(dna))
         return HatPoints(p.extension, p.torque, p.plectoneme_length, p.phase, p.short_tail,
                          p.zeta, p.free_energy)
+
+    def _turn_slopes(self, turns, force, dna, thermal, interaction, points):
+        """Closed forms per phase (docs/theory/free-energy.md, FE10;
+        :func:`supercoil.core.dna.free_energy_slopes.turn_slopes`); ``dM/dN`` is NaN at
+        fully coiled points."""
+        uf, inv = np.unique(force, return_inverse=True)
+        co = _fe.coexistence(uf, *_args(dna), _equilibrium(interaction, dna), thermal,
+                             interaction.kernel_memo(dna))
+        return _slopes.turn_slopes(turns, force, points.torque, points.phase,
+                                   co.slope[inv], *_args(dna), thermal)
 
     def _free_energy(self, turns, force, dna, thermal, interaction):
         """``G(N, F)`` (J), docs/theory/free-energy.md#coexistence (up to a constant)."""
