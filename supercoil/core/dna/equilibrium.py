@@ -35,6 +35,7 @@ naming the force.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -54,6 +55,7 @@ __all__ = [
     "Branch",
     "branch_table",
     "equilibrium_residuals",
+    "grid_end_of",
     "solve_equilibrium",
     "solve_tilt",
     "tension",
@@ -148,7 +150,8 @@ def _peak(B, partials, u, alpha0=None):
     return R, a, float(tension(a, R, B, partials))
 
 
-def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOOR):
+def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOOR,
+                 grid_end=None):
     """Tabulate the stable branch ``T(R)`` between ``r_min`` and ``r_max`` (module doc).
 
     The branch starts at ``r_min`` if T decreases there, else at the first maximum of
@@ -158,28 +161,66 @@ def branch_table(B, partials, r_min, r_max, points=_TABLE_POINTS, t_floor=T_FLOO
     confinement) the table stops below ``t_floor`` (N, default 1 fN: far below any
     tweezers force, where the screened repulsion has died out numerically).
 
+    ``grid_end`` (optional, e.g. :func:`grid_end_of` a table of nearby parameters): solve
+    the grid's first ``grid_end`` radii only, and the whole grid only if the branch does
+    not end inside them. The table is the same bit for bit (each radius's tilt is its
+    own bracketed solve, and the end is the first radius where T stops decreasing).
+
     Raises
     ------
     NoEquilibriumError
         If no decreasing, positive stretch of T(R) exists on the grid.
     """
-    R = np.geomspace(r_min, r_max, points)
+    grid = np.geomspace(r_min, r_max, points)
+    if grid_end is not None and 2 <= grid_end < points:
+        found = _branch_on(grid[:grid_end], B, partials, r_min, r_max, inside=True)
+        if found is not None:
+            return _finish(found, B, partials, r_min, t_floor)
+    return _finish(_branch_on(grid, B, partials, r_min, r_max), B, partials, r_min, t_floor)
+
+
+def grid_end_of(branch, r_min, r_max, points=_TABLE_POINTS, margin=8, t_floor=T_FLOOR):
+    """The ``grid_end`` of :func:`branch_table` for parameters near those of ``branch``:
+    ``margin`` radii past its last one (the grid spacing is 2.9 % for 241 radii over a
+    factor 1000; a fit's steps in B move the end by a radius or two). None for a branch
+    cut where T fell below ``t_floor``: whether T crosses zero further out, which would
+    end it there instead, only the whole grid tells."""
+    if not branch.ends_at_zero and branch.tension[-1] < t_floor:
+        return None
+    ratio = (r_max / r_min) ** (1.0 / (points - 1))
+    last = round(math.log(branch.radius[-1] / r_min) / math.log(ratio))
+    return last + 1 + margin
+
+
+def _branch_on(R, B, partials, r_min, r_max, inside=False):
+    """The decreasing stretch ``(R, alpha, T, j, ends_at_zero)`` of T on the radii R, its
+    first point j; None with ``inside`` where it does not end before the last radius."""
     alpha = solve_tilt(R, B, partials, strict=False)
     T = tension(alpha, R, B, partials)
+    size = R.size
     n = int(np.argmax(~np.isfinite(T))) if not np.all(np.isfinite(T)) else T.size
     R, alpha, T = R[:n], alpha[:n], T[:n]
     dec = np.diff(T) < 0.0
     if not np.any(dec):
+        if inside and n == size:
+            return None
         raise NoEquilibriumError(
             f"no stable plectoneme branch between R = {r_min * 1e9:.6g} and "
             f"{r_max * 1e9:.6g} nm: the tension never decreases with R")
     j = int(np.argmax(dec))  # first point after which T decreases
     stop = np.nonzero(~dec[j:] | (T[j + 1:] <= 0.0))[0]
+    if inside and not (stop.size and j + 1 + stop[0] < size and n == size):
+        return None  # the end is not inside the radii solved (or T is not finite there)
     k = j + 1 + (stop[0] if stop.size else T.size - 1 - j)
     ends_at_zero = bool(k < T.size and T[k] <= 0.0)
     if ends_at_zero:  # keep the first point with T <= 0 as the bracket's end
         k += 1
-    R, alpha, T = R[j:k], alpha[j:k], T[j:k]
+    return R[j:k], alpha[j:k], T[j:k], j, ends_at_zero
+
+
+def _finish(found, B, partials, r_min, t_floor):
+    """:func:`branch_table`'s :class:`Branch` from the stretch :func:`_branch_on` found."""
+    R, alpha, T, j, ends_at_zero = found
     if not ends_at_zero and T[-1] < t_floor:
         keep = max(int(np.argmax(T < t_floor)) + 1, 2)
         R, alpha, T = R[:keep], alpha[:keep], T[:keep]

@@ -81,10 +81,24 @@ def partials_function(B, kT, lam, prefactor, conf):
     return partials
 
 
+#: the grid end (``core.dna.equilibrium.grid_end_of``) of the last branch built for each
+#: buffer and interaction, any B: a fit's next B solves only that much of the grid
+_GRID_ENDS: dict = {}
+
+
 @lru_cache(maxsize=64)
-def _branch(B, kT, lam, prefactor, conf, radius):
+def stable_branch(B, kT, lam, prefactor, conf, radius):
+    """The stable free branch (:func:`supercoil.core.dna.equilibrium.branch_table`) of the
+    screened interaction from the hard core to ``1000 a`` (SI arguments; memoised). Each
+    new B solves the grid only as far as the last branch of the same buffer ended
+    (bit for bit the whole grid's table)."""
     partials = partials_function(B, kT, lam, prefactor, conf)
-    return _eq.branch_table(B, partials, radius, _R_MAX_FACTOR * radius)
+    key, r_max = (kT, lam, prefactor, conf, radius), _R_MAX_FACTOR * radius
+    branch = _eq.branch_table(B, partials, radius, r_max, grid_end=_GRID_ENDS.get(key))
+    if len(_GRID_ENDS) > 256:
+        _GRID_ENDS.clear()
+    _GRID_ENDS[key] = _eq.grid_end_of(branch, radius, r_max)  # None: the whole grid
+    return branch
 
 
 @lru_cache(maxsize=64)
@@ -221,7 +235,7 @@ class Screened(Interaction):
     def branch(self, dna):
         """The tabulated stable branch (:class:`supercoil.core.dna.equilibrium.Branch`)."""
         si, lam, pref = self.screening_functions(dna)
-        return _branch(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
+        return stable_branch(si.bending_rigidity, si.kT, lam, pref, self.values["confinement"],
                        self.values["hard_core_radius"])
 
     def contact_branch(self, dna):

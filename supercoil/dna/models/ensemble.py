@@ -66,11 +66,11 @@ PLECTONEME_TABLE_POINTS = 240
 @lru_cache(maxsize=32)
 def _superhelix_table(B, kT, lam, prefactor, confinement, radius, points):
     """``(M_k, T_k, tau_k, R_k)`` along the screened superhelix's stable branch, increasing M."""
-    from supercoil.dna.interactions.screened import partials_function
+    from supercoil.dna.interactions.screened import partials_function, stable_branch
 
     part = partials_function(B, kT, lam, prefactor, confinement)
     # the stable branch over the screened interaction's range (hard core to 1000 a)
-    br = _eq.branch_table(B, part, radius, 1000.0 * radius)
+    br = stable_branch(B, kT, lam, prefactor, confinement, radius)
     R = np.geomspace(br.radius[0], br.radius[-1], points)
     alpha = _eq.solve_tilt(R, B, part)
     M = _eq.torque(alpha, R, B, part)
