@@ -69,3 +69,25 @@ def test_the_interaction_reuses_the_last_end_for_a_new_bending_rigidity(monkeypa
         assert _same(got, built(B * factor, part, a, 1000 * a))
     assert seen[0] is None and seen[1] == eq.grid_end_of(first, a, 1000 * a)
     assert all(e is not None and e < eq._TABLE_POINTS // 2 for e in seen[1:])
+
+
+@pytest.mark.filterwarnings("ignore")
+@pytest.mark.parametrize(("salt", "options"), [(150, {}), (10, {}),
+                                               (150, {"confinement": 0.0})])
+def test_contact_tables_reuse_the_b_free_electrostatics_bit_for_bit(salt, options):
+    """The interaction's contact table for each B takes the electrostatic partials on the
+    table's tilts from one B-free evaluation: the same table as with the plain partials."""
+    from supercoil.core.dna import contact as ct
+
+    B, args = _setup(salt, **options)
+    a = args[-1]
+    scr._contact_electrostatics.cache_clear()
+    for factor in (1.0, 1.05, 0.8):
+        got = scr._contact.__wrapped__(B * factor, *args)
+        ref = ct.contact_table(B * factor, scr.partials_function(B * factor, *args[:-1]), a)
+        assert (got is None) == (ref is None)
+        if ref is not None:
+            assert got.radius == ref.radius
+            for x, y in zip(got[1:], ref[1:], strict=True):
+                assert np.array_equal(x, y)
+    assert scr._contact_electrostatics.cache_info().misses == 1
