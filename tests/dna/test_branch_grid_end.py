@@ -8,6 +8,8 @@ the end gives the same table bit for bit; one that does not falls back to the wh
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import supercoil as sc
 from supercoil.core.dna import equilibrium as eq
@@ -91,3 +93,16 @@ def test_contact_tables_reuse_the_b_free_electrostatics_bit_for_bit(salt, option
             for x, y in zip(got[1:], ref[1:], strict=True):
                 assert np.array_equal(x, y)
     assert scr._contact_electrostatics.cache_info().misses == 1
+
+
+@pytest.mark.filterwarnings("ignore")
+@settings(max_examples=8)
+@given(salt=st.sampled_from([5.0, 30.0, 150.0, 1000.0]), factor=st.floats(0.5, 2.0),
+       grid_end=st.integers(2, 260))
+def test_any_grid_end_gives_the_whole_grids_table(salt, factor, grid_end):
+    """Property: whatever part of the grid is tried first, the table is the whole grid's."""
+    B, args = _setup(salt)
+    a = args[-1]
+    part = scr.partials_function(B * factor, *args[:-1])
+    ref = eq.branch_table(B * factor, part, a, 1000 * a)
+    assert _same(eq.branch_table(B * factor, part, a, 1000 * a, grid_end=grid_end), ref)

@@ -194,7 +194,8 @@ def grid_end_of(branch, r_min, r_max, points=_TABLE_POINTS, margin=8, t_floor=T_
 
 def _branch_on(R, B, partials, r_min, r_max, inside=False):
     """The decreasing stretch ``(R, alpha, T, j, ends_at_zero)`` of T on the radii R, its
-    first point j; None with ``inside`` where it does not end before the last radius."""
+    first point j; None with ``inside`` where T still decreases at the last radius (the
+    radii a first part of the grid: the whole grid's branch may go on)."""
     alpha = solve_tilt(R, B, partials, strict=False)
     T = tension(alpha, R, B, partials)
     size = R.size
@@ -209,8 +210,9 @@ def _branch_on(R, B, partials, r_min, r_max, inside=False):
             f"{r_max * 1e9:.6g} nm: the tension never decreases with R")
     j = int(np.argmax(dec))  # first point after which T decreases
     stop = np.nonzero(~dec[j:] | (T[j + 1:] <= 0.0))[0]
-    if inside and not (stop.size and j + 1 + stop[0] < size and n == size):
-        return None  # the end is not inside the radii solved (or T is not finite there)
+    if inside and n == size and not stop.size:
+        return None  # T still decreases at the last radius solved: the end lies beyond
+    # (a stop, or a non-finite T, inside the radii solved ends the whole grid's branch there)
     k = j + 1 + (stop[0] if stop.size else T.size - 1 - j)
     ends_at_zero = bool(k < T.size and T[k] <= 0.0)
     if ends_at_zero:  # keep the first point with T <= 0 as the bracket's end
