@@ -32,15 +32,15 @@ import numpy as np
 from supercoil.core.numerics import find_root
 from supercoil.exceptions import ValidityError
 
+from . import ensemble_roots as _roots
 from . import melting as _melt
 from . import phases as _ph
+from .ensemble_roots import TORQUE_BRACKET
 
-__all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque",
+__all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque", "configuration",
            "plectoneme_phase", "points", "tail_gibbs"]
 
 _TWO_PI = 2.0 * np.pi
-#: bracket of the torque solves, N m (200 pN nm: far beyond B-DNA's torques)
-TORQUE_BRACKET = 2e-19
 _TINY_TORQUE = 1e-40
 
 
@@ -121,40 +121,39 @@ def plectoneme_phase(F, M, par):
     return p
 
 
-def _wlc(F, par):
+def wlc_at(F, par):
     """``(g, x)`` of the exact WLC at F (None for Marko's expansion)."""
     return _ph.wlc_exact_free_energy_gain(F, par.A, par.kT) if par.exact_wlc else None
 
 
-def _configuration(F, M, par, Lp, m, chirality, wlc=None):
-    """Phi(M) (J), linking -dPhi/dM (rad), extension -dPhi/dF (m), melted fraction."""
+def configuration(F, M, par, Lp, m, chirality, wlc=None):
+    """One configuration ``(m, Lp, chirality)`` at torque ``M`` (SI arrays).
+
+    Returns ``(Phi, link, z, theta, dlink)``: Phi(M) (J), the linking ``-dPhi/dM``
+    (rad), the extension ``-dPhi/dF`` (m), the tail's melted fraction and the linking's
+    slope ``-d^2 Phi/dM^2`` (rad/(N m)) [ensemble.md#32-fixed-turns].
+    """
     t, theta = tail_gibbs(F, M, par, wlc)
     p = plectoneme_phase(F, M, par)
     Ls = par.length - Lp
     Phi = Ls * t.phi + Lp * p.phi
     link = -(Ls * t.dphi_dM + Lp * p.dphi_dM)
+    dlink = -(Ls * t.d2phi_dM2 + Lp * p.d2phi_dM2)
     z = -Ls * t.dphi_dF
     if m:
         e, e_F, e_M = _ph.end_loop_gibbs(t, M, par.A, par.C, par.kT, par.writhe, chirality,
                                          par.nucleation, par.physical_loop)
         Phi, link, z = Phi + m * e, link - m * e_M, z - m * e_F
-    return Phi, link, z, theta
-
-
-def _solve(F, N, par, Lp, m, chirality, wlc):
-    """Stationary torque of each configuration (bracketing root of the linking)."""
-    def h(M, F, N, Lp, *wlc):
-        return _configuration(F, M, par, Lp, m, chirality, wlc or None)[1] - _TWO_PI * N
-
-    lo = np.full(np.shape(N), -TORQUE_BRACKET)
-    res = find_root(h, (lo, -1.03 * lo), args=(F, N, Lp, *(wlc or ())))
-    return res.x, res.success
+        dlink = dlink - m * _ph.end_loop_torque_slope(t, M, par.A, par.C, par.kT,
+                                                      par.physical_loop)
+    return Phi, link, z, theta, dlink
 
 
 def points(turns, force, par):
     """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape).
 
-    Implements docs/theory/ensemble.md (E6, E7).
+    Implements docs/theory/ensemble.md (E6, E7); the torque of each configuration from
+    the linking tables of :mod:`supercoil.core.dna.ensemble_roots` [ensemble.md#34-numerics].
     """
     N = np.asarray(turns, float)
     F = np.asarray(force, float)
@@ -166,12 +165,12 @@ def points(turns, force, par):
     cfg = [(0, np.zeros(1), 1.0)] + [(m, Lp, c) for m in range(1, par.max_domains + 1)
                                      for c in (1.0, -1.0)]
     Gs, zs, Ms, ls, ths, ms = [], [], [], [], [], []
-    wlc = _wlc(F, par)
+    tables = _roots.LinkTables(
+        F, par, lambda F, M, w: (tail_gibbs(F, M, par, w)[0], plectoneme_phase(F, M, par)),
+        configuration, lambda F: wlc_at(F, par))
     for m, lp, c in cfg:
-        NN, FF, LL = np.broadcast_arrays(N[:, None], F[:, None], lp[None, :])
-        w2 = None if wlc is None else tuple(np.broadcast_to(a[:, None], NN.shape) for a in wlc)
-        M, ok = _solve(FF, NN, par, LL, m, c, w2)
-        Phi, _, z, theta = _configuration(FF, M, par, LL, m, c, w2)
+        NN, LL = np.broadcast_arrays(N[:, None], lp[None, :])
+        M, ok, Phi, z, theta = _roots.configuration_torques(tables, NN, LL, m, c)
         G = Phi + _TWO_PI * M * NN
         Ls = L - LL
         if m:

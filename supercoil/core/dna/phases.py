@@ -36,6 +36,7 @@ __all__ = [
     "effective_tension",
     "effective_tension_gibbs",
     "end_loop_gibbs",
+    "end_loop_torque_slope",
     "plectoneme_gibbs",
     "simple_melted_gibbs",
     "stretched_gibbs",
@@ -391,3 +392,21 @@ def end_loop_gibbs(tail, torque, A, C, kT, writhe, chirality, extra=0.0, physica
     ell = np.pi * np.sqrt(2.0 * B / gam)
     eps = _TWO_PI * np.sqrt(2.0 * B * gam) - lin * M + extra
     return eps, -ell * tail.dphi_dF, ell * (-tail.dphi_dM - M / (kT * C)) - lin
+
+
+def end_loop_torque_slope(tail, torque, A, C, kT, physical=True):
+    """``d^2 eps / dM^2`` of :func:`end_loop_gibbs` (1/N): the slope of the loop's linking.
+
+    With ``g1 = d gamma/dM = -dphi_tail/dM - M/(kT C)`` and ``l = pi sqrt(2B/gamma)``,
+    ``deps/dM = l g1 - 2 pi chi w`` gives
+    ``d^2 eps/dM^2 = l (-d^2phi_tail/dM^2 - 1/(kT C)) - l g1^2 / (2 gamma)``
+    (0 for the constant loop, ``physical=False``); NaN where ``gamma <= 0``.
+    """
+    M = np.asarray(torque, float)
+    if not physical:
+        return np.zeros_like(M)
+    gam = -tail.phi - M**2 / (2.0 * kT * C)
+    gam = np.where(gam > 0.0, gam, np.nan)
+    ell = np.pi * np.sqrt(2.0 * A * kT / gam)
+    g1 = -tail.dphi_dM - M / (kT * C)
+    return ell * (-tail.d2phi_dM2 - 1.0 / (kT * C)) - ell * g1**2 / (2.0 * gam)

@@ -1,0 +1,206 @@
+"""Stationary torques of the ensemble's configurations from one linking table per force.
+
+Float kernel (SI). A configuration ``(m, Lp, chirality)`` of the ensemble
+(:mod:`supercoil.core.dna.ensemble`) at force F has the linking
+
+    Lk(M) = (L - Lp) omega_t(F, M) + Lp omega_p(F, M) + m lambda_c(F, M)
+
+(tail, plectoneme and end-loop linking per length or per loop), linear in ``Lp`` and
+``m``. Its stationary torque solves ``Lk(M) = 2 pi N``. The three functions and their
+slopes are tabulated once per distinct force on :data:`TORQUE_NODES`; each element's
+values at the nodes are then gathers, the cell of its root is found by bisection over
+the node indices, the root estimated by inverse Hermite interpolation of the cell and
+finished by Newton's method on the exact configuration
+(:mod:`supercoil.core.table_roots`) [ensemble.md#34-numerics].
+
+Where the tabulated linking of a configuration is not increasing in M (end loops beside a
+melting tail), it has several stationary torques; each increasing crossing is refined and
+the one of largest ``Phi(M) + 2 pi M N`` kept: the Legendre maximum of (E6).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from supercoil.core.numerics import find_root
+from supercoil.core.table_roots import bracketed_newton, cell_search, hermite_inverse
+
+from . import phases as _ph
+
+__all__ = ["NEWTON_ATOL", "NEWTON_MAXITER", "NEWTON_RTOL", "TORQUE_BRACKET", "TORQUE_NODES",
+           "LinkTables", "configuration_torques"]
+
+_TWO_PI = 2.0 * np.pi
+#: bracket of the torque solves, N m (200 pN nm: far beyond B-DNA's torques)
+TORQUE_BRACKET = 2e-19
+_BRACKET = (-TORQUE_BRACKET, 1.03 * TORQUE_BRACKET)
+_SCALE = 5e-21  # N m: node spacing about 0.09 pN nm at M = 0, 3.5 pN nm at 200 pN nm
+#: torque nodes of the linking tables (N m): sinh-spaced over the bracket, dense near 0
+TORQUE_NODES = _SCALE * np.sinh(np.linspace(np.arcsinh(_BRACKET[0] / _SCALE),
+                                            np.arcsinh(_BRACKET[1] / _SCALE), 257))
+TORQUE_NODES[[0, -1]] = _BRACKET
+#: Newton ends when its next step is below NEWTON_RTOL |M| + NEWTON_ATOL; elements not done
+#: after NEWTON_MAXITER evaluations (a cell across the melting jump of the tail) go to find_root
+NEWTON_RTOL, NEWTON_ATOL, NEWTON_MAXITER = 1e-13, 1e-34, 16
+_FLAT = 1e-13  # relative round-off allowed in a linking that is flat (a fully melted tail)
+_SHARED = 4  # elements per (force, Lp) function from which its node values are tabulated
+
+
+class LinkTables:
+    """Tail, plectoneme and end-loop linking and slopes of each distinct force on the nodes.
+
+    ``phases(F, M) -> (tail PhaseGibbs, plectoneme PhaseGibbs)`` and
+    ``configuration(F, M, Lp, m, chirality, wlc) -> (Phi, link, z, theta, dlink)`` are
+    the ensemble's (:func:`supercoil.core.dna.ensemble.configuration`); ``wlc(F)`` its
+    exact-WLC pair (or None).
+    """
+
+    def __init__(self, force, par, phases, configuration, wlc):
+        F = np.asarray(force, float)
+        self.par, self.configuration = par, configuration
+        self.forces, self.index = np.unique(F, return_inverse=True)
+        self.index = self.index.reshape(F.shape)
+        FF, MM = np.broadcast_arrays(self.forces[:, None], TORQUE_NODES[None, :])
+        self.wlc = w = wlc(self.forces)  # at each distinct force
+        w = None if w is None else tuple(np.broadcast_to(a[:, None], FF.shape) for a in w)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t, p = phases(FF, MM, w)
+            self.tail = (-t.dphi_dM, -t.d2phi_dM2)
+            self.plectoneme = (-p.dphi_dM, -p.d2phi_dM2)
+            self.loop = {}
+            for c in (1.0, -1.0):
+                e_M = _ph.end_loop_gibbs(t, MM, par.A, par.C, par.kT, par.writhe, c,
+                                         par.nucleation, par.physical_loop)[2]
+                slope = _ph.end_loop_torque_slope(t, MM, par.A, par.C, par.kT,
+                                                  par.physical_loop)
+                self.loop[c] = (-e_M, -slope)
+
+    def linking(self, fi, Lp, m, c, k=slice(None), slope=False):
+        """Tabulated linking (or its slope) of configurations at forces ``fi`` and nodes ``k``
+        (``k`` a slice: every node, with ``Lp`` a column)."""
+        j = 1 if slope else 0
+        t, p = self.tail[j][fi, k], self.plectoneme[j][fi, k]
+        out = (self.par.length - Lp) * t + Lp * p
+        return out + m * self.loop[c][j][fi, k] if m else out
+
+
+def _increasing(link):
+    """Whether each row of tabulated linking is finite and increasing (flat to round-off
+    allowed: a fully melted tail)."""
+    d = np.diff(link, axis=-1)
+    tol = _FLAT * (np.abs(link[..., 1:]) + np.abs(link[..., :-1]))
+    return np.all(np.isfinite(link), axis=-1) & np.all(d >= -tol, axis=-1)
+
+
+class _Group:
+    """Node values of one configuration group ``(m, c)``'s elements.
+
+    Each distinct (force, Lp) is one function of M. Where the functions are few beside
+    the elements (:data:`_SHARED` elements per function or more: a few forces, the hat
+    curve's one), their node values are tabulated once and the elements gather from the
+    table; else each gather combines the force's tail, plectoneme and loop tables.
+    """
+
+    def __init__(self, tables, fi, lp, K, m, c):
+        self.tables, self.fi, self.lp, self.m, self.c = tables, fi, lp, m, c
+        nodes = lp[:K]
+        nf, G = tables.forces.size, TORQUE_NODES.size
+        self.shared = fi.size >= _SHARED * nf * K
+        if self.shared:
+            f_all = np.repeat(np.arange(nf), K)
+            lp_all = np.tile(nodes, nf)[:, None]
+            self.V = tables.linking(f_all, lp_all, m, c).ravel()
+            self.row = (fi * K + np.tile(np.arange(K), fi.size // K)) * G
+            self.mono = _increasing(self.V.reshape(-1, G))[self.row // G]
+            return
+        # linear in Lp: increasing at the extreme Lp nodes means increasing at every one
+        f_all = np.arange(nf)
+        both = (_increasing(tables.linking(f_all, np.full((nf, 1), nodes.min()), m, c))
+                & _increasing(tables.linking(f_all, np.full((nf, 1), nodes.max()), m, c)))
+        self.mono = both[fi]
+        bad = np.flatnonzero(~both)
+        if bad.size and K > 1:
+            per = _increasing(tables.linking(np.repeat(bad, K), np.tile(nodes, bad.size)[:, None],
+                                             m, c))
+            table = np.ones((nf, K), bool)
+            table[bad] = per.reshape(bad.size, K)
+            self.mono = table[fi, np.tile(np.arange(K), fi.size // K)]
+
+    def value(self, e, k, slope=False):
+        """Linking (or slope) of elements ``e`` at their nodes ``k`` (or at every node)."""
+        if self.shared and not slope:
+            if isinstance(k, slice):
+                return self.V[self.row[e, None] + np.arange(TORQUE_NODES.size)]
+            return self.V[self.row[e] + k]
+        lp = self.lp[e, None] if isinstance(k, slice) else self.lp[e]
+        return self.tables.linking(self.fi[e], lp, self.m, self.c, k, slope)
+
+
+def configuration_torques(tables, N, Lp, m, c):
+    """Stationary torque of each configuration ``(m, Lp, c)`` at turns ``N`` (2-D arrays
+    of points x Lp nodes) and what the configuration has there.
+
+    Returns ``(M, ok, Phi, z, theta)``; ``ok`` False where no increasing crossing of
+    ``2 pi N`` exists in the bracket (the caller gives those an infinite free energy).
+    """
+    fi = np.broadcast_to(tables.index[:, None], N.shape).ravel()
+    n, lp = N.ravel(), Lp.ravel()
+    target = _TWO_PI * n
+    grp = _Group(tables, fi, lp, Lp.shape[1], m, c)
+    # one crossing per element on increasing tables (bisection over node indices) ...
+    e1 = np.flatnonzero(grp.mono)
+    k1 = cell_search(lambda k: grp.value(e1, k) - target[e1], TORQUE_NODES.size, e1.shape)
+    # ... every increasing crossing elsewhere
+    e2 = np.flatnonzero(~grp.mono)
+    h2 = grp.value(e2, slice(None)) - target[e2, None]
+    r, k2 = np.nonzero((h2[:, :-1] <= 0.0) & (h2[:, 1:] > 0.0))
+    elem, k = np.concatenate([e1, e2[r]]), np.concatenate([k1, k2])
+    ha = grp.value(elem, k) - target[elem]
+    hb = grp.value(elem, k + 1) - target[elem]
+    cell = np.isfinite(ha) & np.isfinite(hb) & (ha <= 0.0) & (hb > 0.0)
+    elem, k, ha, hb = elem[cell], k[cell], ha[cell], hb[cell]
+    xa, xb = TORQUE_NODES[k], TORQUE_NODES[k + 1]
+    x0 = hermite_inverse(xa, xb, ha, hb, grp.value(elem, k, True), grp.value(elem, k + 1, True))
+    M, (Phi, z, theta), done = _refine(tables, x0, xa, xb, elem, fi, n, lp, m, c)
+    G = Phi + _TWO_PI * M * n[elem]
+    G = np.where(np.isfinite(G), G, -np.inf)
+    # the Legendre maximum among an element's crossings (one crossing almost everywhere)
+    pick = np.arange(elem.size)
+    if r.size > np.unique(r).size:  # some element has several crossings
+        order = np.lexsort((-G, elem))
+        first = np.ones(order.size, bool)
+        first[1:] = elem[order][1:] != elem[order][:-1]
+        pick = order[first]
+    out = [np.full(n.shape, np.nan) for _ in range(4)]
+    for o, v in zip(out, (M, Phi, z, theta), strict=True):
+        o[elem[pick]] = v[pick]
+    ok = np.zeros(n.shape, bool)
+    ok[elem[pick]] = done[pick] & np.isfinite(G[pick])
+    return (out[0].reshape(N.shape), ok.reshape(N.shape), *(o.reshape(N.shape)
+                                                              for o in out[1:]))
+
+
+def _refine(tables, x0, xa, xb, elem, fi, n, lp, m, c):
+    """Newton from the tabulated estimates; scipy's find_root where it does not converge."""
+    par, conf = tables.par, tables.configuration
+    wlc = tables.wlc
+
+    def at(x, idx):
+        e = elem[idx]
+        w = None if wlc is None else (wlc[0][fi[e]], wlc[1][fi[e]])
+        F = tables.forces[fi[e]]
+        Phi, link, z, theta, dlink = conf(F, x, par, lp[e], m, c, w)
+        return link - _TWO_PI * n[e], dlink, (Phi, z, theta)
+
+    M, extras, done = bracketed_newton(at, x0, xa, xb, NEWTON_RTOL, NEWTON_ATOL,
+                                      NEWTON_MAXITER)
+    slow = np.flatnonzero(~done)
+    if slow.size:
+        res = find_root(lambda x, i: at(x, i.astype(np.intp))[0], (xa[slow], xb[slow]),
+                        args=(slow.astype(float),))
+        M[slow] = res.x
+        _, _, ex = at(res.x, slow)
+        for store, e in zip(extras, ex, strict=True):
+            store[slow] = e
+        done[slow] = res.success
+    return M, extras, done
