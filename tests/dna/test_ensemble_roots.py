@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.optimize import brentq
-from seed_kernels import NM, PN, PNNM, ensemble_parameters
+from seed_kernels import KT, NM, PN, PNNM, ensemble_parameters
 
 import supercoil as sc
 from supercoil.core import table_roots as tr
@@ -274,3 +274,52 @@ def test_bracketed_newton_converges_and_reports_what_does_not():
     x, _, done = tr.bracketed_newton(nan_left, start, lo, hi, 1e-14, 0.0, maxiter=60)
     np.testing.assert_array_equal(done, [False, True, True, False])
     np.testing.assert_allclose(x[1:3], root[1:3], rtol=1e-13)
+
+
+# ---- pruning of improbable configurations ------------------------------------------------
+def _unpruned(monkeypatch, N, F, par):
+    with monkeypatch.context() as mp:
+        mp.setattr(en, "PRUNE_KT", np.inf)
+        return en.points(N, F, par)
+
+
+@pytest.mark.parametrize("case", ["qian", "tests"])
+def test_pruning_changes_nothing_measurable(case, monkeypatch):
+    """Configurations provably PRUNE_KT (60) kT above the best weigh below 9e-27 each:
+    the averages with and without the cut agree to round-off."""
+    par = CASES[case]()
+    N, F = _grid([0.3, 1.2], np.linspace(-40, 40, 21))
+    pruned, full = en.points(N, F, par), _unpruned(monkeypatch, N, F, par)
+    for a, b in zip(pruned, full, strict=True):
+        np.testing.assert_allclose(a, b, rtol=1e-13, atol=1e-13 * np.max(np.abs(b)))
+
+
+def test_a_wrong_upper_bound_is_caught_by_the_solved_minimum(monkeypatch):
+    """With every upper bound 1000 kT too low the first round solves almost nothing
+    within the cut; the check against the solved minimum must bring the rest in."""
+    par = ensemble_parameters(nodes=20)
+    N, F = _grid([0.5, 2.0], np.linspace(-30, 40, 9))
+    full = _unpruned(monkeypatch, N, F, par)
+    real = er.crossings
+    monkeypatch.setattr(er, "crossings",
+                        lambda *a: real(*a)._replace(upper=real(*a).upper - 1e3 * KT))
+    r = en.points(N, F, par)
+    np.testing.assert_allclose(r.extension, full.extension, rtol=1e-13)
+    np.testing.assert_allclose(r.free_energy, full.free_energy, rtol=1e-13)
+
+
+@given(st.floats(0.2, 3.0), st.floats(-35, 45), st.sampled_from([0, 1, 2]),
+       st.sampled_from([1.0, -1.0]))
+def test_the_lower_bound_is_below_the_solved_free_energy(force, turns, m, c):
+    """``lower`` (Phi + 2 pi M N at a node) never exceeds the stationary maximum (E6)."""
+    par = ensemble_parameters(nodes=12)
+    L = par.length
+    lp = np.zeros(1) if m == 0 else (np.arange(12) + 0.5) * L / 12
+    N, Lp = np.broadcast_arrays(np.array([[turns]]), lp[None, :])
+    tables = _tables(par, np.array([force * PN]))
+    cr = er.crossings(tables, N, Lp, m, c)
+    M, ok, Phi, *_ = er.refine(tables, cr, N, Lp, m, c, np.ones(cr.elem.size, bool))
+    G = (Phi + TWO_PI * M * N).ravel()
+    for e, low in zip(cr.elem, cr.lower, strict=True):
+        if ok.ravel()[e]:
+            assert low <= G[e] + 1e-12 * abs(G[e])

@@ -41,6 +41,9 @@ __all__ = ["EnsembleParameters", "EnsemblePoints", "coexistence_torque", "config
            "plectoneme_phase", "points", "tail_gibbs"]
 
 _TWO_PI = 2.0 * np.pi
+#: configurations provably more than PRUNE_KT kT above the best one are not solved
+#: (each weighs less than exp(-PRUNE_KT) = 9e-27 of it) [ensemble.md#34-numerics]
+PRUNE_KT = 60.0
 _TINY_TORQUE = 1e-40
 
 
@@ -153,34 +156,14 @@ def points(turns, force, par):
     """Ensemble extension, torque and free energy at (N, F) (1-D arrays, same shape).
 
     Implements docs/theory/ensemble.md (E6, E7); the torque of each configuration from
-    the linking tables of :mod:`supercoil.core.dna.ensemble_roots` [ensemble.md#34-numerics].
+    the linking tables of :mod:`supercoil.core.dna.ensemble_roots`, and only for the
+    configurations within :data:`PRUNE_KT` kT of the best one [ensemble.md#34-numerics].
     """
     N = np.asarray(turns, float)
     F = np.asarray(force, float)
     if not par.finite_size:
         return _limit_points(N, F, par)
-    L, K = par.length, par.nodes
-    Lp = (np.arange(K) + 0.5) * L / K
-    b = par.microscopic_length
-    cfg = [(0, np.zeros(1), 1.0)] + [(m, Lp, c) for m in range(1, par.max_domains + 1)
-                                     for c in (1.0, -1.0)]
-    Gs, zs, Ms, ls, ths, ms = [], [], [], [], [], []
-    tables = _roots.LinkTables(
-        F, par, lambda F, M, w: (tail_gibbs(F, M, par, w)[0], plectoneme_phase(F, M, par)),
-        configuration, lambda F: wlc_at(F, par))
-    for m, lp, c in cfg:
-        NN, LL = np.broadcast_arrays(N[:, None], lp[None, :])
-        M, ok, Phi, z, theta = _roots.configuration_torques(tables, NN, LL, m, c)
-        G = Phi + _TWO_PI * M * NN
-        Ls = L - LL
-        if m:
-            w = ((Ls / b) ** m / factorial(m) * (LL / b) ** (m - 1) / factorial(m - 1)
-                 * (L / K) / b)
-            G = G - par.kT * np.log(w)
-        G = np.where(ok & np.isfinite(G) & (z > 0.0), G, np.inf)
-        Gs.append(G), zs.append(z), Ms.append(M), ls.append(LL), ths.append(theta * Ls)
-        ms.append(np.full(G.shape, m, float))
-    G, z, M, Lpk, melt, mk = (np.concatenate(a, axis=1) for a in (Gs, zs, Ms, ls, ths, ms))
+    G, z, M, Lpk, melt, mk = _configurations(N, F, par)
     Gmin = G.min(axis=1, keepdims=True)
     none = ~np.isfinite(Gmin[:, 0])
     if np.any(none):  # every configuration failed (its torque solve or z <= 0)
@@ -195,6 +178,60 @@ def points(turns, force, par):
     avg = [np.where(w > 0.0, w * a, 0.0).sum(axis=1) for a in (z, M, Lpk, melt, mk)]
     return EnsemblePoints(avg[0], avg[1], Gmin[:, 0] - par.kT * np.log(Z), avg[2], avg[3],
                           avg[4], w[:, 0])
+
+
+def _configurations(N, F, par):
+    """G, z, M, Lp, melted length and m of every configuration (points x configurations);
+    G infinite where a configuration has no state or lies provably more than
+    :data:`PRUNE_KT` kT above the best one (not solved)."""
+    L, K = par.length, par.nodes
+    Lp = (np.arange(K) + 0.5) * L / K
+    b, kT = par.microscopic_length, par.kT
+    tables = _roots.LinkTables(
+        F, par, lambda F, M, w: (tail_gibbs(F, M, par, w)[0], plectoneme_phase(F, M, par)),
+        configuration, lambda F: wlc_at(F, par))
+    groups = []
+    for m, lp, c in [(0, np.zeros(1), 1.0)] + [(m, Lp, c) for m in range(1, par.max_domains + 1)
+                                              for c in (1.0, -1.0)]:
+        NN, LL = np.broadcast_arrays(N[:, None], lp[None, :])
+        ent = np.zeros(NN.shape)
+        if m:
+            ent = kT * np.log(((L - LL) / b) ** m / factorial(m) * (LL / b) ** (m - 1)
+                              / factorial(m - 1) * (L / K) / b)
+        cr = _roots.crossings(tables, NN, LL, m, c)
+        bounds = []
+        for v in (cr.lower, cr.upper):  # per element: the largest over its crossings
+            a = np.full(NN.size, -np.inf)
+            np.maximum.at(a, cr.elem, v)
+            bounds.append(np.where(a > -np.inf, a, np.inf).reshape(NN.shape) - ent)
+        groups.append([m, c, NN, LL, ent, cr, *bounds, np.zeros(NN.shape, bool),
+                       [np.full(NN.shape, v) for v in (np.inf, np.nan, np.nan, np.nan)]])
+    # the best configuration's G is below the smallest upper bound; solve what may be
+    # within PRUNE_KT of it, then check the cut against the solved minimum
+    best = np.min([g[7].min(axis=1) for g in groups], axis=0)
+    while True:
+        for g in groups:
+            m, c, NN, LL, ent, cr, lower, _, solved, res = g
+            want = np.isfinite(lower) & ~solved & (lower <= best[:, None] + PRUNE_KT * kT)
+            if not want.any():
+                continue
+            M, ok, Phi, z, theta = _roots.refine(tables, cr, NN, LL, m, c,
+                                                 want.ravel()[cr.elem])
+            G = Phi + _TWO_PI * M * NN - ent
+            G = np.where(ok & np.isfinite(G) & (z > 0.0), G, np.inf)
+            for r, v in zip(res, (G, z, M, theta * (L - LL)), strict=True):
+                r[want] = v[want]
+            solved |= want
+        solved_min = np.min([g[9][0].min(axis=1) for g in groups], axis=0)
+        left = [np.isfinite(g[6]) & ~g[8] & (g[6] <= solved_min[:, None] + PRUNE_KT * kT)
+                for g in groups]
+        if not any(a.any() for a in left):
+            break
+        best = solved_min
+    out = [np.concatenate([g[9][i] for g in groups], axis=1) for i in range(4)]
+    Lpk = np.concatenate([g[3] for g in groups], axis=1)
+    mk = np.concatenate([np.full(g[2].shape, g[0], float) for g in groups], axis=1)
+    return out[0], out[1], out[2], Lpk, out[3], mk
 
 
 def coexistence_torque(force, par, sign=1.0, strict=True):

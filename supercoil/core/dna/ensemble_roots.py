@@ -20,6 +20,8 @@ the one of largest ``Phi(M) + 2 pi M N`` kept: the Legendre maximum of (E6).
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from supercoil.core.numerics import find_root
@@ -28,7 +30,7 @@ from supercoil.core.table_roots import bracketed_newton, cell_search, hermite_in
 from . import phases as _ph
 
 __all__ = ["NEWTON_ATOL", "NEWTON_MAXITER", "NEWTON_RTOL", "TORQUE_BRACKET", "TORQUE_NODES",
-           "LinkTables", "configuration_torques"]
+           "Crossings", "LinkTables", "configuration_torques", "crossings", "refine"]
 
 _TWO_PI = 2.0 * np.pi
 #: bracket of the torque solves, N m (200 pN nm: far beyond B-DNA's torques)
@@ -60,25 +62,28 @@ class LinkTables:
         self.par, self.configuration = par, configuration
         self.forces, self.index = np.unique(F, return_inverse=True)
         self.index = self.index.reshape(F.shape)
-        FF, MM = np.broadcast_arrays(self.forces[:, None], TORQUE_NODES[None, :])
-        self.wlc = w = wlc(self.forces)  # at each distinct force
-        w = None if w is None else tuple(np.broadcast_to(a[:, None], FF.shape) for a in w)
+        self.wlc = wlc(self.forces)  # at each distinct force
+        #: torque nodes of each force (N m)
+        self.nodes = MM = np.broadcast_to(TORQUE_NODES, (self.forces.size, TORQUE_NODES.size))
+        FF = np.broadcast_to(self.forces[:, None], MM.shape)
+        w = self.wlc
+        w = None if w is None else tuple(np.broadcast_to(a[:, None], MM.shape) for a in w)
         with np.errstate(invalid="ignore", divide="ignore"):
             t, p = phases(FF, MM, w)
-            self.tail = (-t.dphi_dM, -t.d2phi_dM2)
-            self.plectoneme = (-p.dphi_dM, -p.d2phi_dM2)
+            self.tail = (-t.dphi_dM, -t.d2phi_dM2, t.phi)
+            self.plectoneme = (-p.dphi_dM, -p.d2phi_dM2, p.phi)
             self.loop = {}
             for c in (1.0, -1.0):
-                e_M = _ph.end_loop_gibbs(t, MM, par.A, par.C, par.kT, par.writhe, c,
-                                         par.nucleation, par.physical_loop)[2]
+                e, _, e_M = _ph.end_loop_gibbs(t, MM, par.A, par.C, par.kT, par.writhe, c,
+                                               par.nucleation, par.physical_loop)
                 slope = _ph.end_loop_torque_slope(t, MM, par.A, par.C, par.kT,
                                                   par.physical_loop)
-                self.loop[c] = (-e_M, -slope)
+                self.loop[c] = (-e_M, -slope, e)
 
-    def linking(self, fi, Lp, m, c, k=slice(None), slope=False):
-        """Tabulated linking (or its slope) of configurations at forces ``fi`` and nodes ``k``
-        (``k`` a slice: every node, with ``Lp`` a column)."""
-        j = 1 if slope else 0
+    def linking(self, fi, Lp, m, c, k=slice(None), kind=0):
+        """Tabulated linking (``kind`` 0), its slope (1) or Phi (2) of configurations at
+        forces ``fi`` and nodes ``k`` (``k`` a slice: every node, with ``Lp`` a column)."""
+        j = kind
         t, p = self.tail[j][fi, k], self.plectoneme[j][fi, k]
         out = (self.par.length - Lp) * t + Lp * p
         return out + m * self.loop[c][j][fi, k] if m else out
@@ -104,7 +109,7 @@ class _Group:
     def __init__(self, tables, fi, lp, K, m, c):
         self.tables, self.fi, self.lp, self.m, self.c = tables, fi, lp, m, c
         nodes = lp[:K]
-        nf, G = tables.forces.size, TORQUE_NODES.size
+        nf, G = tables.nodes.shape
         self.shared = fi.size >= _SHARED * nf * K
         if self.shared:
             f_all = np.repeat(np.arange(nf), K)
@@ -126,22 +131,36 @@ class _Group:
             table[bad] = per.reshape(bad.size, K)
             self.mono = table[fi, np.tile(np.arange(K), fi.size // K)]
 
-    def value(self, e, k, slope=False):
-        """Linking (or slope) of elements ``e`` at their nodes ``k`` (or at every node)."""
-        if self.shared and not slope:
+    def value(self, e, k, kind=0):
+        """Linking (``kind`` 0), slope (1) or Phi (2) of elements ``e`` at their nodes ``k``
+        (or at every node)."""
+        if self.shared and not kind:
             if isinstance(k, slice):
-                return self.V[self.row[e, None] + np.arange(TORQUE_NODES.size)]
+                return self.V[self.row[e, None] + np.arange(self.tables.nodes.shape[1])]
             return self.V[self.row[e] + k]
         lp = self.lp[e, None] if isinstance(k, slice) else self.lp[e]
-        return self.tables.linking(self.fi[e], lp, self.m, self.c, k, slope)
+        return self.tables.linking(self.fi[e], lp, self.m, self.c, k, kind)
 
 
-def configuration_torques(tables, N, Lp, m, c):
-    """Stationary torque of each configuration ``(m, Lp, c)`` at turns ``N`` (2-D arrays
-    of points x Lp nodes) and what the configuration has there.
+class Crossings(NamedTuple):
+    """The increasing crossings of ``2 pi N`` by the tabulated linking of one group's
+    elements (one per element almost everywhere), each in its node cell."""
 
-    Returns ``(M, ok, Phi, z, theta)``; ``ok`` False where no increasing crossing of
-    ``2 pi N`` exists in the bracket (the caller gives those an infinite free energy).
+    elem: np.ndarray  # flat index of the element
+    xa: np.ndarray  # the cell, N m
+    xb: np.ndarray
+    x0: np.ndarray  # inverse-Hermite estimate of the torque, N m
+    lower: np.ndarray  # bounds of the element's max_M [Phi + 2 pi M N] (E6), J
+    upper: np.ndarray
+
+
+def crossings(tables, N, Lp, m, c):
+    """Cells, estimates and free-energy bounds of each element's torque (2-D ``N``,
+    ``Lp``: points x Lp nodes).
+
+    ``lower`` is ``Phi + 2 pi M N`` at the better node of the cell: a lower bound of the
+    maximum (E6) at any torque. ``upper`` adds ``(2 pi N - Lk) dM`` at the cell's lower
+    node, the tangent's bound where ``Phi`` is concave on the cell [ensemble.md#34-numerics].
     """
     fi = np.broadcast_to(tables.index[:, None], N.shape).ravel()
     n, lp = N.ravel(), Lp.ravel()
@@ -149,7 +168,8 @@ def configuration_torques(tables, N, Lp, m, c):
     grp = _Group(tables, fi, lp, Lp.shape[1], m, c)
     # one crossing per element on increasing tables (bisection over node indices) ...
     e1 = np.flatnonzero(grp.mono)
-    k1 = cell_search(lambda k: grp.value(e1, k) - target[e1], TORQUE_NODES.size, e1.shape)
+    G = tables.nodes.shape[1]
+    k1 = cell_search(lambda k: grp.value(e1, k) - target[e1], G, e1.shape)
     # ... every increasing crossing elsewhere
     e2 = np.flatnonzero(~grp.mono)
     h2 = grp.value(e2, slice(None)) - target[e2, None]
@@ -159,14 +179,31 @@ def configuration_torques(tables, N, Lp, m, c):
     hb = grp.value(elem, k + 1) - target[elem]
     cell = np.isfinite(ha) & np.isfinite(hb) & (ha <= 0.0) & (hb > 0.0)
     elem, k, ha, hb = elem[cell], k[cell], ha[cell], hb[cell]
-    xa, xb = TORQUE_NODES[k], TORQUE_NODES[k + 1]
-    x0 = hermite_inverse(xa, xb, ha, hb, grp.value(elem, k, True), grp.value(elem, k + 1, True))
-    M, (Phi, z, theta), done = _refine(tables, x0, xa, xb, elem, fi, n, lp, m, c)
+    xa, xb = tables.nodes[fi[elem], k], tables.nodes[fi[elem], k + 1]
+    x0 = hermite_inverse(xa, xb, ha, hb, grp.value(elem, k, 1), grp.value(elem, k + 1, 1))
+    ga = grp.value(elem, k, 2) + xa * target[elem]
+    gb = grp.value(elem, k + 1, 2) + xb * target[elem]
+    return Crossings(elem, xa, xb, x0, np.maximum(ga, gb), ga - ha * (xb - xa))
+
+
+def refine(tables, cr, N, Lp, m, c, use):
+    """Stationary torques of the elements of the crossings ``use`` (a mask of ``cr``, whole
+    elements) and what their configurations have there.
+
+    Returns ``(M, ok, Phi, z, theta)`` of the points x Lp shape, NaN and ``ok`` False where
+    not refined or no crossing converged; an element with several crossings keeps the
+    Legendre maximum of (E6).
+    """
+    fi = np.broadcast_to(tables.index[:, None], N.shape).ravel()
+    n, lp = N.ravel(), Lp.ravel()
+    elem = cr.elem[use]
+    M, (Phi, z, theta), done = _refine(tables, cr.x0[use], cr.xa[use], cr.xb[use], elem, fi,
+                                       n, lp, m, c)
     G = Phi + _TWO_PI * M * n[elem]
     G = np.where(np.isfinite(G), G, -np.inf)
     # the Legendre maximum among an element's crossings (one crossing almost everywhere)
     pick = np.arange(elem.size)
-    if r.size > np.unique(r).size:  # some element has several crossings
+    if elem.size > np.unique(elem).size:  # some element has several crossings
         order = np.lexsort((-G, elem))
         first = np.ones(order.size, bool)
         first[1:] = elem[order][1:] != elem[order][:-1]
@@ -178,6 +215,17 @@ def configuration_torques(tables, N, Lp, m, c):
     ok[elem[pick]] = done[pick] & np.isfinite(G[pick])
     return (out[0].reshape(N.shape), ok.reshape(N.shape), *(o.reshape(N.shape)
                                                               for o in out[1:]))
+
+
+def configuration_torques(tables, N, Lp, m, c):
+    """:func:`refine` of every crossing: the stationary torque of each configuration
+    ``(m, Lp, c)`` at turns ``N`` (2-D arrays of points x Lp nodes).
+
+    Returns ``(M, ok, Phi, z, theta)``; ``ok`` False where no increasing crossing of
+    ``2 pi N`` exists in the bracket (the caller gives those an infinite free energy).
+    """
+    cr = crossings(tables, N, Lp, m, c)
+    return refine(tables, cr, N, Lp, m, c, np.ones(cr.elem.size, bool))
 
 
 def _refine(tables, x0, xa, xb, elem, fi, n, lp, m, c):
