@@ -180,58 +180,75 @@ def points(turns, force, par):
                           avg[4], w[:, 0])
 
 
+class _ConfigurationGroup:
+    """The configurations ``(m, Lp, chirality)`` of one ``(m, chirality)`` at every point:
+    bounds of their free energies from the tables, exact values solved on demand."""
+
+    def __init__(self, tables, N, lp, m, c, par):
+        L, K, b = par.length, par.nodes, par.microscopic_length
+        self.tables, self.m, self.c, self.kT = tables, m, c, par.kT
+        self.N, self.Lp = np.broadcast_arrays(N[:, None], lp[None, :])
+        self.entropy = np.zeros(self.N.shape)
+        if m:  # kT ln w_m (E7)
+            self.entropy = par.kT * np.log(
+                ((L - self.Lp) / b) ** m / factorial(m) * (self.Lp / b) ** (m - 1)
+                / factorial(m - 1) * (L / K) / b)
+        self.cr = _roots.crossings(tables, self.N, self.Lp, m, c)
+        self.lower, self.upper = (self._per_element(v) for v in (self.cr.lower, self.cr.upper))
+        self.solved = np.zeros(self.N.shape, bool)
+        self.G = np.full(self.N.shape, np.inf)
+        self.z, self.M, self.melt = (np.full(self.N.shape, np.nan) for _ in range(3))
+
+    def _per_element(self, v):
+        """An element's bound from its crossings' (the largest), minus its entropy."""
+        a = np.full(self.N.size, -np.inf)
+        np.maximum.at(a, self.cr.elem, v)
+        return np.where(a > -np.inf, a, np.inf).reshape(self.N.shape) - self.entropy
+
+    def left_out(self, best):
+        """The configurations not solved whose lower bound is within the cut of ``best``."""
+        return (np.isfinite(self.lower) & ~self.solved
+                & (self.lower <= best[:, None] + PRUNE_KT * self.kT))
+
+    def solve(self, best):
+        """Solve :meth:`left_out`: G (E6 - kT ln w, infinite without a state), z, M."""
+        want = self.left_out(best)
+        if not want.any():
+            return
+        M, ok, Phi, z, theta = _roots.refine(self.tables, self.cr, self.N, self.Lp, self.m,
+                                             self.c, want.ravel()[self.cr.elem])
+        G = Phi + _TWO_PI * M * self.N - self.entropy
+        G = np.where(ok & np.isfinite(G) & (z > 0.0), G, np.inf)
+        melt = theta * (self.tables.par.length - self.Lp)
+        for out, v in ((self.G, G), (self.z, z), (self.M, M), (self.melt, melt)):
+            out[want] = v[want]
+        self.solved |= want
+
+
 def _configurations(N, F, par):
     """G, z, M, Lp, melted length and m of every configuration (points x configurations);
     G infinite where a configuration has no state or lies provably more than
     :data:`PRUNE_KT` kT above the best one (not solved)."""
-    L, K = par.length, par.nodes
-    Lp = (np.arange(K) + 0.5) * L / K
-    b, kT = par.microscopic_length, par.kT
+    K = par.nodes
+    Lp = (np.arange(K) + 0.5) * par.length / K
     tables = _roots.LinkTables(
         F, par, lambda F, M, w: (tail_gibbs(F, M, par, w)[0], plectoneme_phase(F, M, par)),
         configuration, lambda F: wlc_at(F, par))
-    groups = []
-    for m, lp, c in [(0, np.zeros(1), 1.0)] + [(m, Lp, c) for m in range(1, par.max_domains + 1)
-                                              for c in (1.0, -1.0)]:
-        NN, LL = np.broadcast_arrays(N[:, None], lp[None, :])
-        ent = np.zeros(NN.shape)
-        if m:
-            ent = kT * np.log(((L - LL) / b) ** m / factorial(m) * (LL / b) ** (m - 1)
-                              / factorial(m - 1) * (L / K) / b)
-        cr = _roots.crossings(tables, NN, LL, m, c)
-        bounds = []
-        for v in (cr.lower, cr.upper):  # per element: the largest over its crossings
-            a = np.full(NN.size, -np.inf)
-            np.maximum.at(a, cr.elem, v)
-            bounds.append(np.where(a > -np.inf, a, np.inf).reshape(NN.shape) - ent)
-        groups.append([m, c, NN, LL, ent, cr, *bounds, np.zeros(NN.shape, bool),
-                       [np.full(NN.shape, v) for v in (np.inf, np.nan, np.nan, np.nan)]])
-    # the best configuration's G is below the smallest upper bound; solve what may be
-    # within PRUNE_KT of it, then check the cut against the solved minimum
-    best = np.min([g[7].min(axis=1) for g in groups], axis=0)
+    groups = [_ConfigurationGroup(tables, N, lp, m, c, par)
+              for m, lp, c in [(0, np.zeros(1), 1.0)]
+              + [(m, Lp, c) for m in range(1, par.max_domains + 1) for c in (1.0, -1.0)]]
+    # the best configuration's G is below the smallest upper bound: solve what may lie
+    # within PRUNE_KT of it, then check the cut against the smallest G solved
+    best = np.min([g.upper.min(axis=1) for g in groups], axis=0)
     while True:
         for g in groups:
-            m, c, NN, LL, ent, cr, lower, _, solved, res = g
-            want = np.isfinite(lower) & ~solved & (lower <= best[:, None] + PRUNE_KT * kT)
-            if not want.any():
-                continue
-            M, ok, Phi, z, theta = _roots.refine(tables, cr, NN, LL, m, c,
-                                                 want.ravel()[cr.elem])
-            G = Phi + _TWO_PI * M * NN - ent
-            G = np.where(ok & np.isfinite(G) & (z > 0.0), G, np.inf)
-            for r, v in zip(res, (G, z, M, theta * (L - LL)), strict=True):
-                r[want] = v[want]
-            solved |= want
-        solved_min = np.min([g[9][0].min(axis=1) for g in groups], axis=0)
-        left = [np.isfinite(g[6]) & ~g[8] & (g[6] <= solved_min[:, None] + PRUNE_KT * kT)
-                for g in groups]
-        if not any(a.any() for a in left):
+            g.solve(best)
+        best = np.min([g.G.min(axis=1) for g in groups], axis=0)
+        if not any(g.left_out(best).any() for g in groups):
             break
-        best = solved_min
-    out = [np.concatenate([g[9][i] for g in groups], axis=1) for i in range(4)]
-    Lpk = np.concatenate([g[3] for g in groups], axis=1)
-    mk = np.concatenate([np.full(g[2].shape, g[0], float) for g in groups], axis=1)
-    return out[0], out[1], out[2], Lpk, out[3], mk
+    return tuple(np.concatenate([getattr(g, a) if a != "m" else np.full(g.N.shape, g.m, float)
+                                 for g in groups], axis=1)
+                 for a in ("G", "z", "M", "Lp", "melt", "m"))
 
 
 def coexistence_torque(force, par, sign=1.0, strict=True):
