@@ -6,6 +6,7 @@ import tempfile
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 import pytest
 from fresh_scripts import Lane, background_job
 from hypothesis import HealthCheck, settings
@@ -24,6 +25,31 @@ settings.register_profile(
     "explore", deadline=None, max_examples=200, suppress_health_check=[HealthCheck.too_slow]
 )
 settings.load_profile(os.environ.get("SUPERCOIL_HYPOTHESIS", "default"))
+
+# pytest.approx adds abs=1e-12 when no abs is given: on SI values (a torque of 1e-20 N m,
+# kT 4e-21 J) that tolerance exceeds the value itself and the comparison cannot fail. Every
+# approx whose default abs would exceed its relative tolerance must name abs (abs=0 for a
+# purely relative comparison); this wrapper raises where one does not.
+_approx = pytest.approx
+
+
+def _approx_naming_abs(expected, rel=None, abs=None, nan_ok=False):
+    if abs is None:
+        values = expected.values() if isinstance(expected, dict) else expected
+        try:
+            mag = np.abs(np.asarray(list(values) if isinstance(expected, dict) else values,
+                                    float)).ravel()
+        except (TypeError, ValueError):
+            mag = np.array([])
+        mag = mag[np.isfinite(mag) & (mag > 0)]
+        if mag.size and mag.min() * (1e-6 if rel is None else rel) < 1e-12:
+            raise AssertionError(
+                f"pytest.approx({mag.min():.3g}, rel={rel}) without abs: the default "
+                "abs=1e-12 exceeds the relative tolerance; give abs= (abs=0: relative only)")
+    return _approx(expected, rel=rel, abs=abs, nan_ok=nan_ok)
+
+
+pytest.approx = _approx_naming_abs
 
 
 @pytest.fixture

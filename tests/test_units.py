@@ -14,8 +14,8 @@ def test_single_registry_is_exported():
 
 
 def test_magnitude_converts_to_target_unit(ureg):
-    assert magnitude(3.0 * ureg.nm, U.m, "x") == pytest.approx(3e-9, rel=1e-15)
-    assert magnitude(2.0 * ureg.pN * ureg.nm, U.J, "x") == pytest.approx(2e-21, rel=1e-15)
+    assert magnitude(3.0 * ureg.nm, U.m, "x") == pytest.approx(3e-9, rel=1e-15, abs=0)
+    assert magnitude(2.0 * ureg.pN * ureg.nm, U.J, "x") == pytest.approx(2e-21, rel=1e-15, abs=0)
     arr = magnitude(np.array([1.0, 2.0]) * ureg.mm, U.m, "x")
     np.testing.assert_allclose(arr, [1e-3, 2e-3], rtol=1e-15)
 
@@ -65,7 +65,7 @@ def test_conversion_factor_cache_is_consistent(ureg):
     # the same conversion done twice (second time from the cache) agrees with pint
     for _ in range(2):
         v = magnitude(5.0 * ureg.um, U.m, "x")
-        assert v == pytest.approx((5.0 * ureg.um).m_as(ureg.m), rel=1e-15)
+        assert v == pytest.approx((5.0 * ureg.um).m_as(ureg.m), rel=1e-15, abs=0)
 
 
 def test_dimensionless_accepts_any_array_like_and_rejects_text():

@@ -17,15 +17,15 @@ radii = st.floats(min_value=1e-9, max_value=1.0)
 @given(alphas, radii)
 def test_curvature_torsion_identities(alpha, R):
     k, t = g.curvature(alpha, R), g.torsion(alpha, R)
-    assert k**2 + t**2 == pytest.approx(np.sin(alpha) ** 2 / R**2, rel=1e-12)
-    assert t / k == pytest.approx(1.0 / np.tan(alpha), rel=1e-12)
+    assert k**2 + t**2 == pytest.approx(np.sin(alpha) ** 2 / R**2, rel=1e-12, abs=0)
+    assert t / k == pytest.approx(1.0 / np.tan(alpha), rel=1e-12, abs=0)
 
 
 @given(alphas, radii)
 def test_pitch_tilt_round_trip(alpha, R):
     P = g.pitch_from_tilt(alpha, R)
-    assert g.tilt_angle(R, P) == pytest.approx(alpha, rel=1e-12)
-    assert g.radius_from_tilt(alpha, P) == pytest.approx(R, rel=1e-12)
+    assert g.tilt_angle(R, P) == pytest.approx(alpha, rel=1e-12, abs=0)
+    assert g.radius_from_tilt(alpha, P) == pytest.approx(R, rel=1e-12, abs=0)
 
 
 @given(alphas, radii)
@@ -39,7 +39,7 @@ def test_curvature_and_torsion_from_the_parametrised_curve(alpha, R):
     x = np.cross(r1, r2)
     kappa = np.linalg.norm(x) / np.linalg.norm(r1) ** 3
     tau = np.dot(x, r3) / np.dot(x, x)
-    assert g.curvature(alpha, R) == pytest.approx(kappa, rel=1e-10)
+    assert g.curvature(alpha, R) == pytest.approx(kappa, rel=1e-10, abs=0)
     assert g.torsion(alpha, R) == pytest.approx(tau, rel=1e-10)
 
 
@@ -74,8 +74,8 @@ def test_curvature_error_factor():
 @given(alphas, radii, st.floats(1e-9, 10.0))
 def test_writhe_is_two_cos_alpha_per_superhelical_turn(alpha, R, S):
     n = g.superhelical_turns(alpha, R, S)
-    assert g.writhe_uniform(alpha, R, S) == pytest.approx(2 * np.cos(alpha) * n, rel=1e-12)
-    assert g.writhe_one_view(alpha, R, S) == pytest.approx(2 * n, rel=1e-12)
+    assert g.writhe_uniform(alpha, R, S) == pytest.approx(2 * np.cos(alpha) * n, rel=1e-12, abs=0)
+    assert g.writhe_one_view(alpha, R, S) == pytest.approx(2 * n, rel=1e-12, abs=0)
 
 
 def test_strand_integrals_of_uniform_profiles():
@@ -92,7 +92,7 @@ def test_strand_integrals_of_uniform_profiles():
 def test_unit_invariance_of_public_geometry(ureg):
     a1 = sc.geometry.tilt_angle(2.0 * ureg.nm, 20.0 * ureg.nm)
     a2 = sc.geometry.tilt_angle(2e-9 * ureg.m, 0.02 * ureg.um)
-    assert a1.m_as("rad") == pytest.approx(a2.m_as("rad"), rel=1e-14)
+    assert a1.m_as("rad") == pytest.approx(a2.m_as("rad"), rel=1e-14, abs=0)
     k1 = sc.geometry.curvature(30 * ureg.deg, 1.0 * ureg.mm)
     k2 = sc.geometry.curvature(np.pi / 6 * ureg.rad, 1e-3 * ureg.m)
     assert k1.m_as("1/m") == pytest.approx(k2.m_as("1/m"), rel=1e-14)

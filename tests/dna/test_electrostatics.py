@@ -47,7 +47,7 @@ def test_bjerrum_length_at_25C():
     # independent: CODATA constants from scipy, eps_r from the fit
     ref = sc_const.e**2 / (4 * np.pi * sc_const.epsilon_0 * el.water_permittivity(T25)
                            * sc_const.k * T25)
-    assert lB == pytest.approx(ref, rel=1e-9)
+    assert lB == pytest.approx(ref, rel=1e-9, abs=0)
 
 
 @given(st.floats(1.0, 1000.0))
@@ -58,7 +58,7 @@ def test_debye_length_0304_over_sqrt_molar_at_25C(c_mM):
     # independent: lambda = sqrt(eps0 eps_r kT / (2 N_A e^2 c)), c in mol/m^3
     ref = math.sqrt(sc_const.epsilon_0 * el.water_permittivity(T25) * sc_const.k * T25
                     / (2 * sc_const.N_A * sc_const.e**2 * c_mM))
-    assert lam * 1e-9 == pytest.approx(ref, rel=1e-9)
+    assert lam * 1e-9 == pytest.approx(ref, rel=1e-9, abs=0)
 
 
 def test_debye_length_temperature_enters_through_eps_r_times_T():
@@ -66,7 +66,7 @@ def test_debye_length_temperature_enters_through_eps_r_times_T():
     for t in (278.15, 298.15, 318.15):
         ratio = el.debye_length(c, t) / el.debye_length(c, T25)
         expect = math.sqrt(el.water_permittivity(t) * t / (el.water_permittivity(T25) * T25))
-        assert ratio == pytest.approx(expect, rel=1e-12)
+        assert ratio == pytest.approx(expect, rel=1e-12, abs=0)
     # eps_r T falls with T, so water screens slightly better when warm
     assert el.debye_length(c, 318.15) < el.debye_length(c, 278.15)
 
@@ -147,7 +147,7 @@ def test_screening_lengths_unit_invariance(ureg):
     for salt in (0.15 * ureg.molar, 150 * ureg.mol / ureg.m**3, 150e3 * ureg.umolar):
         got = inter.lengths(dna.replace(salt=salt, temperature=ureg.Quantity(25.0, "degC")))
         for key, q in ref.items():
-            assert got[key].m_as(q.units) == pytest.approx(q.magnitude, rel=1e-12)
+            assert got[key].m_as(q.units) == pytest.approx(q.magnitude, rel=1e-12, abs=0)
     assert ref["debye_length"].m_as("nm") == pytest.approx(0.7845, rel=1e-3)
 
 
@@ -181,4 +181,4 @@ def test_seed_set_is_unchanged():
     assert si.salt is None
     assert (si.length, si.bending_persistence, si.twist_persistence, si.radius,
             si.temperature, si.wlc_persistence) == pytest.approx(
-        (750e-9, 48e-9, 86e-9, 1.75e-9, 300.0, 52e-9), rel=1e-12)
+        (750e-9, 48e-9, 86e-9, 1.75e-9, 300.0, 52e-9), rel=1e-12, abs=0)

@@ -42,11 +42,11 @@ def test_loop_radius_minimises_the_excess_free_energy():
     res = minimize_scalar(eps, bounds=(1e-10, 1e-7), method="bounded",
                           options={"xatol": 1e-16})
     gl = el.loop_tension(gamma, M, C)
-    assert el.loop_radius(gl, B) == pytest.approx(res.x, rel=1e-4)
-    assert el.loop_excess_free_energy(gl, M, B) == pytest.approx(res.fun, rel=1e-8)
+    assert el.loop_radius(gl, B) == pytest.approx(res.x, rel=1e-4, abs=0)
+    assert el.loop_excess_free_energy(gl, M, B) == pytest.approx(res.fun, rel=1e-8, abs=0)
     assert el.loop_length(gl, B) == pytest.approx(TWO_PI * res.x, rel=1e-4)
     ell = el.loop_length(gl, B)
-    assert el.loop_twist(M, ell, C) == pytest.approx(M * ell / (TWO_PI * C), rel=1e-14)
+    assert el.loop_twist(M, ell, C) == pytest.approx(M * ell / (TWO_PI * C), rel=1e-14, abs=0)
 
 
 def test_loop_off_by_default_gives_no_jump():
@@ -74,7 +74,7 @@ def test_jump_at_buckling_documented_and_G_continuous(F, thermal):
     assert dG <= 2 * d * TWO_PI * (par.torque[0] + dM) * 1.01
     # overshoot closed form: sqrt(2 eps c_s kT / L)
     cs = par.twist_stiffness[0] * dna.kT
-    assert dM == pytest.approx(np.sqrt(2 * par.loop_excess[0] * cs / dna.length), rel=1e-12)
+    assert dM == pytest.approx(np.sqrt(2 * par.loop_excess[0] * cs / dna.length), rel=1e-12, abs=0)
 
 
 @pytest.mark.parametrize("thermal", [True, False])
@@ -99,19 +99,19 @@ def test_jump_equals_difference_of_branch_derivatives(thermal):
     h = 1e-5 * F
     zs = -(G_stretched(F + h) - G_stretched(F - h)) / (2 * h)
     zc = -(G_looped(F + h) - G_looped(F - h)) / (2 * h)
-    assert G_stretched(F) == pytest.approx(G_looped(F), rel=1e-12)  # N* is the crossing
-    assert zs - zc == pytest.approx(par.extension_jump[0], rel=1e-6)
+    assert G_stretched(F) == pytest.approx(G_looped(F), rel=1e-12, abs=0)  # N* is the crossing
+    assert zs - zc == pytest.approx(par.extension_jump[0], rel=1e-6, abs=0)
 
 
 def test_overshoot_scales_as_inverse_root_length_and_shift_as_root_length():
     F = np.array([2e-12])
     a = Marko2007(end_loop=True).parameters_at(F, _dna(L=1000.0), True)
     b = Marko2007(end_loop=True).parameters_at(F, _dna(L=4000.0), True)
-    assert b.torque_overshoot[0] / a.torque_overshoot[0] == pytest.approx(0.5, rel=1e-12)
+    assert b.torque_overshoot[0] / a.torque_overshoot[0] == pytest.approx(0.5, rel=1e-12, abs=0)
     shift = lambda p: p.jump_turns[0] - p.buckling_turns[0]  # noqa: E731
     assert shift(b) / shift(a) == pytest.approx(2.0, rel=1e-12)
     # the loop itself does not depend on L
-    assert b.loop_excess[0] == pytest.approx(a.loop_excess[0], rel=1e-14)
+    assert b.loop_excess[0] == pytest.approx(a.loop_excess[0], rel=1e-14, abs=0)
 
 
 def test_fully_coiled_with_loop_is_continuous():
@@ -124,8 +124,8 @@ def test_fully_coiled_with_loop_is_continuous():
     n_full = (par.omega_plectoneme * (dna.length - par.loop_length) / TWO_PI)[0] + twist
     # the coiled state's loop radius and torque at the boundary equal the coexistence's
     _, M, R = el.coiled_state(n_full, dna.length, B, K, C)
-    assert TWO_PI * R == pytest.approx(par.loop_length[0], rel=1e-12)
-    assert M == pytest.approx(par.torque[0], rel=1e-12)
+    assert TWO_PI * R == pytest.approx(par.loop_length[0], rel=1e-12, abs=0)
+    assert M == pytest.approx(par.torque[0], rel=1e-12, abs=0)
     N = n_full + par.loop_writhe[0] + np.array([-1e-8, 1e-8])
     pt = m.points(N, np.full(2, F[0]), dna, True)
     assert list(pt.phase) == [1, 2]

@@ -91,9 +91,9 @@ def test_stretched_is_marko_first_order_when_not_resummed():
     s = ph.stretched_gibbs(F, M, A, C, KT, 1.0, False, False)
     g, _ = mk.wlc_free_energy_gain(F, A, KT)
     cs, _ = mk.stretched_twist_stiffness(F, A, C, KT)
-    assert s.phi == pytest.approx(-g - M**2 / (2 * KT * cs), rel=1e-14)
+    assert s.phi == pytest.approx(-g - M**2 / (2 * KT * cs), rel=1e-14, abs=0)
     assert -s.dphi_dF == pytest.approx(mk.stretched_extension_factor(M / (cs * KT), F, A, C, KT),
-                                       rel=1e-14)
+                                       rel=1e-14, abs=0)
 
 
 def test_physical_loop_is_the_end_loop_excess_at_marko_coexistence():
@@ -215,8 +215,8 @@ def test_model_points_and_buckling_agree_with_the_limit():
     b = m.buckling(np.array([1e-12]), dna, True)
     N = np.array([b.turns[0] + 2.0, b.turns[0] + 4.0])
     pts = m.points(N, np.full(2, 1e-12), dna, True)
-    assert pts.torque[0] == pytest.approx(b.torque[0], rel=1e-9)
-    assert (pts.extension[1] - pts.extension[0]) / 2.0 == pytest.approx(b.slope[0], rel=1e-9)
+    assert pts.torque[0] == pytest.approx(b.torque[0], rel=1e-9, abs=0)
+    assert (pts.extension[1] - pts.extension[0]) / 2.0 == pytest.approx(b.slope[0], rel=1e-9, abs=0)
     g = m.free_energy(N, np.full(2, 1e-12), dna, True)
     np.testing.assert_array_equal(g, pts.free_energy)
 

@@ -108,14 +108,15 @@ def test_jump_equals_difference_of_branch_derivatives_and_G_is_continuous(F, the
     np.testing.assert_allclose(zs_model, zs, rtol=1e-7)
     np.testing.assert_allclose(zc_model, zc, rtol=1e-7)
     jump = (2 * zs[0] - zs[1]) - (2 * zc[0] - zc[1])  # both extrapolated to N*
-    assert jump == pytest.approx(lp.extension_jump[0], rel=1e-5)
+    assert jump == pytest.approx(lp.extension_jump[0], rel=1e-5, abs=0)
     assert lp.extension_jump[0] > 0.05 * SEED.length  # a jump of tens of nm, not rounding
     # G: continuous, its slope drops from 2 pi M_+ to 2 pi M*
     e = 1e-7
     p = _pts([Ns - e, Ns + e], F, thermal)
     Mp, Ms = lp.overshoot_torque[0], co.torque[0]
-    assert p.free_energy[1] - p.free_energy[0] == pytest.approx(TWO_PI * e * (Mp + Ms), rel=1e-4)
-    assert p.torque[0] == pytest.approx(Mp, rel=1e-6) and p.torque[1] == Ms
+    assert p.free_energy[1] - p.free_energy[0] == pytest.approx(TWO_PI * e * (Mp + Ms), rel=1e-4,
+                                                                abs=0)
+    assert p.torque[0] == pytest.approx(Mp, rel=1e-6, abs=0) and p.torque[1] == Ms
     assert lp.excess[0] > 1e6 * abs(p.free_energy[1] - p.free_energy[0])
 
 
@@ -141,12 +142,12 @@ def test_jump_is_where_the_stretched_branch_crosses_the_raised_coexistence(F, th
 
     res = minimize_scalar(eps, bounds=(1e-9, 1e-7), method="bounded",
                           options={"xatol": 1e-16})
-    assert lp.radius[0] == pytest.approx(res.x, rel=1e-5)
-    assert lp.excess[0] == pytest.approx(res.fun, rel=1e-9)
-    assert G_s - G_line == pytest.approx(res.fun, rel=1e-7)
+    assert lp.radius[0] == pytest.approx(res.x, rel=1e-5, abs=0)
+    assert lp.excess[0] == pytest.approx(res.fun, rel=1e-9, abs=0)
+    assert G_s - G_line == pytest.approx(res.fun, rel=1e-7, abs=0)
     # the loop's radius is set by the plectoneme's tension (the tail's effective pull)
-    assert lp.radius[0] == pytest.approx(np.sqrt(B / (2 * co.pull[0])), rel=1e-12)
-    assert M[0] == pytest.approx(lp.overshoot_torque[0], rel=1e-9)
+    assert lp.radius[0] == pytest.approx(np.sqrt(B / (2 * co.pull[0])), rel=1e-12, abs=0)
+    assert M[0] == pytest.approx(lp.overshoot_torque[0], rel=1e-9, abs=0)
 
 
 @given(force=st.floats(0.6, 10.0), frac=st.floats(0.05, 0.95), thermal=st.booleans())
@@ -162,12 +163,12 @@ def test_jump_property(force, frac, thermal):
     p = _pts([Ns - e, Ns + e, Ns + frac * (Nf - Ns)], F, thermal)
     assert p.phase.tolist() == [STRETCHED, PLECTONEME, PLECTONEME]
     assert lp.extension_jump[0] > 0 and lp.overshoot_torque[0] > co.torque[0]
-    assert p.extension[0] - p.extension[1] == pytest.approx(lp.extension_jump[0], rel=1e-6)
+    assert p.extension[0] - p.extension[1] == pytest.approx(lp.extension_jump[0], rel=1e-6, abs=0)
     assert p.torque[0] - p.torque[1] == pytest.approx(
-        lp.overshoot_torque[0] - co.torque[0], rel=1e-6)
+        lp.overshoot_torque[0] - co.torque[0], rel=1e-6, abs=0)
     assert abs(p.free_energy[1] - p.free_energy[0]) < 1e-6 * lp.excess[0]
     slope = (p.extension[2] - p.extension[1]) / (frac * (Nf - Ns) + e)
-    assert slope == pytest.approx(co.slope[0], rel=1e-6)
+    assert slope == pytest.approx(co.slope[0], rel=1e-6, abs=0)
 
 
 def _maxwell_ratio(N, F, thermal):
@@ -213,13 +214,13 @@ def test_extension_and_torque_are_derivatives_of_G_with_the_loop(F):
     assert np.all(p.plectoneme_length[3:] == SEED.length)
     q = _pts([Nf - 1e-7, Nf + 1e-7], F)
     assert q.phase.tolist() == [PLECTONEME, FULLY_COILED]
-    assert q.torque[1] == pytest.approx(q.torque[0], rel=1e-6)
+    assert q.torque[1] == pytest.approx(q.torque[0], rel=1e-6, abs=0)
     assert q.free_energy[1] - q.free_energy[0] == pytest.approx(
-        TWO_PI * 2e-7 * q.torque[0], rel=1e-4)
+        TWO_PI * 2e-7 * q.torque[0], rel=1e-4, abs=0)
     # the loop adds its contour to the plectoneme: L - S - l is the tail
     assert p.plectoneme_length[2] - lp.length[0] == pytest.approx(
         (TWO_PI * (N[2] - lp.linking[0]) - (SEED.length - lp.length[0]) * co.tail_linking[0])
-        / co.linking_rate[0], rel=1e-12)
+        / co.linking_rate[0], rel=1e-12, abs=0)
 
 
 def test_overshoot_scales_as_inverse_root_length():
@@ -236,11 +237,12 @@ def test_overshoot_scales_as_inverse_root_length():
                          lp.jump_turns[0] - co.buckling_turns[0], co.torque[0]))
     for L, thermal, dM, eps, shift, _ in rows:
         if not thermal:
-            assert dM == pytest.approx(np.sqrt(2 * eps * C / L), rel=1e-12)
+            assert dM == pytest.approx(np.sqrt(2 * eps * C / L), rel=1e-12, abs=0)
             assert shift == pytest.approx(np.sqrt(2 * eps * L / C) / TWO_PI, rel=1e-9)
     th = [r for r in rows if r[1]]
     eps, Mstar = th[0][3], th[0][5]
-    assert all(r[3] == pytest.approx(eps, rel=1e-14) for r in th)  # eps* does not depend on L
+    # eps* does not depend on L
+    assert all(r[3] == pytest.approx(eps, rel=1e-14, abs=0) for r in th)
     h = 1e-4 * Mstar
     ls = [fe.tail_free_energy(F, Mstar + s, B, C, kT)[2] for s in (h, -h)]
     limit = np.sqrt(2 * eps / ((ls[0] - ls[1]) / (2 * h)))

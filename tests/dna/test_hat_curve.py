@@ -51,10 +51,10 @@ def test_continuous_at_buckling(f, thermal):
     p = points([nb - eps, nb + eps], f, thermal)
     assert list(p.phase) == [iface.STRETCHED, iface.PLECTONEME]
     assert abs(p.extension[1] - p.extension[0]) < 1e-12  # a jump would be > 1 nm
-    assert p.torque[1] == pytest.approx(p.torque[0], rel=1e-6)
+    assert p.torque[1] == pytest.approx(p.torque[0], rel=1e-6, abs=0)
     # the torques match at N_b: C_eff 2 pi N_b / L = C omega
     s = pl.equilibrium(f, B, C, KT, R0)
-    assert p.torque[1] == pytest.approx(s.torque, rel=1e-12)
+    assert p.torque[1] == pytest.approx(s.torque, rel=1e-12, abs=0)
 
 
 @pytest.mark.parametrize("thermal", [True, False])
@@ -66,11 +66,11 @@ def test_slope_formula_equals_finite_difference(f, thermal):
     h = 1e-3
     p = points([n - h, n + h, -n - h, -n + h], f, thermal)
     assert np.all(p.phase == iface.PLECTONEME)
-    assert (p.extension[1] - p.extension[0]) / (2 * h) == pytest.approx(slope, rel=1e-7)
-    assert (p.extension[3] - p.extension[2]) / (2 * h) == pytest.approx(-slope, rel=1e-7)
+    assert (p.extension[1] - p.extension[0]) / (2 * h) == pytest.approx(slope, rel=1e-7, abs=0)
+    assert (p.extension[3] - p.extension[2]) / (2 * h) == pytest.approx(-slope, rel=1e-7, abs=0)
     if not thermal:
         s = pl.equilibrium(f, B, C, KT, R0)
-        assert slope == pytest.approx(-2 * np.pi / s.torsion, rel=1e-12)
+        assert slope == pytest.approx(-2 * np.pi / s.torsion, rel=1e-12, abs=0)
 
 
 @pytest.mark.parametrize("f", [0.4e-12, 1.2e-12, 3e-12])
@@ -108,7 +108,7 @@ def test_athermal_equals_closed_formulas(f):
     torque = np.where(an <= nb, C * 2 * np.pi * n / L, np.sign(n) * s.torque)
     np.testing.assert_allclose(p.torque, torque, rtol=1e-12)
     np.testing.assert_array_equal(p.zeta, np.where(S >= L, 0.0, 1.0))
-    assert hc.buckling_turns(f, *ARGS, thermal=False)[()] == pytest.approx(nb, rel=1e-14)
+    assert hc.buckling_turns(f, *ARGS, thermal=False)[()] == pytest.approx(nb, rel=1e-14, abs=0)
 
 
 def test_athermal_computes_no_thermal_terms(monkeypatch):
@@ -151,7 +151,7 @@ def test_fully_coiled_and_short_tail(f):
     assert 0 < tail < 1e-10
     limit = B * KT / (B * f - M**2 / 4)
     zinf = mn.long_tail_factor(f, M, B, KT)
-    assert p.extension[0] == pytest.approx(zinf * tail + limit, rel=1e-9)
+    assert p.extension[0] == pytest.approx(zinf * tail + limit, rel=1e-9, abs=0)
     assert limit > (10e-9 if f < 1e-12 else 1e-9)
     # the flag is exactly "tail shorter than 3 A", and its threshold is an argument
     n = np.linspace(nb, n_full, 400)

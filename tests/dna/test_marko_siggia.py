@@ -29,14 +29,16 @@ radii = st.floats(0.7, 20.0).map(lambda r: r * R0)
 
 @given(alphas, radii)
 def test_interaction_is_the_model_formula(alpha, R):
-    assert ms.interaction(alpha, R, B, KT, R0) == pytest.approx(w_model(alpha, R), rel=1e-12)
+    assert ms.interaction(alpha, R, B, KT, R0) == pytest.approx(w_model(alpha, R), rel=1e-12, abs=0)
 
 
 def test_interaction_pieces_and_limits():
-    # at R = r0 and x -> infinity (alpha -> 0) the hard core gives kT/r0 exactly
-    w = ms.interaction(1e-9, R0, B, KT, R0)
+    # at R = r0 and x -> infinity (alpha -> 0) the hard core gives kT/r0 exactly; the
+    # entropic term approaches its limit as x^(-2/3) (1.2e-7 relative at alpha = 1e-9,
+    # which the default abs=1e-12 of pytest.approx hid), 1e-11 at alpha = 1e-16
+    w = ms.interaction(1e-16, R0, B, KT, R0)
     entropic = B ** (-1 / 3) * KT ** (4 / 3) / R0 ** (2 / 3)
-    assert w == pytest.approx(KT / R0 + entropic, rel=1e-9)
+    assert w == pytest.approx(KT / R0 + entropic, rel=1e-9, abs=0)
     # steep repulsion: halving R multiplies the hard-core term by 4096
     a = 0.3
     assert ms.interaction(a, R0 / 2, B, KT, R0) > 1000 * ms.interaction(a, R0, B, KT, R0)

@@ -42,9 +42,9 @@ def test_derivatives_against_finite_differences():
 
 def test_series_branches_join_smoothly():
     u = np.array([1e-2 * (1 - 1e-12), 1e-2 * (1 + 1e-12)])
-    assert m._log_sinhc(u)[0] == pytest.approx(m._log_sinhc(u)[1], rel=1e-9)
+    assert m._log_sinhc(u)[0] == pytest.approx(m._log_sinhc(u)[1], rel=1e-9, abs=0)
     assert m._langevin(u)[0] == pytest.approx(m._langevin(u)[1], rel=1e-9)
-    assert m._log_sinhc(np.array([800.0]))[0] == pytest.approx(800 - np.log(1600), rel=1e-15)
+    assert m._log_sinhc(np.array([800.0]))[0] == pytest.approx(800 - np.log(1600), rel=1e-15, abs=0)
 
 
 def test_zero_force_and_torque_is_the_melting_free_energy():
@@ -74,7 +74,7 @@ def test_melting_torque_against_brentq():
             return (tb.stretched_gibbs(f, mp * 1e-21, A, C, 0.0, KT).phi
                     - m.melted_gibbs(f, mp * 1e-21, KT).phi)
         ref = brentq(diff, -40.0, 0.0, xtol=1e-14) * 1e-21
-        assert mm == pytest.approx(ref, rel=1e-10)
+        assert mm == pytest.approx(ref, rel=1e-10, abs=0)
 
 
 def test_melting_torque_numbers_at_the_defaults():
@@ -95,7 +95,8 @@ def test_rigid_melted_twist_and_linear_limit():
     d = m.DEFAULTS
     gm = m.melted_stretch_gain(f, KT, d["ss_kuhn_length"], d["ss_contour_per_base"],
                                d["ss_stretch_modulus"], d["rise_per_bp"])[0]
-    assert Mm == pytest.approx(-(d["melt_free_energy"] + gs - gm) / -d["melt_twist"], rel=1e-12)
+    assert Mm == pytest.approx(-(d["melt_free_energy"] + gs - gm) / -d["melt_twist"], rel=1e-12,
+                               abs=0)
 
 
 def test_broadcasting():

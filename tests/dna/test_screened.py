@@ -51,8 +51,8 @@ def _at_salt(dna, c, ureg=sc.ureg):
 def test_parallel_rod_limit_k0(R, lam):
     # alpha -> 0: two parallel line charges 2R apart, w = nu^2 kT l_B K0(2R/lambda)
     w = scr.electrostatic(1e-5, R, lam, 1.0)
-    assert w == pytest.approx(k0(2 * R / lam), rel=1e-9)
-    assert scr.parallel_rods(R, lam, 1.0) == pytest.approx(k0(2 * R / lam), rel=1e-15)
+    assert w == pytest.approx(k0(2 * R / lam), rel=1e-9, abs=0)
+    assert scr.parallel_rods(R, lam, 1.0) == pytest.approx(k0(2 * R / lam), rel=1e-15, abs=0)
 
 
 def test_small_tilt_helical_factor_is_one_plus_alpha_squared():
@@ -96,17 +96,17 @@ def test_helical_interaction_against_direct_double_integral(alpha_deg, R, lam):
 def test_partials_against_finite_differences(alpha_deg, R, lam):
     a = np.radians(alpha_deg)
     w, w_a, w_R = scr.electrostatic_partials(a, R, lam, 1.0)
-    assert w == pytest.approx(scr.electrostatic(a, R, lam, 1.0), rel=1e-14)
+    assert w == pytest.approx(scr.electrostatic(a, R, lam, 1.0), rel=1e-14, abs=0)
     ha, hR = 1e-6 * a, 1e-6 * R
     e = scr.electrostatic
     fd_a = (e(a + ha, R, lam, 1.0) - e(a - ha, R, lam, 1.0)) / (2 * ha)
     fd_R = (e(a, R + hR, lam, 1.0) - e(a, R - hR, lam, 1.0)) / (2 * hR)
     assert w_a == pytest.approx(fd_a, rel=1e-6, abs=1e-9 * abs(w) / a)
-    assert w_R == pytest.approx(fd_R, rel=1e-6)
+    assert w_R == pytest.approx(fd_R, rel=1e-6, abs=0)
     _, c_a, c_R = scr.confinement_partials(a, R, B50, KT)
     fd_ca = (scr.confinement(a + ha, R, B50, KT) - scr.confinement(a - ha, R, B50, KT)) / (2 * ha)
     fd_cR = (scr.confinement(a, R + hR, B50, KT) - scr.confinement(a, R - hR, B50, KT)) / (2 * hR)
-    assert c_a == pytest.approx(fd_ca, rel=1e-6)
+    assert c_a == pytest.approx(fd_ca, rel=1e-6, abs=0)
     assert c_R == pytest.approx(fd_cR, rel=1e-6)
 
 
@@ -118,12 +118,12 @@ def test_confinement_is_the_papers_entropic_term():
     x = np.pi / np.tan(a)
     hard = (1 + x**-12.0) * KT / r0 * (R / r0) ** -12
     assert scr.confinement(a, R, B50, KT) == pytest.approx(
-        ms.interaction(a, R, B50, KT, r0) - hard, rel=1e-12)
+        ms.interaction(a, R, B50, KT, r0) - hard, rel=1e-12, abs=0)
 
 
 def test_closest_approach_is_2R_up_to_45_degrees():
     a = np.radians([5.0, 30.0, 45.0])
-    assert scr.closest_approach(a, 2e-9) == pytest.approx(4e-9, rel=1e-12)
+    assert scr.closest_approach(a, 2e-9) == pytest.approx(4e-9, rel=1e-12, abs=0)
     assert scr.closest_approach(np.radians(70.0), 2e-9) < 4e-9  # pitch neighbours closer
 
 
@@ -142,8 +142,8 @@ def test_generic_solver_reproduces_the_papers_hard_core_solver():
     alpha, R, M = eq.solve_equilibrium(F, B, partials, branch)
     ref = pl.equilibrium(F, B, C, kT, r0, rtol=1e-13)
     assert alpha == pytest.approx(ref.alpha, rel=1e-10)
-    assert R == pytest.approx(ref.radius, rel=1e-10)
-    assert M == pytest.approx(ref.torque, rel=1e-10)
+    assert R == pytest.approx(ref.radius, rel=1e-10, abs=0)
+    assert M == pytest.approx(ref.torque, rel=1e-10, abs=0)
 
 
 @pytest.mark.filterwarnings("ignore::supercoil.exceptions.ValidityWarning")
@@ -194,8 +194,8 @@ def test_state_is_the_minimum_of_f_at_its_torque(dna150):
     res = minimize(f, x0, method="Nelder-Mead", options=dict(xatol=1e-11, fatol=1e-16,
                                                              maxiter=4000))
     assert res.x[0] == pytest.approx(s.alpha[0], rel=1e-6)
-    assert res.x[1] * 1e-9 == pytest.approx(s.radius[0], rel=1e-6)
-    assert -res.fun * 1e-12 == pytest.approx(1e-12, rel=1e-9)
+    assert res.x[1] * 1e-9 == pytest.approx(s.radius[0], rel=1e-6, abs=0)
+    assert -res.fun * 1e-12 == pytest.approx(1e-12, rel=1e-9, abs=0)
 
 
 # ---- trends and the li-zhao construction ------------------------------------
@@ -219,11 +219,11 @@ def test_public_li_zhao_buckling_and_slope_use_the_screened_state(dna150, ureg):
     assert sc.buckling_turns(dna150, F, interaction="screened").m_as("turn") == \
         pytest.approx(Nb, rel=1e-12)
     assert sc.post_buckling_slope(dna150, F, interaction="screened").m_as("m/turn") == \
-        pytest.approx(slope, rel=1e-12)
+        pytest.approx(slope, rel=1e-12, abs=0)
     assert sc.post_buckling_slope(dna150, F, interaction="screened", thermal=False).m_as(
-        "m/turn") == pytest.approx(slope0, rel=1e-12)
+        "m/turn") == pytest.approx(slope0, rel=1e-12, abs=0)
     eq_pub = sc.plectoneme_equilibrium(dna150, F, interaction=Screened())
-    assert eq_pub.radius.m_as("m") == pytest.approx(s.radius, rel=1e-14)
+    assert eq_pub.radius.m_as("m") == pytest.approx(s.radius, rel=1e-14, abs=0)
 
 
 def test_radius_torque_turns_slope_fall_with_salt_and_radius_with_force(dna150):
@@ -289,7 +289,7 @@ def test_free_energy_model_with_screened_interaction_obeys_maxwell(dna150, c):
     lz = get_model("li-zhao").buckling(np.array([F]), si, False, inter)
     fe0 = model.buckling(np.array([F]), si, False, inter)
     assert fe0.turns == pytest.approx(lz.turns, rel=1e-10)
-    assert fe0.slope == pytest.approx(lz.slope, rel=1e-10)
+    assert fe0.slope == pytest.approx(lz.slope, rel=1e-10, abs=0)
 
 
 def test_reduced_charge_fraction_narrows_the_plectoneme(dna150):
@@ -332,8 +332,8 @@ def test_unit_invariance(dna150, ureg):
     other = dna150.replace(salt=0.15 * ureg.molar, temperature=ureg.Quantity(25.0, "degC"),
                            bending_persistence=0.05 * ureg.um)
     got = Screened().equilibrium(FORCES, other.si)
-    assert got.radius == pytest.approx(ref.radius, rel=1e-12)
-    assert got.torque == pytest.approx(ref.torque, rel=1e-12)
+    assert got.radius == pytest.approx(ref.radius, rel=1e-12, abs=0)
+    assert got.torque == pytest.approx(ref.torque, rel=1e-12, abs=0)
 
 
 def test_needs_salt(dna):
@@ -367,7 +367,7 @@ def test_contact_holds_the_strands_where_the_free_branch_ends(dna150):
     T_a = inter.branch(si).tension[0]
     st = inter.equilibrium(np.array([T_a * (1 - 1e-7), T_a * (1 + 1e-7), 40e-12]), si)
     assert st.radius[0] > 1e-9 and st.radius[1] == 1e-9 and st.radius[2] == 1e-9
-    assert st.torque[1] == pytest.approx(st.torque[0], rel=1e-5)
+    assert st.torque[1] == pytest.approx(st.torque[0], rel=1e-5, abs=0)
     assert st.alpha[1] == pytest.approx(st.alpha[0], rel=1e-5)
     # contact states satisfy (GE1) and the tension equation; the reaction presses (N >= 0)
     part = lambda a, R: inter.partials(a, R, si)  # noqa: E731
@@ -403,7 +403,7 @@ def test_low_salt_first_order_jump_to_contact_is_the_lower_torque(dna150):
             for x0 in ([both.alpha[1], 1.2], [free.alpha[1], free.radius[1] * 1e9])]
     best = min(runs, key=lambda r: r.fun)
     assert best.x[1] == pytest.approx(1.0, abs=1e-6)
-    assert -best.fun * 1e-12 == pytest.approx(5e-12, rel=1e-6)
+    assert -best.fun * 1e-12 == pytest.approx(5e-12, rel=1e-6, abs=0)
 
 
 @pytest.mark.parametrize("kw", [dict(charge_fraction=0.0), dict(charge_fraction=1.6),
@@ -617,8 +617,8 @@ def test_direct_and_newton_solve_at_a_node_and_at_the_branch_top(dna150, method)
     assert not br.fold
     F = np.array([br.tension[7], br.tension[0] * (1 - 1e-15), br.tension[0]])
     alpha, R, _ = eq.solve_equilibrium(F, B, f, br, method=method)
-    assert R[0] == pytest.approx(br.radius[7], rel=1e-12)
-    assert R[1:] == pytest.approx(br.radius[0], rel=1e-12)
+    assert R[0] == pytest.approx(br.radius[7], rel=1e-12, abs=0)
+    assert R[1:] == pytest.approx(br.radius[0], rel=1e-12, abs=0)
     ge2 = eq.tilt_residual(alpha, R, B, f)
     assert np.all(np.abs(ge2) < 1e-12 * np.abs(eq.torque(alpha, R, B, f) / R))
 
@@ -677,7 +677,7 @@ def test_fold_peak_with_newton_tilts_is_the_maximum_of_the_tension(dna150, salt,
     assert br.fold
     monkeypatch.setattr(eq, "_tilt_near", lambda R, a0, B, p: eq.solve_tilt(R, B, p))
     ref = eq.branch_table(B, f, 1e-9, 1e-6)
-    assert br.tension[0] == pytest.approx(ref.tension[0], rel=1e-13)
-    assert br.radius[0] == pytest.approx(ref.radius[0], rel=1e-6)
+    assert br.tension[0] == pytest.approx(ref.tension[0], rel=1e-13, abs=0)
+    assert br.radius[0] == pytest.approx(ref.radius[0], rel=1e-6, abs=0)
     R = br.radius[0] * np.array([1 - 1e-3, 1 + 1e-3])
     assert np.all(eq.tension(eq.solve_tilt(R, B, f), R, B, f) < br.tension[0])

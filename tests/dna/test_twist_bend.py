@@ -40,7 +40,7 @@ def test_wlc_gain_is_the_integral_of_the_extension():
     for f in (0.1e-12, 1e-12, 5e-12):
         ref = quad(lambda s: tb.wlc_extension(s, A, KT)[0], 1e-30, f, epsabs=0, epsrel=1e-12)[0]
         g = tb.wlc_gibbs_gain(f, A, KT)[0]
-        assert g == pytest.approx(ref, rel=1e-9)
+        assert g == pytest.approx(ref, rel=1e-9, abs=0)
 
 
 def test_high_force_limit_of_the_wlc():
@@ -88,7 +88,7 @@ def test_coupling_renormalises_the_stiffnesses():
         Ab, Ct = tb.twist_bend_renormalisation(A, C, G)
         u = G * G / C
         assert 2 / A == pytest.approx(1 / Ab + 1 / (Ab - u), rel=1e-14)
-        assert Ct == pytest.approx(C - G * G / Ab, rel=1e-15)
+        assert Ct == pytest.approx(C - G * G / Ab, rel=1e-15, abs=0)
         assert Ab > A and 0 < Ct < C
     # C_eff falls monotonically with |G| at every force, tends to C~ at high force
     Gs = np.array([0.0, 20e-9, 40e-9])
@@ -116,7 +116,7 @@ def test_broadcasting():
     p = tb.stretched_gibbs(F, M, A, C, 30e-9, KT)
     assert all(np.shape(a) == (F.size, M.size) for a in p)
     one = tb.stretched_gibbs(F[2, 0], M[0, 3], A, C, 30e-9, KT)
-    assert one.phi == pytest.approx(p.phi[2, 3], rel=1e-15)
+    assert one.phi == pytest.approx(p.phi[2, 3], rel=1e-15, abs=0)
 
 
 @pytest.mark.parametrize("bad", [0.0, -1e-12, np.nan, np.inf])

@@ -104,7 +104,7 @@ def test_report_gives_c_over_the_torque_scale_with_its_propagated_error(scaled_t
                                                      "torque_scale"])
     value, err = twist_in_trap_units(r)
     C, s = r.parameters["twist_persistence"].m_as("nm"), r.parameters["torque_scale"].m
-    assert value == pytest.approx(C / s, rel=1e-15)
+    assert value == pytest.approx(C / s, rel=1e-15, abs=0)
     cov = r.covariance.loc[["twist_persistence", "torque_scale"],
                            ["twist_persistence", "torque_scale"]].to_numpy()
     draws = np.random.default_rng(7).multivariate_normal([C, s], cov, size=200_000)

@@ -74,4 +74,4 @@ def test_chi_square_is_in_the_units_of_the_weighting(result, true_dna, base):
     r = sc.fit_hat_curves(df, base, vary=["twist_persistence", "radius"])
     assert r.chi_square == pytest.approx(np.sum((r.residuals.m_as("nm") / NOISE) ** 2),
                                          rel=1e-9)
-    assert r.chi_square / r.nfree == pytest.approx(r.reduced_chi_square, rel=1e-12)
+    assert r.chi_square / r.nfree == pytest.approx(r.reduced_chi_square, rel=1e-12, abs=0)

@@ -96,7 +96,7 @@ def test_display_factors_come_from_pint():
     x = np.array([1e-9, 2e-9])
     np.testing.assert_allclose(display.from_display(display.to_display(x, "extension"),
                                                     "extension"), x, rtol=1e-15)
-    assert display.quantity(2e-9, "extension").m_as("nm") == pytest.approx(2, rel=1e-15)
+    assert display.quantity(2e-9, "extension").m_as("nm") == pytest.approx(2, rel=1e-15, abs=0)
     for domain, table in display.DISPLAY.items():  # every display unit is a pint unit
         for kind, text in table.items():
             assert display.spec(text)[1] > 0, (domain, kind)

@@ -14,7 +14,7 @@ def test_lmfit_and_scipy_names(result):
     assert r.chisqr == r.chi_square and r.redchi == r.reduced_chi_square
     assert r.nvarys == len(r.names) == 4 and r.n_determined == 4
     # x: the best-fit values in display units, in the order of names
-    assert r.x == pytest.approx([r.parameters[n].magnitude for n in r.names], rel=1e-15)
+    assert r.x == pytest.approx([r.parameters[n].magnitude for n in r.names], rel=1e-15, abs=0)
     # jac: Jacobian of the normalised residuals in display units; its normal matrix is the
     # inverse covariance, and the residuals' squares sum to chisqr
     assert r.jac.shape == (r.ndata, r.nvarys)

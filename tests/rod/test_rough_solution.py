@@ -72,7 +72,7 @@ def test_ode_matches_the_closed_form_at_former_outliers(N, r_mm, L_cm, old):
     a0 = sco.initial_tilt(N, r, L, B, C)
     it = rh.integrate(a0, None, r, L, B, C)
     assert it.reason == "alpha->0"
-    assert it.s_end == pytest.approx(rh.k0_s_max(a0, L, B, C), rel=1e-11)
+    assert it.s_end == pytest.approx(rh.k0_s_max(a0, L, B, C), rel=1e-11, abs=0)
     cf = sc.rough_helix(rod, N, method="closed_form")
     ode = sc.rough_helix(rod, N, method="ode", s=cf.profile["s"].to_numpy() * u.mm)
     da = np.abs(ode.profile["alpha"].to_numpy() - cf.profile["alpha"].to_numpy())
@@ -86,7 +86,7 @@ def test_right_side_is_smooth_through_the_end():
     d = ro.dy_ds(0.1, y, 0.0, r, L, B, C)
     np.testing.assert_allclose(d, rh.k0_dy_ds(0.1, y, L, B, C), rtol=1e-14)
     assert d[0] != d[1]  # clipped, these were equal
-    assert ro._dy_ds_scalar(0.1, -1e-3, 0.0, r, L, B, C) == pytest.approx(d[0], rel=1e-15)
+    assert ro._dy_ds_scalar(0.1, -1e-3, 0.0, r, L, B, C) == pytest.approx(d[0], rel=1e-15, abs=0)
 
 
 # --- the solution object (scipy OdeSolution style) --------------------------------------------
@@ -101,7 +101,7 @@ def test_solution_object_segments_and_dense_output(k):
     sol = it.solution
     assert isinstance(sol, ro.RoughSolution) and sol.t_min == 0.0 and sol.t_max == it.s_end
     assert len(sol.ts) == len(sol.interpolants) + 1 and np.all(np.diff(sol.ts) > 0)
-    assert sol(0.0) == pytest.approx(sco.y_of_alpha(a0), rel=1e-15)
+    assert sol(0.0) == pytest.approx(sco.y_of_alpha(a0), rel=1e-15, abs=0)
     # segment lookup: a boundary belongs to the segment on its right, the end to the last
     n = len(sol.interpolants)
     np.testing.assert_array_equal(sol.segment(sol.ts), [*range(n), n - 1])
