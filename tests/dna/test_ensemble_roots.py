@@ -323,3 +323,20 @@ def test_the_lower_bound_is_below_the_solved_free_energy(force, turns, m, c):
     for e, low in zip(cr.elem, cr.lower, strict=True):
         if ok.ravel()[e]:
             assert low <= G[e] + 1e-12 * abs(G[e])
+
+
+def test_configurations_of_several_groups_in_one_call_are_each_groups_bits():
+    """refine_many evaluates elements of several (m, chirality) groups in one call: with
+    m and chirality as arrays, configuration gives each element its own group's values,
+    bit for bit, also where a loop would be NaN for an element without a domain."""
+    par = ensemble_parameters()
+    F = np.full(6, 0.3 * PN)
+    M = np.array([-9.0, -7.0, 2.0, 5.0, -7.0, 12.0]) * PNNM
+    Lp = np.array([0.0, 0.0, 300.0, 900.0, 1400.0, 100.0]) * NM
+    m = np.array([0.0, 0.0, 1.0, 2.0, 1.0, 2.0])
+    c = np.array([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
+    mixed = en.configuration(F, M, par, Lp, m, c)
+    for i in range(6):
+        one = en.configuration(F[i:i + 1], M[i:i + 1], par, Lp[i:i + 1], int(m[i]), c[i])
+        for a, b in zip(mixed, one, strict=True):
+            np.testing.assert_array_equal(a[i:i + 1], b)

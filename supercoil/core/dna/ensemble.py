@@ -143,12 +143,15 @@ def configuration(F, M, par, Lp, m, chirality, wlc=None):
     link = -(Ls * t.dphi_dM + Lp * p.dphi_dM)
     dlink = -(Ls * t.d2phi_dM2 + Lp * p.d2phi_dM2)
     z = -Ls * t.dphi_dF
-    if m:
+    if np.ndim(m) or m:  # m (and chirality) an array: configurations of several groups
         e, e_F, e_M = _ph.end_loop_gibbs(t, M, par.A, par.C, par.kT, par.writhe, chirality,
                                          par.nucleation, par.physical_loop)
-        Phi, link, z = Phi + m * e, link - m * e_M, z - m * e_F
-        dlink = dlink - m * _ph.end_loop_torque_slope(t, M, par.A, par.C, par.kT,
-                                                      par.physical_loop)
+        s = _ph.end_loop_torque_slope(t, M, par.A, par.C, par.kT, par.physical_loop)
+        loop = (Phi + m * e, link - m * e_M, z - m * e_F, dlink - m * s)
+        if np.ndim(m):  # those without a domain keep their own terms (their loop may be NaN)
+            loop = tuple(np.where(np.asarray(m) > 0, a, b)
+                         for a, b in zip(loop, (Phi, link, z, dlink), strict=True))
+        Phi, link, z, dlink = loop
     return Phi, link, z, theta, dlink
 
 
@@ -210,13 +213,13 @@ class _ConfigurationGroup:
         return (np.isfinite(self.lower) & ~self.solved
                 & (self.lower <= best[:, None] + PRUNE_KT * self.kT))
 
-    def solve(self, best):
-        """Solve :meth:`left_out`: G (E6 - kT ln w, infinite without a state), z, M."""
-        want = self.left_out(best)
-        if not want.any():
-            return
-        M, ok, Phi, z, theta = _roots.refine(self.tables, self.cr, self.N, self.Lp, self.m,
-                                             self.c, want.ravel()[self.cr.elem])
+    def request(self, want):
+        """What :func:`supercoil.core.dna.ensemble_roots.refine_many` needs to solve ``want``."""
+        return self.cr, self.N, self.Lp, self.m, self.c, want.ravel()[self.cr.elem]
+
+    def store(self, want, solved):
+        """Keep the solved ``want``: G (E6 - kT ln w, infinite without a state), z, M."""
+        M, ok, Phi, z, theta = solved
         G = Phi + _TWO_PI * M * self.N - self.entropy
         G = np.where(ok & np.isfinite(G) & (z > 0.0), G, np.inf)
         melt = theta * (self.tables.par.length - self.Lp)
@@ -241,8 +244,10 @@ def _configurations(N, F, par):
     # within PRUNE_KT of it, then check the cut against the smallest G solved
     best = np.min([g.upper.min(axis=1) for g in groups], axis=0)
     while True:
-        for g in groups:
-            g.solve(best)
+        todo = [(g, w) for g in groups if (w := g.left_out(best)).any()]
+        solved = _roots.refine_many(tables, [g.request(w) for g, w in todo])
+        for (g, w), r in zip(todo, solved, strict=True):
+            g.store(w, r)
         best = np.min([g.G.min(axis=1) for g in groups], axis=0)
         if not any(g.left_out(best).any() for g in groups):
             break

@@ -30,7 +30,8 @@ from supercoil.core.table_roots import bracketed_newton, cell_search, hermite_in
 from . import phases as _ph
 
 __all__ = ["NEWTON_ATOL", "NEWTON_MAXITER", "NEWTON_RTOL", "TORQUE_BRACKET", "TORQUE_NODES",
-           "Crossings", "LinkTables", "configuration_torques", "crossings", "refine"]
+           "Crossings", "LinkTables", "configuration_torques", "crossings", "refine",
+           "refine_many"]
 
 _TWO_PI = 2.0 * np.pi
 #: bracket of the torque solves, N m (200 pN nm: far beyond B-DNA's torques)
@@ -194,14 +195,39 @@ def refine(tables, cr, N, Lp, m, c, use):
     not refined or no crossing converged; an element with several crossings keeps the
     Legendre maximum of (E6).
     """
-    fi = np.broadcast_to(tables.index[:, None], N.shape).ravel()
-    n, lp = N.ravel(), Lp.ravel()
-    elem = cr.elem[use]
-    M, (Phi, z, theta), done = _refine(tables, cr.x0[use], cr.xa[use], cr.xb[use], elem, fi,
-                                       n, lp, m, c)
+    return refine_many(tables, [(cr, N, Lp, m, c, use)])[0]
+
+
+def refine_many(tables, groups):
+    """:func:`refine` of several groups ``(cr, N, Lp, m, c, use)`` at once: one Newton
+    iteration (one exact evaluation per step) for all their elements, so that the few
+    elements that need many steps pay the per-call cost once, not once per group."""
+    if not groups:
+        return []
+    parts = []
+    for cr, N, Lp, m, c, use in groups:
+        fi = np.broadcast_to(tables.index[:, None], N.shape).ravel()
+        elem = cr.elem[use]
+        parts.append((elem, fi[elem], N.ravel()[elem], Lp.ravel()[elem],
+                      np.full(elem.size, float(m)), np.full(elem.size, float(c)),
+                      cr.x0[use], cr.xa[use], cr.xb[use]))
+    cat = [np.concatenate([p[j] for p in parts]) for j in range(9)]
+    M, (Phi, z, theta), done = _refine(tables, *cat[6:], *cat[1:6])
+    out, start = [], 0
+    for grp, p in zip(groups, parts, strict=True):
+        part = slice(start, start + p[0].size)
+        start = part.stop
+        out.append(_legendre_pick(grp[1], p[0], M[part], Phi[part], z[part], theta[part],
+                                  done[part]))
+    return out
+
+
+def _legendre_pick(N, elem, M, Phi, z, theta, done):
+    """Per element the crossing of the largest Phi + 2 pi M N (one almost everywhere),
+    as arrays of the points x Lp shape."""
+    n = N.ravel()
     G = Phi + _TWO_PI * M * n[elem]
     G = np.where(np.isfinite(G), G, -np.inf)
-    # the Legendre maximum among an element's crossings (one crossing almost everywhere)
     pick = np.arange(elem.size)
     if elem.size > np.unique(elem).size:  # some element has several crossings
         order = np.lexsort((-G, elem))
@@ -228,17 +254,17 @@ def configuration_torques(tables, N, Lp, m, c):
     return refine(tables, cr, N, Lp, m, c, np.ones(cr.elem.size, bool))
 
 
-def _refine(tables, x0, xa, xb, elem, fi, n, lp, m, c):
-    """Newton from the tabulated estimates; scipy's find_root where it does not converge."""
+def _refine(tables, x0, xa, xb, fi, n, lp, m, c):
+    """Newton from the tabulated estimates; scipy's find_root where it does not converge
+    (per-candidate force index, turns, Lp, domains and chirality)."""
     par, conf = tables.par, tables.configuration
     wlc = tables.wlc
 
     def at(x, idx):
-        e = elem[idx]
-        w = None if wlc is None else (wlc[0][fi[e]], wlc[1][fi[e]])
-        F = tables.forces[fi[e]]
-        Phi, link, z, theta, dlink = conf(F, x, par, lp[e], m, c, w)
-        return link - _TWO_PI * n[e], dlink, (Phi, z, theta)
+        f = fi[idx]
+        w = None if wlc is None else (wlc[0][f], wlc[1][f])
+        Phi, link, z, theta, dlink = conf(tables.forces[f], x, par, lp[idx], m[idx], c[idx], w)
+        return link - _TWO_PI * n[idx], dlink, (Phi, z, theta)
 
     M, extras, done = bracketed_newton(at, x0, xa, xb, NEWTON_RTOL, NEWTON_ATOL,
                                       NEWTON_MAXITER)
