@@ -229,7 +229,7 @@ def _legendre_pick(N, elem, M, Phi, z, theta, done):
     G = Phi + _TWO_PI * M * n[elem]
     G = np.where(np.isfinite(G), G, -np.inf)
     pick = np.arange(elem.size)
-    if elem.size > np.unique(elem).size:  # some element has several crossings
+    if elem.size and np.bincount(elem).max() > 1:  # some element has several crossings
         order = np.lexsort((-G, elem))
         first = np.ones(order.size, bool)
         first[1:] = elem[order][1:] != elem[order][:-1]
