@@ -251,9 +251,12 @@ def _configurations(N, F, par):
         best = np.min([g.G.min(axis=1) for g in groups], axis=0)
         if not any(g.left_out(best).any() for g in groups):
             break
-    return tuple(np.concatenate([getattr(g, a) if a != "m" else np.full(g.N.shape, g.m, float)
-                                 for g in groups], axis=1)
-                 for a in ("G", "z", "M", "Lp", "melt", "m"))
+    def joined(column):
+        return np.concatenate([column(g) for g in groups], axis=1)
+
+    return (joined(lambda g: g.G), joined(lambda g: g.z), joined(lambda g: g.M),
+            joined(lambda g: g.Lp), joined(lambda g: g.melt),
+            joined(lambda g: np.full(g.N.shape, g.m, float)))
 
 
 def coexistence_torque(force, par, sign=1.0, strict=True):

@@ -64,9 +64,7 @@ class LinkTables:
         self.forces, self.index = np.unique(F, return_inverse=True)
         self.index = self.index.reshape(F.shape)
         self.wlc = wlc(self.forces)  # at each distinct force
-        #: torque nodes of each force (N m)
-        self.nodes = MM = np.broadcast_to(TORQUE_NODES, (self.forces.size, TORQUE_NODES.size))
-        FF = np.broadcast_to(self.forces[:, None], MM.shape)
+        FF, MM = np.broadcast_arrays(self.forces[:, None], TORQUE_NODES[None, :])
         w = self.wlc
         w = None if w is None else tuple(np.broadcast_to(a[:, None], MM.shape) for a in w)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -110,7 +108,7 @@ class _Group:
     def __init__(self, tables, fi, lp, K, m, c):
         self.tables, self.fi, self.lp, self.m, self.c = tables, fi, lp, m, c
         nodes = lp[:K]
-        nf, G = tables.nodes.shape
+        nf, G = tables.forces.size, TORQUE_NODES.size
         self.shared = fi.size >= _SHARED * nf * K
         if self.shared:
             f_all = np.repeat(np.arange(nf), K)
@@ -137,7 +135,7 @@ class _Group:
         (or at every node)."""
         if self.shared and not kind:
             if isinstance(k, slice):
-                return self.V[self.row[e, None] + np.arange(self.tables.nodes.shape[1])]
+                return self.V[self.row[e, None] + np.arange(TORQUE_NODES.size)]
             return self.V[self.row[e] + k]
         lp = self.lp[e, None] if isinstance(k, slice) else self.lp[e]
         return self.tables.linking(self.fi[e], lp, self.m, self.c, k, kind)
@@ -169,8 +167,7 @@ def crossings(tables, N, Lp, m, c):
     grp = _Group(tables, fi, lp, Lp.shape[1], m, c)
     # one crossing per element on increasing tables (bisection over node indices) ...
     e1 = np.flatnonzero(grp.mono)
-    G = tables.nodes.shape[1]
-    k1 = cell_search(lambda k: grp.value(e1, k) - target[e1], G, e1.shape)
+    k1 = cell_search(lambda k: grp.value(e1, k) - target[e1], TORQUE_NODES.size, e1.shape)
     # ... every increasing crossing elsewhere
     e2 = np.flatnonzero(~grp.mono)
     h2 = grp.value(e2, slice(None)) - target[e2, None]
@@ -180,7 +177,7 @@ def crossings(tables, N, Lp, m, c):
     hb = grp.value(elem, k + 1) - target[elem]
     cell = np.isfinite(ha) & np.isfinite(hb) & (ha <= 0.0) & (hb > 0.0)
     elem, k, ha, hb = elem[cell], k[cell], ha[cell], hb[cell]
-    xa, xb = tables.nodes[fi[elem], k], tables.nodes[fi[elem], k + 1]
+    xa, xb = TORQUE_NODES[k], TORQUE_NODES[k + 1]
     x0 = hermite_inverse(xa, xb, ha, hb, grp.value(elem, k, 1), grp.value(elem, k + 1, 1))
     ga = grp.value(elem, k, 2) + xa * target[elem]
     gb = grp.value(elem, k + 1, 2) + xb * target[elem]
