@@ -1,6 +1,7 @@
 """Hat curves (docs/theory/li-zhao.md): phases, symmetry, continuity, slope, linking, athermal.
 """
 
+import itertools
 import warnings
 
 import numpy as np
@@ -556,3 +557,35 @@ def test_one_phase_blocks_equal_the_general_path(monkeypatch, thermal):
             assert a.dtype == b.dtype, name
             np.testing.assert_array_equal(b, a, err_msg=name)
     np.testing.assert_equal(tuple(fast.summary), tuple(general.summary))
+
+
+@pytest.mark.parametrize("block", [37, 229, 1 << 15])
+def test_points_without_diagnostics_and_on_broadcast_forces_are_the_same(block, monkeypatch):
+    """``diagnostics=False`` (no zeta/bracket kept: the one-phase fillers skip their
+    fills and take zeta's largest value from the shortest tail) and one force broadcast
+    over the points (stride 0, read once) give the same points and summary, bit for bit,
+    with and without short tails (zeta > 1 near full coiling when none counts as short)."""
+    monkeypatch.setattr(hc, "BLOCK", block)
+    seen_over = 0
+    for f in (0.15e-12, 0.4e-12, 1.2e-12, 3.0e-12):
+        par = hc.hat_parameters(np.array([f]), *ARGS)
+        n_coiled = (par.buckling_turns + L * par.linking_rate / (2 * np.pi))[0]
+        # the whole curve, and plectoneme points only, down to a tail of ~0
+        near_coiled = n_coiled - np.geomspace(1.0, 1e-9, 800)
+        for N, short in itertools.product((np.linspace(-60, 60, 4001), near_coiled),
+                                          (None, 0.0)):
+            ref = hc.hat_curve_points(N, np.full(N.shape, f), *ARGS, short_tail_length=short)
+            lean = hc.hat_curve_points(N, np.broadcast_to(f, N.shape), *ARGS,
+                                       short_tail_length=short, diagnostics=False)
+            assert lean.zeta is None and lean.bracket is None
+            for name in ("extension", "torque", "plectoneme_length", "phase", "short_tail"):
+                np.testing.assert_array_equal(getattr(lean, name), getattr(ref, name))
+            np.testing.assert_equal(tuple(lean.summary), tuple(ref.summary))
+            over = bool(np.any((ref.zeta > 1) & ~ref.short_tail))
+            assert lean.summary.zeta_over_long_tail == ref.summary.zeta_over_long_tail == over
+            if N is near_coiled:
+                assert np.all(ref.phase == iface.PLECTONEME)
+                seen_over += over
+    assert seen_over >= 2, "plectoneme blocks with zeta > 1 at a long tail: not exercised"
+    with pytest.raises(ValueError, match="force must be finite"):
+        hc.hat_curve_points(N, np.broadcast_to(np.nan, N.shape), *ARGS)

@@ -261,6 +261,14 @@ def test_the_base_checks_the_inputs_once_for_every_model(molecule):
         model.points(N, F[:1], dna, True)
     with pytest.raises(ValueError, match="turns must be finite"):
         model.points(np.array([0.0, np.nan]), F, dna, True)
+    # the check is one pass (a sum): an infinity or a NaN anywhere, and a sum that
+    # overflows from finite turns told apart from them
+    for bad in ([1e308, 1e308, -np.inf], [np.inf, -np.inf], [1e308, np.nan, 1e308]):
+        with pytest.raises(ValueError, match="turns must be finite"):
+            model.points(np.array(bad), np.full(len(bad), 1e-12), dna, True)
+    with pytest.raises(sc.ValidityError) as huge, np.errstate(over="ignore", invalid="ignore"):
+        model.points(np.array([1e308, 1e308]), F, dna, True)  # finite: the output fails
+    assert "turns must be finite" not in str(huge.value)
     with pytest.raises(sc.NoEquilibriumError, match=r"-1 pN.*positive"):
         model.buckling(np.array([-1e-12]), dna, True)
     with pytest.raises(TypeError, match=r"DNA\.si"):

@@ -274,8 +274,16 @@ def _forces(force):
     """Sorted distinct forces and each block's ``(min, max)``; ValueError if not finite.
 
     One pass of two cache-resident reductions per block: a block of one force
-    (every block but the seams of a force-major table) needs no sort.
+    (every block but the seams of a force-major table) needs no sort. One force
+    broadcast over the points (stride 0, as ``hat_curve`` passes it) is read
+    once: numpy reduces a stride-0 view element by element, as a full array
+    (at 1e6 points that was 2.7x the reductions of the same forces written out).
     """
+    if force.size and force.strides == (0,):
+        f = force[0]
+        if not np.isfinite(f):
+            raise ValueError("force must be finite")
+        return np.array([f]), [(f, f)] * len(_blocks(force.size))
     ranges, values = [], []
     for start, stop in _blocks(force.size):
         f = force[start:stop]

@@ -175,27 +175,45 @@ def fill_plectoneme(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_
     M = out.torque[sl]
     M.fill(Mp)
     extension = out.extension[sl]
-    Q = q_lo = None
+    q_lo = None
+    over = False
     if thermal:
         q = Mp * (0.5 / kT)
-        Q = q_lo = s - q * q
-        if not Q > 0.0:
+        q_lo = s - q * q
+        if not q_lo > 0.0:
             return None
-        bracket.fill(Q)
+        if out.bracket is not None:  # kept (diagnostics): else a buffer no one reads
+            bracket.fill(q_lo)
         # zeta = 1 - Q^(-1/2)/2 + B kT / ((Q + 1/32) kT^2 l): one number plus a term in l
-        z_inf = -0.5 / np.sqrt(Q) + 1.0
-        np.multiply(tail, Q + 1.0 / 32.0, out=extension)
+        z_inf = -0.5 / np.sqrt(q_lo) + 1.0
+        np.multiply(tail, q_lo + 1.0 / 32.0, out=extension)
         with np.errstate(divide="ignore"):
             np.divide(B / kT, extension, out=extension)
         np.add(extension, z_inf, out=zeta)
         np.multiply(zeta, tail, out=extension)
+        z_max = _zeta_max(lo, hi, const, length, B, kT, q_lo, z_inf)
     else:
         zeta.fill(1.0)
         extension[:] = tail
     short = _signed_and_short(M, turns, lo, tail, short_tail_length, out.short_tail[sl])
+    if thermal and z_max > 1.0:  # the masks only where zeta's largest value exceeds 1
+        over = bool(np.any((zeta > 1.0) & ~short))
     # M = sign(N) M_p: its extremes are those of the extreme turns (no reductions)
-    return block_summary(extension, M, zeta, bracket if thermal else None, short,
+    return block_summary(extension, M, zeta, bracket if thermal else None, short, over=over,
                           q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
+
+
+def _zeta_max(lo, hi, const, length, B, kT, Q, z_inf):
+    """zeta's largest value in a plectoneme block with turns in ``[lo, hi]``, bit for bit.
+
+    Each step from |N| to zeta (subtract, multiply, subtract, multiply, divide, add)
+    is one correctly rounded operation, monotone in its argument, so the largest
+    value is the same operations on the largest |N| (the shortest tail): no pass.
+    """
+    Nb, _, k, _, _ = const
+    tail = length - (max(abs(lo), abs(hi)) - Nb) * k
+    with np.errstate(divide="ignore"):
+        return B / kT / (tail * (Q + 1.0 / 32.0)) + z_inf
 
 
 def fill_stretched(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_length, out, sl,
@@ -246,17 +264,19 @@ def fill_coiled(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_leng
     M = out.torque[sl]
     M.fill(Mp)
     out.extension[sl].fill(0.0)
-    zeta.fill(0.0)
+    if out.zeta is not None:  # kept (diagnostics): else buffers no one reads
+        zeta.fill(0.0)
     q_lo = None
     if thermal:
         q = Mp * (0.5 / kT)
         q_lo = s - q * q
-        bracket.fill(q_lo)
+        if out.bracket is not None:
+            bracket.fill(q_lo)
     if lo < 0.0 or np.signbit(lo):
         np.copysign(M, turns, out=M)
     short = out.short_tail[sl]
     short.fill(0.0 < short_tail_length)
-    return block_summary(out.extension[sl], M, zeta, bracket if thermal else None, short,
+    return block_summary(out.extension[sl], M, zeta, None, short, over=False,  # zeta = 0
                           q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
 
 

@@ -288,13 +288,22 @@ class DNAModel(Parametrised, abc.ABC):
 
     def _point_inputs(self, turns, force, dna, thermal, interaction):
         turns, force = _same_shape(turns, force)
-        if turns.size:
-            lo, hi = turns.min(), turns.max()  # two reductions: NaN propagates
-            if not (np.isfinite(lo) and np.isfinite(hi)):
-                raise ValueError(f"model {self.name!r}: turns must be finite, got "
-                                 f"{turns[~np.isfinite(turns)][0]!r}")
+        if turns.size and not _all_finite(turns):
+            raise ValueError(f"model {self.name!r}: turns must be finite, got "
+                             f"{turns[~np.isfinite(turns)][0]!r}")
         force, dna, thermal, interaction = self._inputs(force, dna, thermal, interaction)
         return turns, force, dna, thermal, interaction
+
+
+def _all_finite(x):
+    """Whether every element of the float array ``x`` is finite: one pass (its sum).
+
+    A NaN or an infinity makes the sum NaN or infinite; a sum that overflows from
+    finite values (|x| near 1e308) is told apart by the exact elementwise test.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        total = np.add.reduce(x)
+    return bool(np.isfinite(total)) or bool(np.isfinite(x).all())
 
 
 def _same_shape(turns, force):
