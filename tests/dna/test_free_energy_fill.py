@@ -64,6 +64,20 @@ def test_one_force_hat_curve_bit_for_bit(monkeypatch, si, thermal, force):
     _assert_identical(new, old)
 
 
+def test_one_force_broadcast_over_the_points_gives_the_same_points(si):
+    """One force as a stride-0 view (as the public layer passes it, read once) and the
+    same force written out: the same points, bit for bit; a broadcast NaN is named."""
+    L, B, C, kT, _ = si
+    eq = equilibrium_of(si)
+    f = 1.2e-12
+    turns = np.linspace(-1.3 * _coiled_turns(si, f), 1.3 * _coiled_turns(si, f), 5001)
+    full = fe.hat_points(turns, np.full(turns.size, f), L, B, C, kT, eq, True)
+    view = fe.hat_points(turns, np.broadcast_to(f, turns.shape), L, B, C, kT, eq, True)
+    _assert_identical(view, full)
+    with pytest.raises(ValueError, match="must be finite"):
+        fe.hat_points(turns, np.broadcast_to(np.nan, turns.shape), L, B, C, kT, eq, True)
+
+
 @pytest.mark.parametrize("excess, branch", [(1.0, "secant"), (1.05, "series")])
 def test_few_coiled_points_bit_for_bit(monkeypatch, si, excess, branch):
     """Few fully coiled points (the secant) and fewer than the inverse needs (Newton)."""

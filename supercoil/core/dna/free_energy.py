@@ -58,6 +58,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.blocks import extremes
 from supercoil.core.blocks import outside as _outside
 from supercoil.core.blocks import select as _select
 from supercoil.core.dna import branch_memo as _memo
@@ -356,7 +357,7 @@ def hat_points(turns, force, length, B, C, kT, equilibrium, thermal=True,
     turns, force = np.broadcast_arrays(np.asarray(turns, float), np.asarray(force, float))
     if not (np.isfinite(length) and length > 0):
         raise ValueError(f"length must be positive and finite, got {length!r}")
-    f_lo, f_hi = (force.min(), force.max()) if force.size else (1.0, 1.0)
+    f_lo, f_hi = extremes(force.reshape(-1)) if force.size else (1.0, 1.0)
     t_lo, t_hi = (turns.min(), turns.max()) if turns.size else (0.0, 0.0)
     if not all(np.isfinite([f_lo, f_hi, t_lo, t_hi])):  # NaN propagates
         raise ValueError("turns and force must be finite")

@@ -41,6 +41,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from supercoil.core.blocks import extremes
 from supercoil.core.dna import li_zhao_numba as _fast
 from supercoil.core.dna import li_zhao_numpy as _blk
 from supercoil.core.dna import moroz_nelson as _mn
@@ -274,13 +275,11 @@ def _forces(force):
     """Sorted distinct forces and each block's ``(min, max)``; ValueError if not finite.
 
     One pass of two cache-resident reductions per block: a block of one force
-    (every block but the seams of a force-major table) needs no sort. One force
-    broadcast over the points (stride 0, as ``hat_curve`` passes it) is read
-    once: numpy reduces a stride-0 view element by element, as a full array
-    (at 1e6 points that was 2.7x the reductions of the same forces written out).
+    (every block but the seams of a force-major table) needs no sort; one force
+    broadcast over the points is read once (:func:`~supercoil.core.blocks.extremes`).
     """
     if force.size and force.strides == (0,):
-        f = force[0]
+        f, _ = extremes(force)
         if not np.isfinite(f):
             raise ValueError("force must be finite")
         return np.array([f]), [(f, f)] * len(_blocks(force.size))
