@@ -206,11 +206,16 @@ def force_messages(force):
             "the model (inextensible DNA) ignores it"]
 
 
-def denaturation_messages(force, turns):
-    """Negative turns above 0.8 pN, where real DNA denatures."""
+def denaturation_messages(force, turns, turns_min=None):
+    """Negative turns above 0.8 pN, where real DNA denatures.
+
+    ``turns_min``: the smallest turns, if the caller knows it (a kernel's summary).
+    """
     force, turns = np.asarray(force), np.asarray(turns)
-    if force.size == 0 or _extreme(force, np.max) <= DENATURATION_FORCE or turns.min() >= 0:
+    if force.size == 0 or _extreme(force, np.max) <= DENATURATION_FORCE:
         return []  # cheap reductions first: the mask below costs three passes
+    if (turns.min() if turns_min is None else turns_min) >= 0:
+        return []
     den = (turns < 0) & (force > DENATURATION_FORCE)
     if not np.any(den):
         return []
@@ -226,7 +231,9 @@ def point_messages(turns, force, points, dna, describes_denaturation=False):
     :meth:`supercoil.dna.models.base.DNAModel.validity` applies them to every model's
     points (docs/theory/limits.md#dna), before the model's own messages.
     """
-    denat = [] if describes_denaturation else denaturation_messages(force, turns)
+    s = summary_of(points)
+    known = None if s is None or np.isnan(s.turns_min) else s.turns_min
+    denat = [] if describes_denaturation else denaturation_messages(force, turns, known)
     return (force_messages(force) + denat + extension_messages(force, turns, points, dna)
             + tail_torque_messages(force, turns, points, dna))
 

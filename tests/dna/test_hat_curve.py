@@ -370,6 +370,7 @@ def test_summary_is_the_reductions_of_the_points(thermal, fast):
         assert (s.extension_min, s.extension_max) == (p.extension.min(), p.extension.max())
         assert (s.torque_min, s.torque_max) == (p.torque.min(), p.torque.max())
         assert s.torque_min < 0 < s.torque_max
+        assert (s.turns_min, s.turns_max) == (N.min(), N.max())
         over = bool(np.any((p.zeta > 1) & ~p.short_tail))
         assert s.zeta_over_long_tail == over
         if thermal:

@@ -68,3 +68,5 @@ class PointSummary(NamedTuple):
     torque_max: float  # N m, signed
     bracket_min: float  # thermal: min of Q over all points (NaN athermal)
     zeta_over_long_tail: bool  # zeta > 1 at a point not flagged short_tail
+    turns_min: float = float("nan")  # the turns of the call (NaN: not kept)
+    turns_max: float = float("nan")

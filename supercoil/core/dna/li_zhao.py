@@ -67,9 +67,10 @@ _TWO_PI = 2.0 * np.pi
 
 def _combined(blocks):
     """One :class:`PointSummary` from the blocks' summaries."""
-    f, e_lo, e_hi, m_lo, m_hi, q_lo, over = zip(*blocks, strict=True)
+    f, e_lo, e_hi, m_lo, m_hi, q_lo, over, n_lo, n_hi = zip(*blocks, strict=True)
     return PointSummary(all(f), float(min(e_lo)), float(max(e_hi)), float(min(m_lo)),
-                        float(max(m_hi)), float(np.min(q_lo)), any(over))
+                        float(max(m_hi)), float(np.min(q_lo)), any(over), float(min(n_lo)),
+                        float(max(n_hi)))
 
 
 class HatParameters(NamedTuple):
@@ -305,6 +306,7 @@ def _fill_fast(turns, force, const, length, B, kT, thermal, short_tail_length, o
     if code != _fast.OK:
         return _blk.fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out,
                            sl, zeta, bracket)
-    return _blk.block_summary(out.extension[sl], out.torque[sl], None, bracket, None, over)
+    return _blk.block_summary(out.extension[sl], out.torque[sl], None, bracket, None,
+                              (turns.min(), turns.max()), over)
 
 

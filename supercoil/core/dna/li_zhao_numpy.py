@@ -22,12 +22,13 @@ __all__ = ["UNIFORM", "block_summary", "fill_block", "fill_coiled", "fill_plecto
 
 
 
-def block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=None,
-                  torque_range=None):
+def block_summary(extension, torque, zeta, bracket, short_tail, turns_range, over=None,
+                  q_lo=None, torque_range=None):
     """``PointSummary`` fields of one block (cache-resident reductions).
 
-    ``over`` (zeta > 1 at a long tail), ``q_lo`` (the bracket's minimum) and
-    ``torque_range`` (min, max), if the caller already knows them.
+    ``turns_range``: the block's (min, max) turns (every filler has them). ``over``
+    (zeta > 1 at a long tail), ``q_lo`` (the bracket's minimum) and ``torque_range``
+    (min, max), if the caller already knows them.
     """
     e_lo, e_hi = extension.min(), extension.max()
     m_lo, m_hi = torque_range if torque_range is not None else (torque.min(), torque.max())
@@ -37,7 +38,7 @@ def block_summary(extension, torque, zeta, bracket, short_tail, over=None, q_lo=
         q_lo = bracket.min() if bracket is not None else np.nan
     if over is None:
         over = bool(zeta.max() > 1.0) and bool(np.any((zeta > 1.0) & ~short_tail))
-    return finite, e_lo, e_hi, m_lo, m_hi, q_lo, bool(over)
+    return finite, e_lo, e_hi, m_lo, m_hi, q_lo, bool(over), *turns_range
 
 
 def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, out, sl, zeta,
@@ -99,7 +100,7 @@ def fill_block(turns, force, const, length, B, kT, thermal, short_tail_length, o
             np.copyto(zeta, 0.0, where=coiled)
         extension[:] = tail
     short = _signed_and_short(M, turns, lo, tail, short_tail_length, out.short_tail[sl])
-    return block_summary(extension, M, zeta, Q if thermal else None, short,
+    return block_summary(extension, M, zeta, Q if thermal else None, short, (lo, hi),
                           q_lo=q_lo if thermal else None)
 
 
@@ -199,8 +200,9 @@ def fill_plectoneme(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_
     if thermal and z_max > 1.0:  # the masks only where zeta's largest value exceeds 1
         over = bool(np.any((zeta > 1.0) & ~short))
     # M = sign(N) M_p: its extremes are those of the extreme turns (no reductions)
-    return block_summary(extension, M, zeta, bracket if thermal else None, short, over=over,
-                          q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
+    return block_summary(extension, M, zeta, bracket if thermal else None, short, (lo, hi),
+                          over=over, q_lo=q_lo,
+                          torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
 
 
 def _zeta_max(lo, hi, const, length, B, kT, Q, z_inf):
@@ -248,7 +250,7 @@ def fill_stretched(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_l
     short.fill(length < short_tail_length)
     # M = sign(N) C_eff 2 pi |N| / L is monotone in N: its extremes at the extreme turns
     m_range = (np.copysign(abs(lo) * c, lo), np.copysign(abs(hi) * c, hi))
-    return block_summary(extension, M, zeta, bracket if thermal else None, short,
+    return block_summary(extension, M, zeta, bracket if thermal else None, short, (lo, hi),
                           q_lo=q_lo, torque_range=m_range)
 
 
@@ -276,7 +278,8 @@ def fill_coiled(n, turns, lo, hi, const, length, B, kT, thermal, short_tail_leng
         np.copysign(M, turns, out=M)
     short = out.short_tail[sl]
     short.fill(0.0 < short_tail_length)
-    return block_summary(out.extension[sl], M, zeta, None, short, over=False,  # zeta = 0
+    return block_summary(out.extension[sl], M, zeta, None, short, (lo, hi),
+                          over=False,  # zeta = 0
                           q_lo=q_lo, torque_range=(np.copysign(Mp, lo), np.copysign(Mp, hi)))
 
 
