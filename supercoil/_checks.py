@@ -86,8 +86,9 @@ def check_scale(value, what, lo=-np.inf, hi=np.inf, why=""):
     Debye length of a buffer): absurd inputs such as a radius of 1e-300 nm or
     a salt of 1e300 M give a message naming the quantity, its value and the
     limit instead of a ZeroDivisionError or an overflow deep in the kernel.
-    ``what`` describes the quantity (e.g. ``"the Debye length (salt 1e+300 M)"``),
-    ``why`` the reason of the limit. NaN fails both bounds.
+    ``what`` describes the quantity (e.g. ``"the Debye length (salt 1e+300 M)"``; or a
+    callable returning it, formatted only on failure), ``why`` the reason of the limit.
+    NaN fails both bounds.
     """
     from supercoil.exceptions import ValidityError
 
@@ -95,6 +96,7 @@ def check_scale(value, what, lo=-np.inf, hi=np.inf, why=""):
     if lo <= v <= hi:
         return value
     side, limit = ("below", lo) if not v >= lo else ("above", hi)
+    what = what() if callable(what) else what
     raise ValidityError(f"{what} is {v:.6g}, {side} its limit {limit:.6g}"
                         + (f": {why}" if why else ""))
 

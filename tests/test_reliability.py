@@ -245,6 +245,21 @@ def test_tiny_but_normal_temperature_has_no_equilibrium_named(dna):
         sc.plectoneme_equilibrium(dna.replace(temperature=1e-20 * u.K), 1.2 * u.pN)
 
 
+@pytest.mark.parametrize("change, message", [
+    ({"length": 0.1 * u.nm}, r"contour length \(nm\) is 0.1, below its limit 0.34"),
+    ({"temperature": 2e4 * u.K}, r"temperature \(K\) is 20000, above its limit 10000"),
+])
+def test_dna_outside_the_models_limits_is_named_by_every_public_function(dna, change, message):
+    """check_dna's limits (one base pair; far above melting), also past its fast path."""
+    bad = dna.replace(**change)
+    with pytest.raises(ValidityError, match=message):
+        sc.plectoneme_equilibrium(bad, 1.2 * u.pN)
+    with pytest.raises(ValidityError, match=message):
+        sc.hat_curve(bad, 1.2 * u.pN, [0.0, 1.0])
+    with pytest.warns(ValidityWarning, match="outside"):  # at the limit: no error
+        assert sc.hat_curve(dna.replace(length=0.34 * u.nm), 1.2 * u.pN, [0.0]).shape[0] == 1
+
+
 @pytest.mark.parametrize("radius", [1e300, 1e-100])
 def test_rod_rigidity_out_of_float_range_is_named(rod, radius):
     with pytest.raises(ValueError, match=r"bending rigidity E pi r\^4/4.*check radius"):

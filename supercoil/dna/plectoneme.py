@@ -76,5 +76,5 @@ def plectoneme_equilibrium(dna, force, interaction=DEFAULT_INTERACTION):
     st = inter.equilibrium(np.atleast_1d(f).ravel(), si)
     _v.warn(_v.force_messages(f) + inter.messages(si), stacklevel=2)
     shape = np.shape(f)
-    return PlectonemeEquilibrium(**{k: np.reshape(v, shape) if shape else float(v[0])
-                                    for k, v in st._asdict().items()})
+    return PlectonemeEquilibrium(**{k: np.asarray(v).reshape(shape) if shape else float(v[0])
+                                    for k, v in zip(st._fields, st, strict=True)})

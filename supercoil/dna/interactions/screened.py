@@ -238,8 +238,8 @@ class Screened(Interaction):
         a = self.values["hard_core_radius"]
         with np.errstate(over="ignore", under="ignore", divide="ignore"):
             lam = float(_el.debye_length(si.salt, si.temperature))
-        check_scale(lam / a, f"the Debye length over the hard-core radius, lambda_D/a (salt "
-                    f"{si.salt * _MOLAR:.6g} M, lambda_D = {_d.text(lam, 'length')}, "
+        check_scale(lam / a, lambda: "the Debye length over the hard-core radius, lambda_D/a "
+                    f"(salt {si.salt * _MOLAR:.6g} M, lambda_D = {_d.text(lam, 'length')}, "
                     f"a = {_d.text(a, 'length')})", lo=1.0 / 300.0, hi=_R_MAX_FACTOR,
                     why="the screened interaction is solved for a / 300 <= lambda_D <= "
                         f"{_R_MAX_FACTOR:g} a (docs/theory/screened-interaction.md)")
