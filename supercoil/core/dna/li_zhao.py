@@ -41,7 +41,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from supercoil.core.blocks import extremes
 from supercoil.core.dna import li_zhao_numba as _fast
 from supercoil.core.dna import li_zhao_numpy as _blk
 from supercoil.core.dna import moroz_nelson as _mn
@@ -277,10 +276,10 @@ def _forces(force):
 
     One pass of two cache-resident reductions per block: a block of one force
     (every block but the seams of a force-major table) needs no sort; one force
-    broadcast over the points is read once (:func:`~supercoil.core.blocks.extremes`).
+    broadcast over the points (a stride-0 view) is read once.
     """
-    if force.size and force.strides == (0,):
-        f, _ = extremes(force)
+    if force.size and force.strides == (0,):  # one value: read once, as blocks.extremes does
+        f = force[0]
         if not np.isfinite(f):
             raise ValueError("force must be finite")
         return np.array([f]), [(f, f)] * len(_blocks(force.size))
